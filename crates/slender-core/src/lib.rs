@@ -1,0 +1,16 @@
+//! slender-core: the physics of slender elastic structures.
+//!
+//! Discrete elastic rods (positions plus one twist angle per edge, time-parallel reference
+//! frames), their energies with exact gradients and Hessians, clamps, meshes, and the Newton
+//! solver that finds equilibria and reports their stability (Hessian inertia).
+//!
+//! This crate does no file I/O, no plotting and spawns no threads, so that it builds for
+//! `wasm32` and can be embedded anywhere. Units are SI throughout (m, N, kg, s, rad).
+
+pub mod error;
+pub mod geometry;
+pub mod linalg;
+pub mod rod;
+pub mod solver;
+
+pub use error::ModelError;

@@ -1,0 +1,733 @@
+//! Symmetric banded matrices, their LDLᵀ factorization without pivoting, and the smallest
+//! eigenpair by spectrum slicing.
+//!
+//! Why this is hand-written: the Newton solver for discrete elastic rods factors a symmetric
+//! banded Hessian (half-bandwidth 10, n up to ~10⁵) and must also know its *inertia*, i.e. how
+//! many eigenvalues are negative. An LDLᵀ factorization **without pivoting** gives that for free:
+//! by Sylvester's law of inertia, A + σI and D have the same number of negative, zero and
+//! positive eigenvalues, and D is diagonal. faer 0.24 has no banded factorization, and its sparse
+//! LDLᵀ (symbolic analysis, supernodes, optional pivoting) is overkill for a plain band. The
+//! kernel here costs O(n·bw²) flops, O(n·bw) memory, and never allocates once its buffers exist.
+//!
+//! Numerical caveat: LDLᵀ without pivoting is backward stable when A + σI is positive definite
+//! (it is then Cholesky in disguise). For indefinite matrices it can suffer element growth or
+//! break down on a zero pivot; breakdown is reported as [`FactorError::ZeroPivot`], never a panic.
+
+use thiserror::Error;
+
+/// Pivots with |dᵢ| ≤ `ZERO_PIVOT_RTOL · (bw + 1) · max|A + σI|` are counted as numerically
+/// zero in the inertia: their sign is below the rounding error of the factorization.
+const ZERO_PIVOT_RTOL: f64 = f64::EPSILON;
+
+/// A symmetric n×n matrix with half-bandwidth `bw`: entry (i, j) may be nonzero only if
+/// |i − j| ≤ bw. Only the lower band is stored.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SymmetricBandMatrix {
+    n: usize,
+    bw: usize,
+    /// Row-major lower band: row `i` occupies `data[i·(bw+1)..(i+1)·(bw+1)]` and entry (i, j),
+    /// i − bw ≤ j ≤ i, sits at offset `j + bw − i`, so the diagonal is last. The slots that
+    /// would hold j < 0 (first `bw` rows) are padding and stay zero. Equal offsets in
+    /// consecutive rows make the factorization's inner loops contiguous slices.
+    data: Vec<f64>,
+}
+
+impl SymmetricBandMatrix {
+    /// The n×n zero matrix with the given half-bandwidth.
+    pub fn new(n: usize, half_bandwidth: usize) -> Self {
+        // saturating_mul: an absurd size fails in the allocator with a clear message rather
+        // than wrapping around to a small buffer.
+        let len = n.saturating_mul(half_bandwidth.saturating_add(1));
+        Self {
+            n,
+            bw: half_bandwidth,
+            data: vec![0.0; len],
+        }
+    }
+
+    /// Dimension n.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Half-bandwidth bw (entries with |i − j| > bw are structurally zero).
+    pub fn half_bandwidth(&self) -> usize {
+        self.bw
+    }
+
+    /// Sets every entry to zero, keeping the storage.
+    pub fn set_zero(&mut self) {
+        self.data.fill(0.0);
+    }
+
+    /// Storage index of (i, j) for j ≤ i ≤ j + bw.
+    #[inline]
+    fn index(&self, i: usize, j: usize) -> usize {
+        i * (self.bw + 1) + (j + self.bw - i)
+    }
+
+    /// Row `i` of the stored lower band (length bw + 1, diagonal last).
+    #[inline]
+    fn row(&self, i: usize) -> &[f64] {
+        let w = self.bw + 1;
+        &self.data[i * w..(i + 1) * w]
+    }
+
+    /// Adds `v` to entry (i, j) and, by symmetry, to (j, i); with i = j the diagonal entry is
+    /// incremented once.
+    ///
+    /// Entries outside the matrix or the band are a programmer error: debug builds panic; release
+    /// builds poison the diagonal with NaN so that the next factorization fails with
+    /// [`FactorError::NonFinite`] instead of silently dropping the contribution.
+    pub fn add(&mut self, i: usize, j: usize, v: f64) {
+        let (r, c) = if i >= j { (i, j) } else { (j, i) };
+        debug_assert!(
+            r < self.n,
+            "entry ({i}, {j}) outside a {0}×{0} matrix",
+            self.n
+        );
+        debug_assert!(
+            r - c <= self.bw,
+            "entry ({i}, {j}) outside half-bandwidth {}",
+            self.bw
+        );
+        if r < self.n && r - c <= self.bw {
+            let k = self.index(r, c);
+            self.data[k] += v;
+        } else if self.n > 0 {
+            let p = c.min(self.n - 1);
+            let k = self.index(p, p);
+            self.data[k] = f64::NAN;
+        }
+    }
+
+    /// Entry (i, j); zero outside the band. Indices outside the matrix are a programmer error
+    /// (debug builds panic, release builds return NaN).
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        let (r, c) = if i >= j { (i, j) } else { (j, i) };
+        debug_assert!(
+            r < self.n,
+            "entry ({i}, {j}) outside a {0}×{0} matrix",
+            self.n
+        );
+        if r >= self.n {
+            f64::NAN
+        } else if r - c > self.bw {
+            0.0
+        } else {
+            self.data[self.index(r, c)]
+        }
+    }
+
+    /// y = A x.
+    ///
+    /// `x` and `y` must both have length n; otherwise (a programmer error) debug builds panic
+    /// and release builds fill `y` with NaN.
+    pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        let n = self.n;
+        debug_assert!(
+            x.len() == n && y.len() == n,
+            "mul_vec: lengths must equal n = {n}"
+        );
+        if x.len() != n || y.len() != n {
+            y.fill(f64::NAN);
+            return;
+        }
+        let bw = self.bw;
+        for i in 0..n {
+            let row = self.row(i);
+            let lo = i.saturating_sub(bw);
+            let off = lo + bw - i;
+            let xi = x[i];
+            let mut acc = row[bw] * xi;
+            // Each stored a_ij (j < i) acts twice: on row i and, transposed, on row j. y[j] for
+            // j < i is already initialized; y[i] is first written here.
+            for ((yj, &xj), &a) in y[lo..i].iter_mut().zip(&x[lo..i]).zip(&row[off..bw]) {
+                acc += a * xj;
+                *yj += a * xi;
+            }
+            y[i] = acc;
+        }
+    }
+
+    /// max |a_ii| (0 for the empty matrix).
+    pub fn max_abs_diagonal(&self) -> f64 {
+        (0..self.n).fold(0.0, |m, i| m.max(self.row(i)[self.bw].abs()))
+    }
+
+    /// Largest |a_ij| in the band (0 for the empty matrix).
+    pub fn max_abs_entry(&self) -> f64 {
+        (0..self.n).fold(0.0, |m, i| {
+            let off = i.saturating_sub(self.bw) + self.bw - i;
+            self.row(i)[off..].iter().fold(m, |m, a| m.max(a.abs()))
+        })
+    }
+
+    /// Gershgorin bounds (lower, upper): every eigenvalue λ satisfies lower ≤ λ ≤ upper.
+    /// Returns (0, 0) for the empty matrix. Allocates an n-vector of row radii.
+    pub fn gershgorin_bounds(&self) -> (f64, f64) {
+        if self.n == 0 {
+            return (0.0, 0.0);
+        }
+        let bw = self.bw;
+        let mut radius = vec![0.0; self.n];
+        for i in 0..self.n {
+            let row = self.row(i);
+            let lo = i.saturating_sub(bw);
+            let off = lo + bw - i;
+            for (k, a) in row[off..bw].iter().enumerate() {
+                radius[i] += a.abs();
+                radius[lo + k] += a.abs();
+            }
+        }
+        radius
+            .iter()
+            .enumerate()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), (i, r)| {
+                let d = self.row(i)[bw];
+                (l.min(d - r), u.max(d + r))
+            })
+    }
+
+    /// Gershgorin lower bound min_i (a_ii − Σ_{j≠i} |a_ij|) ≤ λ_min (0 for the empty matrix).
+    pub fn gershgorin_lower_bound(&self) -> f64 {
+        self.gershgorin_bounds().0
+    }
+
+    /// Dense copy as a vector of rows (for tests and debugging).
+    pub fn to_dense(&self) -> Vec<Vec<f64>> {
+        (0..self.n)
+            .map(|i| (0..self.n).map(|j| self.get(i, j)).collect())
+            .collect()
+    }
+
+    /// First row holding a NaN or infinite stored entry.
+    fn first_non_finite_row(&self) -> Option<usize> {
+        (0..self.n).find(|&i| self.row(i).iter().any(|a| !a.is_finite()))
+    }
+}
+
+/// Counts of negative, (numerically) zero and positive eigenvalues of a symmetric matrix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+pub struct Inertia {
+    /// Number of negative eigenvalues.
+    pub negative: usize,
+    /// Number of eigenvalues indistinguishable from zero at working precision.
+    pub zero: usize,
+    /// Number of positive eigenvalues.
+    pub positive: usize,
+}
+
+impl Inertia {
+    /// negative + zero + positive, the matrix dimension.
+    pub fn total(&self) -> usize {
+        self.negative + self.zero + self.positive
+    }
+
+    /// True if all eigenvalues are (numerically) positive.
+    pub fn is_positive_definite(&self) -> bool {
+        self.negative == 0 && self.zero == 0
+    }
+}
+
+/// Why a factorization or solve failed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FactorError {
+    /// Pivot `index` is exactly zero: the matrix is singular or needs pivoting.
+    #[error("zero pivot at index {index}: matrix is singular or needs pivoting")]
+    ZeroPivot {
+        /// Row of the zero pivot.
+        index: usize,
+    },
+    /// A NaN or infinity appeared in row `index` (in the input, the shift, or by overflow).
+    #[error("non-finite value in row {index} of the factorization")]
+    NonFinite {
+        /// Row where the non-finite value was detected.
+        index: usize,
+    },
+    /// A vector's length does not match the factored matrix.
+    #[error("dimension mismatch: expected length {expected}, found {found}")]
+    DimensionMismatch {
+        /// The factored dimension n.
+        expected: usize,
+        /// The length supplied.
+        found: usize,
+    },
+    /// No successful factorization is available to solve with.
+    #[error("no valid factorization: factorize() has not succeeded")]
+    NotFactored,
+    /// The operation needs a matrix of dimension at least 1.
+    #[error("the matrix is empty")]
+    EmptyMatrix,
+}
+
+/// Reusable LDLᵀ factorization of A + σI for a [`SymmetricBandMatrix`] A: L is unit lower
+/// triangular with the same half-bandwidth as A, D is diagonal, and no pivoting is done so that
+/// the signs of D are the inertia of A + σI.
+///
+/// The buffers grow on the first [`factorize`](Self::factorize) and are reused afterwards:
+/// refactoring a matrix of the same (or smaller) size does not allocate.
+#[derive(Clone, Debug, Default)]
+pub struct BandLdlt {
+    n: usize,
+    bw: usize,
+    shift: f64,
+    /// Strictly lower part of L, row-major with `bw` slots per row at the same offsets as
+    /// [`SymmetricBandMatrix`] (entry (i, j) at `i·bw + j + bw − i`).
+    l: Vec<f64>,
+    /// The pivots D.
+    d: Vec<f64>,
+    inertia: Inertia,
+    factored: bool,
+}
+
+impl BandLdlt {
+    /// An empty workspace; buffers are allocated by the first factorization.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Factors A + shift·I = L D Lᵀ (unit lower-banded L, diagonal D) without pivoting and
+    /// returns the inertia of A + shift·I read off D (Sylvester's law of inertia).
+    ///
+    /// Pivots with |dᵢ| ≤ (bw + 1)·ε·max|A + shift·I| are counted in [`Inertia::zero`]: they are
+    /// nonzero, so the factorization completes and can be solved with, but their sign is not
+    /// trustworthy. An exactly zero pivot stops the factorization with
+    /// [`FactorError::ZeroPivot`]; a NaN or infinity (in A, in `shift`, or from overflow) with
+    /// [`FactorError::NonFinite`]. After an error the previous factorization is discarded.
+    pub fn factorize(
+        &mut self,
+        a: &SymmetricBandMatrix,
+        shift: f64,
+    ) -> Result<Inertia, FactorError> {
+        self.factored = false;
+        self.inertia = Inertia::default();
+        let (n, bw) = (a.n, a.bw);
+        self.n = n;
+        self.bw = bw;
+        self.shift = shift;
+        // resize() only allocates when growing past the capacity reached so far.
+        self.l.resize(n * bw, 0.0);
+        self.d.resize(n, 0.0);
+        if n > 0 && !shift.is_finite() {
+            return Err(FactorError::NonFinite { index: 0 });
+        }
+
+        let scale = (0..n).fold(0.0_f64, |m, i| {
+            let row = a.row(i);
+            let off = i.saturating_sub(bw) + bw - i;
+            let m = row[off..bw].iter().fold(m, |m, v| m.max(v.abs()));
+            m.max((row[bw] + shift).abs())
+        });
+        let zero_tol = ZERO_PIVOT_RTOL * (bw as f64 + 1.0) * scale;
+
+        let mut inertia = Inertia::default();
+        for i in 0..n {
+            let lo = i.saturating_sub(bw);
+            let off = lo + bw - i;
+            let arow = a.row(i);
+            let (done, rest) = self.l.split_at_mut(i * bw);
+            let row = &mut rest[..bw];
+            row[..off].fill(0.0);
+            row[off..].copy_from_slice(&arow[off..bw]);
+
+            // Row i of W = L·D, left to right: w_ij = a_ij − Σ_{lo ≤ k < j} w_ik·l_jk.
+            // Row j of L holds l_jk for k ∈ [lo, j) at slots [lo + bw − j, bw).
+            for t in 0..(i - lo) {
+                let j = lo + t;
+                let lj = &done[j * bw + (lo + bw - j)..(j + 1) * bw];
+                let (head, tail) = row.split_at_mut(off + t);
+                let dot: f64 = head[off..].iter().zip(lj).map(|(w, l)| w * l).sum();
+                tail[0] -= dot;
+            }
+
+            // l_ij = w_ij / d_j and d_i = a_ii + σ − Σ_j w_ij·l_ij.
+            let mut di = arow[bw] + shift;
+            let mut finite = true;
+            for (x, &dj) in row[off..].iter_mut().zip(&self.d[lo..i]) {
+                let w = *x;
+                let l = w / dj;
+                *x = l;
+                di -= w * l;
+                finite &= l.is_finite();
+            }
+            if !(finite && di.is_finite()) {
+                return Err(FactorError::NonFinite { index: i });
+            }
+            if di == 0.0 {
+                return Err(FactorError::ZeroPivot { index: i });
+            }
+            self.d[i] = di;
+            if di.abs() <= zero_tol {
+                inertia.zero += 1;
+            } else if di < 0.0 {
+                inertia.negative += 1;
+            } else {
+                inertia.positive += 1;
+            }
+        }
+        self.inertia = inertia;
+        self.factored = true;
+        Ok(inertia)
+    }
+
+    /// Inertia of the last successful factorization (all zero counts if there is none).
+    pub fn inertia(&self) -> Inertia {
+        self.inertia
+    }
+
+    /// True if the last call to [`factorize`](Self::factorize) succeeded.
+    pub fn is_factored(&self) -> bool {
+        self.factored
+    }
+
+    /// Dimension of the last factorization.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// The shift σ of the last factorization (of A + σI).
+    pub fn shift(&self) -> f64 {
+        self.shift
+    }
+
+    /// b ← (A + σI)⁻¹ b using the last factorization.
+    ///
+    /// Calling this without a successful factorization or with `b.len() != n` is a programmer
+    /// error: debug builds panic, release builds fill `b` with NaN so it cannot go unnoticed.
+    /// Use [`try_solve_in_place`](Self::try_solve_in_place) to handle those cases as errors.
+    pub fn solve_in_place(&self, b: &mut [f64]) {
+        if let Err(e) = self.try_solve_in_place(b) {
+            debug_assert!(false, "BandLdlt::solve_in_place: {e}");
+            b.fill(f64::NAN);
+        }
+    }
+
+    /// b ← (A + σI)⁻¹ b, or an error if there is no valid factorization
+    /// ([`FactorError::NotFactored`]) or `b` has the wrong length
+    /// ([`FactorError::DimensionMismatch`]); `b` is untouched on error.
+    pub fn try_solve_in_place(&self, b: &mut [f64]) -> Result<(), FactorError> {
+        if !self.factored {
+            return Err(FactorError::NotFactored);
+        }
+        let (n, bw) = (self.n, self.bw);
+        if b.len() != n {
+            return Err(FactorError::DimensionMismatch {
+                expected: n,
+                found: b.len(),
+            });
+        }
+        // Forward substitution L y = b (row-oriented dot products).
+        for i in 0..n {
+            let lo = i.saturating_sub(bw);
+            let row = &self.l[i * bw + (lo + bw - i)..(i + 1) * bw];
+            let dot: f64 = row.iter().zip(&b[lo..i]).map(|(l, y)| l * y).sum();
+            b[i] -= dot;
+        }
+        for (x, d) in b.iter_mut().zip(&self.d) {
+            *x /= d;
+        }
+        // Back substitution Lᵀ x = z: once x_i is final, remove its contribution from the rows
+        // above (column-oriented, so L is still read row by row).
+        for i in (0..n).rev() {
+            let lo = i.saturating_sub(bw);
+            let row = &self.l[i * bw + (lo + bw - i)..(i + 1) * bw];
+            let xi = b[i];
+            for (x, l) in b[lo..i].iter_mut().zip(row) {
+                *x -= l * xi;
+            }
+        }
+        Ok(())
+    }
+
+    /// The pivots D of the last factorization (length n). After a failed factorization only
+    /// the entries before the failing index are meaningful.
+    pub fn pivots(&self) -> &[f64] {
+        &self.d[..self.n.min(self.d.len())]
+    }
+
+    /// min |dᵢ| of the last successful factorization, or `None` if there is none or n = 0.
+    pub fn min_abs_pivot(&self) -> Option<f64> {
+        self.abs_pivot_fold(f64::min)
+    }
+
+    /// max |dᵢ| of the last successful factorization, or `None` if there is none or n = 0.
+    pub fn max_abs_pivot(&self) -> Option<f64> {
+        self.abs_pivot_fold(f64::max)
+    }
+
+    fn abs_pivot_fold(&self, f: fn(f64, f64) -> f64) -> Option<f64> {
+        if !self.factored {
+            return None;
+        }
+        self.pivots().iter().map(|d| d.abs()).reduce(f)
+    }
+}
+
+/// Smallest eigenvalue and a unit eigenvector of a symmetric banded matrix, from
+/// [`smallest_eigenpair`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct EigenEstimate {
+    /// Estimate of λ_min.
+    pub value: f64,
+    /// Unit-norm approximate eigenvector for `value`.
+    pub vector: Vec<f64>,
+    /// Number of LDLᵀ factorizations performed (the dominant cost, O(n·bw²) each).
+    pub iterations: usize,
+}
+
+/// Upper limit on spectrum-slicing steps. Each step shrinks the bracket at least by half every
+/// second step, and the bracket starts at width ≤ 2s and stops at ≥ 64·ε·s, so about 100 steps
+/// are the worst case; the limit only guards against surprises.
+const MAX_SLICES: usize = 200;
+/// Inverse-iteration steps after each factorization that certifies a lower bound.
+const INNER_STEPS: usize = 2;
+/// Inverse-iteration steps allowed for the final eigenvector refinement.
+const FINAL_STEPS: usize = 8;
+/// Absolute accuracy floor, in units of ε·s (s bounds ‖A‖₂): below it, inertia counts and
+/// residuals are dominated by rounding.
+const ABS_FLOOR: f64 = 64.0;
+/// Relative (to s) displacement of a slicing shift that hit a singular factorization.
+const NUDGE: f64 = 1e-12;
+
+/// Smallest eigenvalue λ_min and a unit eigenvector of the symmetric banded matrix `a`, using
+/// only banded LDLᵀ factorizations (in `ws`, whose buffers are reused).
+///
+/// Method: spectrum slicing. By Sylvester's law, the number of negative pivots of A − σI is the
+/// number of eigenvalues below σ. A bracket [lo, hi] ∋ λ_min is kept, where lo has no eigenvalue
+/// below it (Gershgorin, or a factorization with no negative pivot) and hi is a Rayleigh quotient
+/// or a shift with at least one eigenvalue below it. Each factorization with no negative pivot
+/// is reused for a couple of inverse-iteration steps; their Rayleigh quotient ρ and residual r
+/// lower hi and propose the next shift ρ − r (Weinstein: an eigenvalue lies within r of ρ), which
+/// converges fast once the eigenvector emerges. If that proposal does not halve the bracket, the
+/// next shift bisects it, so progress is guaranteed. For a positive definite A the first shift
+/// is 0 (or the Gershgorin bound if that is positive), i.e. plain inverse iteration, and a few
+/// factorizations suffice. A shift hitting a singular factorization is nudged by a relative
+/// 1e-12. The start vector is fixed, so results are deterministic. Allocates O(n) scratch.
+///
+/// Guarantee: with s the Gershgorin bound on ‖A‖₂ and tol = max(rel_tol·|λ|, 64·ε·s), the
+/// returned value lies in a final bracket of width ≤ tol (barring the iteration cap or the
+/// bracket reaching floating-point resolution, neither expected), so |value − λ_min| ≤ tol up to
+/// rounding of order (bw + 1)·ε·s in the inertia counts (the count "no eigenvalue below σ" is
+/// reliable because no-pivot LDLᵀ of a positive definite matrix is backward stable). Hence the
+/// relative accuracy is `rel_tol` when |λ_min| ≳ 64·ε·s/rel_tol, and degrades to the absolute
+/// floor for nearly singular A. `rel_tol` is clamped to [ε, 1]. The vector is refined by
+/// inverse iteration just below the bracket until ‖Av − value·v‖ ≤ tol (at most a few steps;
+/// when λ_min is nearly multiple the vector may mix the nearby eigenvectors, but the residual
+/// stays of the order of the cluster width).
+///
+/// Errors: [`FactorError::EmptyMatrix`] for n = 0, [`FactorError::NonFinite`] if `a` holds a
+/// NaN or infinity. The zero matrix returns value 0 without factorizing.
+pub fn smallest_eigenpair(
+    a: &SymmetricBandMatrix,
+    ws: &mut BandLdlt,
+    rel_tol: f64,
+) -> Result<EigenEstimate, FactorError> {
+    let n = a.dim();
+    if n == 0 {
+        return Err(FactorError::EmptyMatrix);
+    }
+    if let Some(index) = a.first_non_finite_row() {
+        return Err(FactorError::NonFinite { index });
+    }
+    let (g_lo, g_hi) = a.gershgorin_bounds();
+    let s = g_lo.abs().max(g_hi.abs());
+    let mut v = start_vector(n);
+    if s == 0.0 {
+        return Ok(EigenEstimate {
+            value: 0.0,
+            vector: v,
+            iterations: 0,
+        });
+    }
+    let rel_tol = if rel_tol.is_nan() {
+        f64::EPSILON
+    } else {
+        rel_tol.clamp(f64::EPSILON, 1.0)
+    };
+    let floor = ABS_FLOOR * f64::EPSILON * s;
+    // Accuracy target for a bracket: relative to the smallest |λ| it admits.
+    let tol = |lo: f64, hi: f64| {
+        let m = if lo > 0.0 || hi < 0.0 {
+            lo.abs().min(hi.abs())
+        } else {
+            0.0
+        };
+        (rel_tol * m).max(floor)
+    };
+
+    let mut av = vec![0.0; n];
+    let mut slicer = Slicer {
+        a,
+        ws,
+        nudge: NUDGE * s,
+        factorizations: 0,
+    };
+
+    // Initial bracket: Gershgorin below; the diagonal entries and the start vector's Rayleigh
+    // quotient are Rayleigh quotients, hence upper bounds on λ_min.
+    let (mut rho, mut res) = rayleigh(a, &v, &mut av);
+    let mut lo = g_lo;
+    let mut hi = (0..n).fold(rho, |m, i| m.min(a.row(i)[a.bw])).max(lo);
+    let mut have_vector = false;
+    // Try 0 first when it can separate: for positive definite A this is plain inverse
+    // iteration. Otherwise start at lo, which is below the spectrum.
+    let mut proposal = Some(if lo < 0.0 && 0.0 < hi { 0.0 } else { lo });
+
+    for _ in 0..MAX_SLICES {
+        let width = hi - lo;
+        if width <= tol(lo, hi) {
+            break;
+        }
+        let mid = 0.5 * (lo + hi);
+        let (sigma, proposed) = match proposal.take() {
+            Some(p) if p >= lo && p < hi => (p, true),
+            _ => (mid, false),
+        };
+        if !proposed && (mid <= lo || mid >= hi) {
+            break; // bracket at floating-point resolution
+        }
+        match slicer.count(sigma, lo, hi)? {
+            Slice::Below(shift) => {
+                lo = lo.max(shift);
+                for _ in 0..INNER_STEPS {
+                    inverse_step(slicer.ws, &mut v)?;
+                    (rho, res) = rayleigh(a, &v, &mut av);
+                    hi = hi.min(rho);
+                }
+                have_vector = true;
+                proposal = Some(rho - res.max(0.5 * tol(lo, hi)));
+            }
+            Slice::Above(shift) => hi = hi.min(shift),
+        }
+        // Rounding can cross the bounds by O(ε·s); keep the bracket well-formed.
+        hi = hi.max(lo);
+        if proposed && hi - lo > 0.5 * width {
+            proposal = None;
+        }
+    }
+
+    // Refine the eigenvector by inverse iteration just below the bracket, where A − σI is
+    // positive definite with smallest eigenvalue in [w, 2w].
+    let target = tol(lo, hi);
+    if !have_vector || res > target {
+        let w = (hi - lo).max(target);
+        let mut sigma = lo - w;
+        let mut factored = false;
+        for _ in 0..4 {
+            slicer.factorizations += 1;
+            match slicer.ws.factorize(a, -sigma) {
+                Ok(inertia) if inertia.is_positive_definite() => {
+                    factored = true;
+                    break;
+                }
+                Ok(_) | Err(FactorError::ZeroPivot { .. }) => sigma -= w,
+                Err(e) => return Err(e),
+            }
+        }
+        if factored {
+            for _ in 0..FINAL_STEPS {
+                inverse_step(slicer.ws, &mut v)?;
+                (rho, res) = rayleigh(a, &v, &mut av);
+                if res <= target {
+                    break;
+                }
+            }
+        }
+    }
+
+    Ok(EigenEstimate {
+        // max/min rather than clamp: no panic even if rounding left hi a hair below lo.
+        value: rho.max(lo).min(hi),
+        vector: v,
+        iterations: slicer.factorizations,
+    })
+}
+
+/// Outcome of one slicing factorization at the (possibly nudged) shift it carries.
+enum Slice {
+    /// No eigenvalue below the shift; the workspace holds the positive definite factorization.
+    Below(f64),
+    /// At least one eigenvalue below the shift.
+    Above(f64),
+}
+
+struct Slicer<'a> {
+    a: &'a SymmetricBandMatrix,
+    ws: &'a mut BandLdlt,
+    nudge: f64,
+    factorizations: usize,
+}
+
+impl Slicer<'_> {
+    /// Counts eigenvalues below σ ∈ [lo, hi], moving σ by up to ±nudge (kept inside the
+    /// bracket) if A − σI is numerically singular there.
+    fn count(&mut self, sigma: f64, lo: f64, hi: f64) -> Result<Slice, FactorError> {
+        let delta = self.nudge.min(0.25 * (hi - lo));
+        for shift in [sigma, sigma - delta, sigma + delta] {
+            self.factorizations += 1;
+            match self.ws.factorize(self.a, -shift) {
+                Ok(i) if i.negative > 0 => return Ok(Slice::Above(shift)),
+                Ok(i) if i.zero == 0 => return Ok(Slice::Below(shift)),
+                Ok(_) | Err(FactorError::ZeroPivot { .. }) => {}
+                Err(e) => return Err(e),
+            }
+        }
+        // Singular at three nearby shifts: an eigenvalue lies within about delta of σ.
+        Ok(Slice::Above(sigma + delta))
+    }
+}
+
+/// v ← (A − σI)⁻¹ v / ‖·‖ with the factorization held by `ws`.
+fn inverse_step(ws: &BandLdlt, v: &mut [f64]) -> Result<(), FactorError> {
+    ws.try_solve_in_place(v)?;
+    normalize(v)
+}
+
+/// Scales `v` to unit 2-norm (dividing by max|vᵢ| first, so huge entries do not overflow).
+fn normalize(v: &mut [f64]) -> Result<(), FactorError> {
+    let (imax, m) = v.iter().enumerate().fold((0, 0.0_f64), |(k, m), (i, x)| {
+        // Written so that a NaN is selected and then reported.
+        if x.abs() > m || (x.is_nan() && !m.is_nan()) {
+            (i, x.abs())
+        } else {
+            (k, m)
+        }
+    });
+    if !m.is_finite() || m == 0.0 {
+        return Err(FactorError::NonFinite { index: imax });
+    }
+    let norm = m * v.iter().map(|x| (x / m) * (x / m)).sum::<f64>().sqrt();
+    v.iter_mut().for_each(|x| *x /= norm);
+    Ok(())
+}
+
+/// Rayleigh quotient ρ = vᵀAv of the unit vector `v` and residual ‖Av − ρv‖ (`av` is scratch).
+fn rayleigh(a: &SymmetricBandMatrix, v: &[f64], av: &mut [f64]) -> (f64, f64) {
+    a.mul_vec(v, av);
+    let rho: f64 = v.iter().zip(av.iter()).map(|(x, y)| x * y).sum();
+    let res = v
+        .iter()
+        .zip(av.iter())
+        .map(|(x, y)| (y - rho * x) * (y - rho * x))
+        .sum::<f64>()
+        .sqrt();
+    (rho, res)
+}
+
+/// Deterministic unit start vector: entries in [0.5, 1.5) from a fixed xorshift sequence, so
+/// that it is not orthogonal to a structured eigenvector (as a constant vector could be).
+fn start_vector(n: usize) -> Vec<f64> {
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut v: Vec<f64> = (0..n)
+        .map(|_| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            0.5 + (state >> 11) as f64 / (1u64 << 53) as f64
+        })
+        .collect();
+    let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    v.iter_mut().for_each(|x| *x /= norm);
+    v
+}

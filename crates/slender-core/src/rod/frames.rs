@@ -1,0 +1,120 @@
+//! Time-parallel reference frames and the reference twist.
+//!
+//! Each edge carries a reference director a₁ ⊥ its tangent. When the rod moves, a₁ is
+//! parallel-transported from the old tangent to the new one (Bergou et al. 2010); the twist
+//! of the material frame relative to it is the edge angle θ. The angle between consecutive
+//! reference frames, the reference twist, is updated *incrementally* so that it stays
+//! continuous over many turns (no 2π jumps in coiled rods).
+//!
+//! Semantics (Panetta's ElasticRods makes the same point): the energy's gradient and Hessian
+//! are exact only when the frames have just been transported to the current positions. A
+//! [`ReferenceFrames`] value is therefore only ever created *adapted* to a set of positions,
+//! and trial states of a line search get frames transported from the accepted state.
+
+use crate::geometry::{parallel_transport, rotate_about_axis, signed_angle, Vec3};
+
+/// The reference frame of one edge: unit tangent and first reference director a₁ ⊥ tangent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeFrame {
+    /// Unit tangent.
+    pub tangent: Vec3,
+    /// First reference director (unit, ⊥ tangent); a₂ = tangent × a₁.
+    pub a1: Vec3,
+}
+
+impl EdgeFrame {
+    /// The frame parallel-transported to the unit tangent `tangent`.
+    pub fn transported_to(&self, tangent: &Vec3) -> Self {
+        let a1 = parallel_transport(&self.a1, &self.tangent, tangent);
+        // Re-orthonormalize: transport is exact in exact arithmetic only.
+        let a1 = (a1 - tangent * tangent.dot(&a1)).normalize();
+        Self {
+            tangent: *tangent,
+            a1,
+        }
+    }
+}
+
+/// The two edges a hinge joins: a real edge of the rod or a clamp's ghost edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeId {
+    /// Edge j of the rod, from vertex j to j+1.
+    Real(usize),
+    /// The ghost edge inside the clamp at the start (before vertex 0).
+    GhostStart,
+    /// The ghost edge inside the clamp at the end (after the last vertex).
+    GhostEnd,
+}
+
+/// A clamp's ghost edge: fixed frame, fixed material angle, length of the adjacent real edge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GhostEdge {
+    /// Its reference frame (the clamp's orientation).
+    pub frame: EdgeFrame,
+    /// Its material angle (rad), fixed.
+    pub theta: f64,
+    /// Its length (m); only the direction enters the energy, the length sets the stencil.
+    pub length: f64,
+}
+
+/// Reference frames of all edges plus the reference twist of every hinge, adapted to one set
+/// of positions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceFrames {
+    /// One frame per real edge.
+    pub(crate) edges: Vec<EdgeFrame>,
+    /// Ghost edges of the start and end clamps, if any.
+    pub(crate) ghost_start: Option<GhostEdge>,
+    /// See `ghost_start`.
+    pub(crate) ghost_end: Option<GhostEdge>,
+    /// Reference twist (rad) of each hinge, in the rod's hinge order.
+    pub(crate) ref_twist: Vec<f64>,
+}
+
+impl ReferenceFrames {
+    /// Frame of an edge.
+    pub fn edge(&self, id: EdgeId) -> EdgeFrame {
+        match id {
+            EdgeId::Real(j) => self.edges[j],
+            EdgeId::GhostStart => self.ghost_start.expect("hinge refers to a start clamp").frame,
+            EdgeId::GhostEnd => self.ghost_end.expect("hinge refers to an end clamp").frame,
+        }
+    }
+
+    /// Reference twist (rad) of hinge `k`.
+    pub fn ref_twist(&self, k: usize) -> f64 {
+        self.ref_twist[k]
+    }
+
+    /// Transports every real edge frame to the tangents of `positions` and updates the
+    /// reference twists incrementally, writing into `out` (buffers reused).
+    pub(crate) fn transport_into(
+        &self,
+        positions: &[Vec3],
+        hinges: &[(EdgeId, EdgeId)],
+        out: &mut ReferenceFrames,
+    ) {
+        out.edges.clear();
+        out.edges.extend(self.edges.iter().enumerate().map(|(j, f)| {
+            let t = (positions[j + 1] - positions[j]).normalize();
+            f.transported_to(&t)
+        }));
+        out.ghost_start = self.ghost_start;
+        out.ghost_end = self.ghost_end;
+        out.ref_twist.clear();
+        for (k, &(l, r)) in hinges.iter().enumerate() {
+            let twist = updated_ref_twist(&out.edge(l), &out.edge(r), self.ref_twist[k]);
+            out.ref_twist.push(twist);
+        }
+    }
+}
+
+/// Reference twist between frames `left` and `right`, continued from `previous`: the transport
+/// of left's a₁ onto right's tangent, rotated by the previous twist, is compared with right's
+/// a₁; the small signed difference is added. This never wraps as long as each update turns
+/// the frames by less than π, which the solver's step cap guarantees.
+pub(crate) fn updated_ref_twist(left: &EdgeFrame, right: &EdgeFrame, previous: f64) -> f64 {
+    let u = parallel_transport(&left.a1, &left.tangent, &right.tangent);
+    let u = rotate_about_axis(&u, &right.tangent, previous);
+    previous + signed_angle(&u, &right.a1, &right.tangent)
+}

@@ -1,0 +1,20 @@
+//! Discrete elastic rods (Bergou et al. 2008/2010): vertex positions plus one material angle
+//! per edge, time-parallel reference frames, extensible stretching, anisotropic bending with
+//! natural curvature, twisting, clamps with a ghost edge and half Voronoi cell, and dead loads.
+
+pub mod bending;
+pub mod dofs;
+pub mod frames;
+pub mod gravity;
+pub mod hinge;
+pub mod mesh;
+pub mod model;
+pub mod rest_curve;
+pub mod section;
+pub mod stretching;
+pub mod twisting;
+
+pub use mesh::Grading;
+pub use model::{PointForce, Rod, RodBuilder, RodState, Supports, Terms};
+pub use rest_curve::RestCurve;
+pub use section::{CrossSection, Material, RodProperties, SectionStiffness};

@@ -1,0 +1,39 @@
+//! The stretching energy of a discrete elastic rod: E_s = ½ EA |ē| (|e|/|ē| − 1)² per edge.
+
+use nalgebra::{Matrix3, SMatrix, SVector};
+
+use crate::geometry::Vec3;
+
+/// Stretching energy (J) of the edge from `x0` to `x1` with rest length `rest_length` (m)
+/// and axial stiffness `ea` (N); adds gradient and Hessian over `[x0, x1]` when asked.
+pub fn stretching_energy(
+    x0: &Vec3,
+    x1: &Vec3,
+    rest_length: f64,
+    ea: f64,
+    grad: Option<&mut SVector<f64, 6>>,
+    hess: Option<&mut SMatrix<f64, 6, 6>>,
+) -> f64 {
+    let e = x1 - x0;
+    let len = e.norm();
+    let strain = len / rest_length - 1.0;
+    let energy = 0.5 * ea * rest_length * strain * strain;
+    let t = e / len;
+    if let Some(g) = grad {
+        let de = t * (ea * strain);
+        g.fixed_rows_mut::<3>(0).sub_assign(&de);
+        g.fixed_rows_mut::<3>(3).add_assign(&de);
+    }
+    if let Some(h) = hess {
+        let tt = t * t.transpose();
+        // ∂²E/∂e² = EA/|ē| t⊗t + EA ε (I − t⊗t)/|e|.
+        let hee = tt * (ea / rest_length) + (Matrix3::identity() - tt) * (ea * strain / len);
+        h.fixed_view_mut::<3, 3>(0, 0).add_assign(&hee);
+        h.fixed_view_mut::<3, 3>(3, 3).add_assign(&hee);
+        h.fixed_view_mut::<3, 3>(0, 3).sub_assign(&hee);
+        h.fixed_view_mut::<3, 3>(3, 0).sub_assign(&hee);
+    }
+    energy
+}
+
+use std::ops::{AddAssign, SubAssign};

@@ -1,0 +1,16 @@
+//! Newton's method with line search, load stepping and stability analysis (design.md §4).
+
+pub mod continuation;
+pub mod line_search;
+pub mod newton;
+pub mod params;
+pub mod problem;
+pub mod report;
+pub mod stability;
+
+pub use continuation::{EquilibriumSolver, Solution};
+pub use newton::{newton, NewtonOutcome, NewtonWorkspace};
+pub use params::SolverParams;
+pub use problem::{AssemblyInfo, EquilibriumProblem};
+pub use report::{SolveReport, SolveStatus};
+pub use stability::{lowest_mode, LowestMode};

@@ -1,0 +1,233 @@
+//! The Newton loop at a fixed load: exact Hessian, inertia from the LDLᵀ pivots, diagonal
+//! shift when the Hessian is indefinite, step caps and Armijo backtracking (design.md §4.2).
+
+use crate::linalg::{BandLdlt, Inertia, SymmetricBandMatrix};
+
+use super::line_search::{armijo_backtracking, LineSearch};
+use super::params::SolverParams;
+use super::problem::EquilibriumProblem;
+
+/// Buffers reused across Newton iterations and solves: nothing is allocated per iteration.
+#[derive(Clone, Debug)]
+pub struct NewtonWorkspace<S> {
+    pub(crate) grad: Vec<f64>,
+    pub(crate) abs_grad: Vec<f64>,
+    pub(crate) dx: Vec<f64>,
+    pub(crate) diag: Vec<f64>,
+    pub(crate) hess: SymmetricBandMatrix,
+    pub(crate) ldlt: BandLdlt,
+    pub(crate) trial: S,
+}
+
+impl<S: Clone> NewtonWorkspace<S> {
+    /// Buffers for `problem`; `template` is any state of it (used as line-search scratch).
+    pub fn new<P: EquilibriumProblem<State = S>>(problem: &P, template: &S) -> Self {
+        let n = problem.n_free();
+        Self {
+            grad: vec![0.0; n],
+            abs_grad: vec![0.0; n],
+            dx: vec![0.0; n],
+            diag: vec![0.0; n],
+            hess: SymmetricBandMatrix::new(n, problem.half_bandwidth()),
+            ldlt: BandLdlt::new(),
+            trial: template.clone(),
+        }
+    }
+
+    /// The Hessian assembled at the last iterate.
+    pub fn hessian(&self) -> &SymmetricBandMatrix {
+        &self.hess
+    }
+}
+
+/// Measures of the last iterate of a Newton solve.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct IterateMeasures {
+    /// Largest residual force (N).
+    pub residual: f64,
+    /// Round-off floor of the residual (N).
+    pub floor: f64,
+    /// Largest external nodal force (N).
+    pub external_force: f64,
+    /// Newton decrement |gᵀH⁻¹g| (J); infinite if the Hessian could not be factored.
+    pub decrement: f64,
+    /// Energy (J).
+    pub energy: f64,
+    /// Inertia of the unshifted Hessian, if its LDLᵀ factorization exists.
+    pub inertia: Option<Inertia>,
+}
+
+/// Result of [`newton`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct NewtonOutcome {
+    /// True if the convergence tests passed.
+    pub converged: bool,
+    /// Iterations taken (0 if the start was already an equilibrium).
+    pub iterations: usize,
+    /// Why it stopped, if it did not converge.
+    pub failure: Option<String>,
+    /// Measures at the final iterate.
+    pub last: IterateMeasures,
+}
+
+/// Largest relative step (per DOF magnitude) still considered a change of the state.
+const TINY_STEP: f64 = 1e-13;
+/// Smallest diagonal shift, relative to each diagonal entry.
+const MIN_SHIFT: f64 = 1e-8;
+/// Largest diagonal shift before giving up.
+const MAX_SHIFT: f64 = 1e12;
+
+/// Newton's method at load factor `load`, starting from and updating `state`.
+///
+/// Convergence (design.md §4.3): the residual force is at most
+/// max(force_tolerance·‖f_ext‖, round-off floor) *and* either the Newton decrement is at most
+/// energy_tolerance·|work of the loads| or the Newton step is below round-off. Both tests are
+/// relative, so small loads (Γ → 0) converge to the right answer instead of stopping early.
+pub fn newton<P: EquilibriumProblem>(
+    problem: &P,
+    state: &mut P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State>,
+) -> NewtonOutcome {
+    let n = problem.n_free();
+    let eps = f64::EPSILON;
+    let mut shift = 0.0_f64;
+    let mut last = IterateMeasures::default();
+    for iteration in 0..=params.max_iterations {
+        let info = problem.assemble(state, load, &mut ws.grad, &mut ws.hess, &mut ws.abs_grad);
+        let mut residual: f64 = 0.0;
+        let mut floor: f64 = 0.0;
+        for i in 0..n {
+            let len = problem.force_length(i);
+            residual = residual.max(ws.grad[i].abs() / len);
+            let noise = ws.abs_grad[i] + ws.hess.get(i, i).abs() * problem.dof_magnitude(state, i);
+            floor = floor.max(params.roundoff_factor * eps * noise / len);
+        }
+        // The unshifted factorization gives the inertia and, if it exists, the Newton step.
+        let inertia = ws.ldlt.factorize(&ws.hess, 0.0).ok();
+        let mut decrement = f64::INFINITY;
+        let mut tiny_step = false;
+        if inertia.is_some() {
+            for i in 0..n {
+                ws.dx[i] = -ws.grad[i];
+            }
+            ws.ldlt.solve_in_place(&mut ws.dx);
+            decrement = -dot(&ws.grad, &ws.dx);
+            decrement = decrement.abs();
+            tiny_step = (0..n).all(|i| ws.dx[i].abs() <= TINY_STEP * problem.dof_magnitude(state, i));
+        }
+        last = IterateMeasures {
+            residual,
+            floor,
+            external_force: info.external_force,
+            decrement,
+            energy: info.energy,
+            inertia,
+        };
+        let force_ok = residual <= (params.force_tolerance * info.external_force).max(floor);
+        let energy_ok = decrement <= params.energy_tolerance * info.external_work.abs() || tiny_step;
+        if force_ok && energy_ok {
+            return NewtonOutcome {
+                converged: true,
+                iterations: iteration,
+                failure: None,
+                last,
+            };
+        }
+        if iteration == params.max_iterations {
+            break;
+        }
+        if !residual.is_finite() {
+            return failed(iteration, "non-finite residual", last);
+        }
+
+        let positive_definite = matches!(inertia, Some(i) if i.negative == 0 && i.zero == 0);
+        if positive_definite || (inertia.is_some() && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt)) {
+            // Positive definite: the Newton step. At a symmetric saddle (the gradient has no
+            // component along the unstable mode, e.g. a planar state under planar loads) the
+            // unshifted step still converges quadratically to that equilibrium, whose
+            // instability is then reported by the inertia (design.md §4.2, §4.5); shifting
+            // would only slow convergence to it. `dx` holds the unshifted step already.
+            shift *= 0.5;
+        } else {
+            // Indefinite or singular: shift the diagonal in proportion to itself (scale-free
+            // across coordinate and angle DOFs) until the factorization is positive definite.
+            let max_diag = ws.hess.max_abs_diagonal();
+            for i in 0..n {
+                ws.diag[i] = ws.hess.get(i, i).abs().max(1e-12 * max_diag);
+            }
+            shift = shift.max(MIN_SHIFT);
+            loop {
+                for i in 0..n {
+                    ws.hess.add(i, i, shift * ws.diag[i]);
+                }
+                let ok = matches!(ws.ldlt.factorize(&ws.hess, 0.0), Ok(i) if i.negative == 0 && i.zero == 0);
+                for i in 0..n {
+                    ws.hess.add(i, i, -shift * ws.diag[i]);
+                }
+                if ok {
+                    break;
+                }
+                shift *= 4.0;
+                if shift > MAX_SHIFT {
+                    return failed(iteration, "could not regularize an indefinite Hessian", last);
+                }
+            }
+            for i in 0..n {
+                ws.dx[i] = -ws.grad[i];
+            }
+            ws.ldlt.solve_in_place(&mut ws.dx);
+        }
+
+        let slope = dot(&ws.grad, &ws.dx);
+        let alpha_max = problem.max_step(state, &ws.dx);
+        let noise = 1e3 * eps * info.energy_magnitude.max(info.energy.abs());
+        match armijo_backtracking(
+            problem,
+            state,
+            &ws.dx,
+            info.energy,
+            slope,
+            noise,
+            alpha_max,
+            load,
+            params,
+            &mut ws.trial,
+        ) {
+            LineSearch::Accepted(_) => std::mem::swap(state, &mut ws.trial),
+            LineSearch::Failed => return failed(iteration, "line search found no decrease", last),
+        }
+    }
+    failed(
+        params.max_iterations,
+        &format!("no convergence in {} iterations", params.max_iterations),
+        last,
+    )
+}
+
+/// True if the gradient is orthogonal (to round-off) to the lowest eigenvector of `hess`,
+/// which is negative: line search cannot leave such a saddle, so Newton should converge to it.
+fn saddle_is_symmetric(hess: &SymmetricBandMatrix, grad: &[f64], ldlt: &mut BandLdlt) -> bool {
+    let Ok(mode) = crate::linalg::smallest_eigenpair(hess, ldlt, 1e-6) else {
+        return false;
+    };
+    if mode.value >= 0.0 {
+        return false;
+    }
+    let g_norm = dot(grad, grad).sqrt();
+    dot(grad, &mode.vector).abs() <= 1e-9 * g_norm
+}
+
+fn failed(iterations: usize, why: &str, last: IterateMeasures) -> NewtonOutcome {
+    NewtonOutcome {
+        converged: false,
+        iterations,
+        failure: Some(why.to_string()),
+        last,
+    }
+}
+
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}

@@ -1,0 +1,87 @@
+//! The solver's parameters, with documented defaults (design.md §4.3, §4.4).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::ModelError;
+
+/// Tolerances and limits of the Newton solver and of load stepping.
+///
+/// The convergence tests are scale-invariant: nothing here has units, so the same defaults
+/// work for a 1 mm wire and a 10 m hose, for Γ = 10⁻³ and for Γ = 10⁴.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SolverParams {
+    /// Newton decrement test: converged when gᵀH⁻¹g ≤ `energy_tolerance`·|work of the loads|.
+    /// Default 1e-12.
+    pub energy_tolerance: f64,
+    /// Force test: converged when the largest residual force ≤ `force_tolerance`·(largest
+    /// external nodal force). Default 1e-8.
+    pub force_tolerance: f64,
+    /// Multiplier c of the round-off floor c·ε·Σ|element forces| under which a residual is
+    /// noise. Default 50.
+    pub roundoff_factor: f64,
+    /// Newton iterations allowed per load step before the step is declared failed. Default 30.
+    pub max_iterations: usize,
+    /// Armijo sufficient-decrease constant c₁. Default 1e-4.
+    pub armijo: f64,
+    /// Backtracking halvings allowed per line search. Default 40.
+    pub max_backtracks: usize,
+    /// First load step as a fraction of the whole load change (1 = try it in one step).
+    /// Default 1.
+    pub initial_load_step: f64,
+    /// Smallest load step fraction before load stepping gives up. Default 1e-6.
+    pub min_load_step: f64,
+    /// Load steps are doubled after a step that converged in at most this many iterations.
+    /// Default 5.
+    pub fast_iterations: usize,
+    /// Whether to compute the smallest eigenvalue of the Hessian at the solution. Default true.
+    pub compute_lambda_min: bool,
+}
+
+impl Default for SolverParams {
+    fn default() -> Self {
+        Self {
+            energy_tolerance: 1e-12,
+            force_tolerance: 1e-8,
+            roundoff_factor: 50.0,
+            max_iterations: 30,
+            armijo: 1e-4,
+            max_backtracks: 40,
+            initial_load_step: 1.0,
+            min_load_step: 1e-6,
+            fast_iterations: 5,
+            compute_lambda_min: true,
+        }
+    }
+}
+
+impl SolverParams {
+    /// Checks every field; errors name the field and the valid range.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(ModelError::parameter(name, v, "finite and > 0"))
+            }
+        };
+        positive("energy_tolerance", self.energy_tolerance)?;
+        positive("force_tolerance", self.force_tolerance)?;
+        positive("roundoff_factor", self.roundoff_factor)?;
+        positive("min_load_step", self.min_load_step)?;
+        if !(self.armijo > 0.0 && self.armijo < 0.5) {
+            return Err(ModelError::parameter("armijo", self.armijo, "in (0, 0.5)"));
+        }
+        if !(self.initial_load_step > 0.0 && self.initial_load_step <= 1.0) {
+            return Err(ModelError::parameter(
+                "initial_load_step",
+                self.initial_load_step,
+                "in (0, 1]",
+            ));
+        }
+        if self.max_iterations == 0 {
+            return Err(ModelError::parameter("max_iterations", 0.0, ">= 1"));
+        }
+        Ok(())
+    }
+}

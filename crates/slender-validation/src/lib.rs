@@ -1,0 +1,9 @@
+//! slender-validation: the seed's benchmarks, their master curves and the sweeps.
+//!
+//! Master curves are computed here by methods that share nothing with the rod model
+//! (ODE shooting and finite-difference boundary-value solves), so that comparing the model
+//! against them is a real test.
+
+pub mod cantilever;
+pub mod materials;
+pub mod ode;
