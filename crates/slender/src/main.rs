@@ -1,5 +1,163 @@
-// Not yet called from `main`; remove the allow once the CLI uses the plots.
-#[allow(dead_code, unused_imports)]
-mod plot;
+//! `slender`: physically validated equilibria of slender elastic structures.
+//!
+//! Subcommands run the seed's benchmarks and write data files, plots and a pass/fail summary.
 
-fn main() {}
+mod cantilever_report;
+mod output;
+#[allow(dead_code)]
+mod plot;
+mod progress;
+mod validate;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{bail, Context, Result};
+use clap::{Parser, Subcommand, ValueEnum};
+use slender_validation::cantilever::{log_space, CantileverSweep, MeshKind};
+use slender_validation::materials::ROD_SETS;
+
+/// Large deformations of cables, hoses and flat cables, with the validation to prove them.
+#[derive(Parser, Debug)]
+#[command(name = "slender", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// The cantilever benchmark (seed §3, Fig. 2): Δy/Δx against Γ, every discretization
+    /// against the heavy-elastica master curve.
+    Cantilever(CantileverArgs),
+    /// Run the validation suite and print a pass/fail table (exit code 1 if a target fails).
+    Validate(ValidateArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct CantileverArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out/cantilever")]
+    out: PathBuf,
+    /// Smallest Γ of the log-spaced sweep (> 0).
+    #[arg(long, default_value_t = 0.1)]
+    gamma_min: f64,
+    /// Largest Γ.
+    #[arg(long, default_value_t = 1e4)]
+    gamma_max: f64,
+    /// Number of Γ values.
+    #[arg(long, default_value_t = 40)]
+    gamma_count: usize,
+    /// Element counts, comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![5usize, 10, 20, 50])]
+    elements: Vec<usize>,
+    /// Mesh families, comma-separated: uniform, quadratic, graded.
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["uniform".to_string(), "quadratic".to_string(), "graded".to_string()])]
+    meshes: Vec<String>,
+    /// Material sets, comma-separated: rod, bundle.
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["rod".to_string(), "bundle".to_string()])]
+    materials: Vec<String>,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+enum Preset {
+    /// What CI runs.
+    Quick,
+    /// The paper-size sweeps.
+    Full,
+}
+
+#[derive(clap::Args, Debug)]
+struct ValidateArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out/validate")]
+    out: PathBuf,
+    /// Sweep size.
+    #[arg(long, value_enum, default_value_t = Preset::Quick)]
+    preset: Preset,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+fn sweep_from_args(a: &CantileverArgs) -> Result<CantileverSweep> {
+    if !(a.gamma_min.is_finite() && a.gamma_min > 0.0) {
+        bail!("--gamma-min = {}: must be finite and > 0", a.gamma_min);
+    }
+    if !(a.gamma_max.is_finite() && a.gamma_max >= a.gamma_min) {
+        bail!("--gamma-max = {}: must be finite and >= --gamma-min ({})", a.gamma_max, a.gamma_min);
+    }
+    if a.gamma_count == 0 {
+        bail!("--gamma-count = 0: must be >= 1");
+    }
+    if let Some(n) = a.elements.iter().find(|&&n| n == 0) {
+        bail!("--elements contains {n}: element counts must be >= 1");
+    }
+    let meshes = a
+        .meshes
+        .iter()
+        .map(|m| {
+            MeshKind::from_name(m)
+                .with_context(|| format!("--meshes: unknown mesh `{m}`; valid: uniform, quadratic, graded"))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let materials = a
+        .materials
+        .iter()
+        .map(|m| {
+            ROD_SETS
+                .iter()
+                .copied()
+                .find(|s| s.name == m)
+                .with_context(|| format!("--materials: unknown set `{m}`; valid: rod, bundle"))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(CantileverSweep {
+        gammas: log_space(a.gamma_min, a.gamma_max, a.gamma_count),
+        element_counts: a.elements.clone(),
+        meshes,
+        materials,
+    })
+}
+
+fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool> {
+    let mut b = rayon::ThreadPoolBuilder::new();
+    if let Some(j) = jobs {
+        if j == 0 {
+            bail!("--jobs = 0: must be >= 1");
+        }
+        b = b.num_threads(j);
+    }
+    b.build().context("starting the worker threads")
+}
+
+fn run(cli: Cli) -> Result<bool> {
+    match cli.command {
+        Command::Cantilever(a) => {
+            let sweep = sweep_from_args(&a)?;
+            let pool = thread_pool(a.jobs)?;
+            let out = pool.install(|| cantilever_report::run(&sweep, &a.out))?;
+            cantilever_report::print_summary(&out.summary);
+            println!("wrote {}", a.out.display());
+            Ok(true)
+        }
+        Command::Validate(a) => {
+            let pool = thread_pool(a.jobs)?;
+            pool.install(|| validate::run(&a.out, a.preset == Preset::Full))
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

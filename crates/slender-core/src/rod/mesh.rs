@@ -19,7 +19,7 @@ pub enum Grading {
         /// Grading exponent (≥ 1).
         exponent: f64,
     },
-    /// Node density ∝ 1 + β·e^{−s/(2ℓ)}/(2ℓ) with ℓ = L/√Γ: a uniform mesh plus a geometric
+    /// Node density ∝ 1 + β·e^{−s/(2ℓ)}/(2ℓ) with ℓ = 0.65 L/√Γ and β = 1.5: a uniform mesh plus a geometric
     /// refinement whose element size grows like e^{s/(2ℓ)} through the gravity boundary layer,
     /// which equidistributes the second-order error there. `gamma` is the gravito-bending
     /// parameter the mesh is built for.
@@ -36,7 +36,11 @@ impl Default for Grading {
 }
 
 /// Share of the refinement density given to the boundary layer (the β above).
-const BOUNDARY_LAYER_WEIGHT: f64 = 0.6;
+/// Tuned on the cantilever sweep (Γ ∈ [0.1, 10⁴], N ∈ {5 … 80}) for the worst error at N = 5
+/// and N = 20 and the convergence slope; 1.5 puts 60 % of the nodes in the layer.
+const BOUNDARY_LAYER_WEIGHT: f64 = 1.5;
+/// Decay length of the refinement in units of L/√Γ (tuned with the weight).
+const BOUNDARY_LAYER_LENGTH: f64 = 0.65;
 
 impl Grading {
     /// Checks the grading parameters; errors name the field.
@@ -97,7 +101,7 @@ fn boundary_layer_cdf(u: f64, ell: f64) -> f64 {
 
 /// Inverse of [`boundary_layer_cdf`] by bisection (monotone, so bisection is exact to round-off).
 fn boundary_layer_inverse_cdf(target: f64, gamma: f64) -> f64 {
-    let ell = 1.0 / gamma.sqrt();
+    let ell = BOUNDARY_LAYER_LENGTH / gamma.sqrt();
     let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
     for _ in 0..80 {
         let mid = 0.5 * (lo + hi);

@@ -1,6 +1,10 @@
 //! The cantilever under self-weight (seed §3, Fig. 2).
 
+pub mod acceptance;
 pub mod case;
 pub mod master_curve;
+pub mod sweep;
 
+pub use acceptance::{cantilever_checks, Check};
 pub use case::{end_point_ratio, CantileverCase, CantileverRun, MeshKind};
+pub use sweep::{log_space, summarize, CantileverRecord, CantileverSweep, DiscretizationSummary, SweepError, CABLE_RANGE};

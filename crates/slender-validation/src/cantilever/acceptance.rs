@@ -1,0 +1,149 @@
+//! The cantilever benchmark's acceptance targets (issue 2), measured.
+//!
+//! Each check is a measurement against a target; a failed check is reported with its figure,
+//! never bent to pass.
+
+use serde::{Deserialize, Serialize};
+use slender_core::solver::SolverParams;
+
+use super::case::{CantileverCase, MeshKind};
+use super::master_curve::master_ratio;
+use super::sweep::{CantileverRecord, SweepError};
+use crate::materials::{OMEGA_BUNDLE, OMEGA_ROD};
+
+/// One acceptance target and what was measured.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Check {
+    /// Benchmark the check belongs to.
+    pub benchmark: String,
+    /// What is checked.
+    pub description: String,
+    /// The measured figure.
+    pub measured: f64,
+    /// The target, as text (e.g. "≤ 0.5 %").
+    pub target: String,
+    /// Whether the measured figure meets the target.
+    pub passed: bool,
+}
+
+fn check(description: String, measured: f64, target: &str, passed: bool) -> Check {
+    Check {
+        benchmark: "cantilever".into(),
+        description,
+        measured,
+        target: target.into(),
+        passed: passed && measured.is_finite(),
+    }
+}
+
+/// Largest |relative error| (%) of the records matching the filter; NaN if one did not
+/// converge (which fails the check) or none matched.
+fn worst_percent(records: &[CantileverRecord], keep: impl Fn(&CantileverRecord) -> bool) -> f64 {
+    let mut worst = f64::NAN;
+    for r in records.iter().filter(|r| keep(r)) {
+        if !r.converged {
+            return f64::NAN;
+        }
+        let e = 100.0 * r.rel_error.abs();
+        worst = if worst.is_nan() { e } else { worst.max(e) };
+    }
+    worst
+}
+
+/// Relative error of one extra case (graded mesh).
+fn extra_error(material: crate::materials::RodMaterialSet, n: usize, gamma: f64, params: &SolverParams) -> Result<f64, SweepError> {
+    let run = CantileverCase {
+        material,
+        mesh: MeshKind::Graded,
+        n_elements: n,
+        gamma,
+    }
+    .run(params)?;
+    Ok(run.ratio / master_ratio(gamma)? - 1.0)
+}
+
+/// Least-squares slope of log|error| against log N.
+pub fn convergence_slope(ns: &[usize], errors: &[f64]) -> f64 {
+    let xs: Vec<f64> = ns.iter().map(|&n| (n as f64).ln()).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| e.abs().ln()).collect();
+    let k = xs.len() as f64;
+    let mx = xs.iter().sum::<f64>() / k;
+    let my = ys.iter().sum::<f64>() / k;
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+/// Evaluates the targets on the sweep `records` (which should include Ω_rod and Ω_bundle on
+/// the graded mesh with N = 5, 20, 50) plus a few extra runs (convergence order, Γ = 10⁻³).
+pub fn cantilever_checks(records: &[CantileverRecord], params: &SolverParams) -> Result<Vec<Check>, SweepError> {
+    fn graded(mat: &'static str, n: usize) -> impl Fn(&CantileverRecord) -> bool {
+        move |r| r.material == mat && r.mesh == "graded" && r.n_elements == n
+    }
+    let mut checks = Vec::new();
+    let w = worst_percent(records, |r| graded("rod", 20)(r) && r.gamma >= 0.1 * 0.999);
+    checks.push(check(
+        "Ω_rod, graded, N = 20: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 10⁴]".into(),
+        w,
+        "≤ 0.5 %",
+        w <= 0.5,
+    ));
+    let w = worst_percent(records, |r| graded("rod", 50)(r) && r.gamma <= 100.0 * 1.001);
+    checks.push(check(
+        "Ω_rod, graded, N = 50: worst error (%) over Γ ≤ 100".into(),
+        w,
+        "≤ 0.1 %",
+        w <= 0.1,
+    ));
+    let w = worst_percent(records, |r| graded("rod", 5)(r) && r.gamma >= 10.0 * 0.999 && r.gamma <= 1e3 * 1.001);
+    checks.push(check(
+        "Ω_rod, graded, N = 5: worst error (%) over Γ ∈ [10, 10³]".into(),
+        w,
+        "≤ 3 %",
+        w <= 3.0,
+    ));
+    let w = worst_percent(records, |r| graded("bundle", 50)(r) && r.gamma <= 1e3 * 1.001);
+    checks.push(check(
+        "Ω_bundle (finite EA), graded, N = 50: worst error (%) vs the inextensible curve, Γ ≤ 10³".into(),
+        w,
+        "≤ 0.5 %",
+        w <= 0.5,
+    ));
+    let ns = [10, 20, 40, 80];
+    for gamma in [1.0, 100.0] {
+        let errors: Vec<f64> = ns
+            .iter()
+            .map(|&n| extra_error(OMEGA_ROD, n, gamma, params))
+            .collect::<Result<_, _>>()?;
+        let slope = convergence_slope(&ns, &errors);
+        checks.push(check(
+            format!("Ω_rod, graded: order of convergence, slope of log|error| vs log N (N = 10…80), Γ = {gamma}"),
+            slope,
+            "≤ −1.8",
+            slope <= -1.8,
+        ));
+    }
+    let e = 100.0 * extra_error(OMEGA_ROD, 20, 1e-3, params)?.abs();
+    checks.push(check(
+        "Ω_rod, graded, N = 20: error (%) at Γ = 10⁻³ (no plateau from an absolute tolerance)".into(),
+        e,
+        "≤ 0.5 %",
+        e <= 0.5,
+    ));
+    let e = 100.0 * extra_error(OMEGA_BUNDLE, 20, 1e-3, params)?.abs();
+    checks.push(check(
+        "Ω_bundle, graded, N = 20: error (%) at Γ = 10⁻³".into(),
+        e,
+        "≤ 0.5 %",
+        e <= 0.5,
+    ));
+    let failed = records.iter().filter(|r| !r.converged).count();
+    let multi = records.iter().filter(|r| r.converged && r.load_steps > 1).count();
+    checks.push(check(
+        format!("sweep: solves that did not converge in one call ({} cases; {multi} needed more than one load step, chosen by the solver)", records.len()),
+        failed as f64,
+        "= 0",
+        failed == 0,
+    ));
+    Ok(checks)
+}

@@ -1,0 +1,162 @@
+//! `slender cantilever`: runs the sweep and writes results.csv, summary.csv, the Fig. 2
+//! counterparts (one per material and mesh family), error plots and deformed shapes.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use slender_core::solver::SolverParams;
+use slender_validation::cantilever::master_curve::heavy_elastica;
+use slender_validation::cantilever::{
+    log_space, summarize, CantileverCase, CantileverRecord, CantileverSweep, DiscretizationSummary,
+    MeshKind, CABLE_RANGE,
+};
+
+use crate::output::write_csv;
+use crate::plot::{plot_cantilever_ratio, plot_relative_error, plot_shapes_2d, Curve};
+use crate::progress::Progress;
+
+/// What the cantilever benchmark produced.
+pub struct CantileverOutput {
+    /// One record per case.
+    pub records: Vec<CantileverRecord>,
+    /// Worst errors per discretization.
+    pub summary: Vec<DiscretizationSummary>,
+}
+
+/// Runs `sweep` and writes everything under `out`.
+pub fn run(sweep: &CantileverSweep, out: &Path) -> Result<CantileverOutput> {
+    let params = SolverParams::default();
+    let progress = Progress::new("cantilever", sweep.cases().len());
+    let records = sweep.run(&params, &|| progress.tick())?;
+    progress.finish();
+    write_csv(&out.join("results.csv"), &records)?;
+    let summary = summarize(&records);
+    write_csv(&out.join("summary.csv"), &summary)?;
+    plot_ratios(sweep, &records, out)?;
+    plot_coarse_shapes(sweep, out)?;
+    Ok(CantileverOutput { records, summary })
+}
+
+/// Prints the worst errors per discretization.
+pub fn print_summary(summary: &[DiscretizationSummary]) {
+    println!(
+        "{:<8} {:<10} {:>4}  {:>22}  {:>16}  {:>9}",
+        "material", "mesh", "N", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
+    );
+    for s in summary {
+        println!(
+            "{:<8} {:<10} {:>4}  {:>22.3}  {:>16.3}  {:>9}",
+            s.material,
+            s.mesh,
+            s.n_elements,
+            100.0 * s.worst_in_cable_range,
+            100.0 * s.worst_overall,
+            s.not_converged
+        );
+    }
+}
+
+fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path) -> Result<()> {
+    let lo = sweep.gammas.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hi = sweep.gammas.iter().cloned().fold(0.0, f64::max);
+    // The master curve drawn densely, independent of the sweep's Γ grid.
+    let master: Vec<(f64, f64)> = log_space(lo, hi, 200)
+        .into_iter()
+        .filter_map(|g| heavy_elastica(g).ok().map(|h| (g, h.ratio())))
+        .collect();
+    for material in &sweep.materials {
+        for &mesh in &sweep.meshes {
+            let mut ratio_curves = Vec::new();
+            let mut error_curves = Vec::new();
+            for &n in &sweep.element_counts {
+                let rows: Vec<&CantileverRecord> = records
+                    .iter()
+                    .filter(|r| r.material == material.name && r.mesh == mesh.name() && r.n_elements == n)
+                    .collect();
+                ratio_curves.push(Curve {
+                    label: format!("{n} elements"),
+                    points: rows.iter().map(|r| (r.gamma, r.ratio)).collect(),
+                    dashed: false,
+                    markers: true,
+                });
+                error_curves.push(Curve {
+                    label: format!("{n} elements"),
+                    points: rows.iter().map(|r| (r.gamma, 100.0 * r.rel_error)).collect(),
+                    dashed: false,
+                    markers: true,
+                });
+            }
+            let stem = out.join(format!("ratio_{}_{}", material.name, mesh.name()));
+            plot_cantilever_ratio(
+                &stem,
+                &format!("Cantilever, {} — {} mesh", material.label, mesh.name()),
+                &master,
+                &ratio_curves,
+                Some(CABLE_RANGE),
+            )
+            .with_context(|| format!("plotting {}", stem.display()))?;
+            let stem = out.join(format!("error_{}_{}", material.name, mesh.name()));
+            plot_relative_error(
+                &stem,
+                &format!("Error vs master curve, {} — {} mesh", material.label, mesh.name()),
+                &error_curves,
+                Some(CABLE_RANGE),
+            )
+            .with_context(|| format!("plotting {}", stem.display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// Deformed shapes at Γ = 10⁴ on the coarsest meshes (the seed's Figs. 3 and 5), with the
+/// exact heavy elastica.
+fn plot_coarse_shapes(sweep: &CantileverSweep, out: &Path) -> Result<()> {
+    let gamma = 1e4;
+    let exact = heavy_elastica(gamma)?;
+    let reference = Curve {
+        label: "heavy elastica (exact)".into(),
+        points: exact.shape(400).iter().map(|p| (p[0], p[1])).collect(),
+        dashed: true,
+        markers: false,
+    };
+    let mut counts = sweep.element_counts.clone();
+    counts.sort_unstable();
+    counts.truncate(2);
+    let params = SolverParams::default();
+    for material in sweep.materials.iter().take(1) {
+        for &n in &counts {
+            let mut shapes = Vec::new();
+            for mesh in MeshKind::ALL {
+                let run = CantileverCase {
+                    material: *material,
+                    mesh,
+                    n_elements: n,
+                    gamma,
+                }
+                .run(&params)?;
+                let l = material.length;
+                shapes.push(Curve {
+                    label: format!(
+                        "{} mesh, Δy/Δx {}",
+                        mesh.name(),
+                        if run.ratio.is_finite() { format!("{:+.1} %", 100.0 * (run.ratio / exact.ratio() - 1.0)) } else { "not converged".into() }
+                    ),
+                    points: run.positions.iter().map(|p| (p.x / l, p.y / l)).collect(),
+                    dashed: false,
+                    markers: true,
+                });
+            }
+            let stem = out.join(format!("shape_gamma1e4_{}_n{}", material.name, n));
+            plot_shapes_2d(
+                &stem,
+                &format!("Γ = 10⁴, {n} elements, {}", material.label),
+                "x / L",
+                "y / L",
+                Some(&reference),
+                &shapes,
+            )
+            .with_context(|| format!("plotting {}", stem.display()))?;
+        }
+    }
+    Ok(())
+}
