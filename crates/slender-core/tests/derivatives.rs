@@ -4,7 +4,9 @@
 
 use nalgebra::{Rotation3, Vector3};
 use slender_core::linalg::SymmetricBandMatrix;
-use slender_core::rod::{RestCurve, Rod, RodBuilder, RodProperties, RodState, SectionStiffness, Terms};
+use slender_core::rod::{
+    RestCurve, Rod, RodBuilder, RodProperties, RodState, SectionStiffness, Terms,
+};
 use slender_core::solver::EquilibriumProblem;
 
 /// Deterministic xorshift generator: tests must not depend on a seed from the environment.
@@ -146,7 +148,10 @@ fn assert_second_order(errors: &[f64], what: &str) {
         e2 < e0 / 30.0 || e2 < 1e-9,
         "{what}: not O(ε²): errors {errors:?}"
     );
-    assert!(errors.iter().cloned().fold(f64::INFINITY, f64::min) < 1e-5, "{what}: {errors:?}");
+    assert!(
+        errors.iter().cloned().fold(f64::INFINITY, f64::min) < 1e-5,
+        "{what}: {errors:?}"
+    );
 }
 
 fn check(terms: Terms, name: &str) {
@@ -165,17 +170,35 @@ fn check(terms: Terms, name: &str) {
 
 #[test]
 fn stretching_derivatives_match_finite_differences() {
-    check(Terms { stretching: true, ..Terms::NONE }, "stretching");
+    check(
+        Terms {
+            stretching: true,
+            ..Terms::NONE
+        },
+        "stretching",
+    );
 }
 
 #[test]
 fn bending_derivatives_match_finite_differences() {
-    check(Terms { bending: true, ..Terms::NONE }, "bending");
+    check(
+        Terms {
+            bending: true,
+            ..Terms::NONE
+        },
+        "bending",
+    );
 }
 
 #[test]
 fn twisting_derivatives_match_finite_differences() {
-    check(Terms { twisting: true, ..Terms::NONE }, "twisting");
+    check(
+        Terms {
+            twisting: true,
+            ..Terms::NONE
+        },
+        "twisting",
+    );
 }
 
 #[test]
@@ -186,7 +209,16 @@ fn external_load_derivatives_match_finite_differences() {
         let s = random_state(&rod, &mut rng);
         let u = rng.vector(rod.n_free());
         let v = rng.vector(rod.n_free());
-        let (eg, _) = fd_errors(&rod, &s, Terms { external: true, ..Terms::NONE }, &u, &v);
+        let (eg, _) = fd_errors(
+            &rod,
+            &s,
+            Terms {
+                external: true,
+                ..Terms::NONE
+            },
+            &u,
+            &v,
+        );
         assert!(eg.iter().all(|&e| e < 1e-8), "{eg:?}");
     }
 }
@@ -229,4 +261,3 @@ fn rest_shapes_have_zero_gradient() {
         assert!(g.iter().all(|x| x.abs() < 1e-13), "rest gradient {g:?}");
     }
 }
-

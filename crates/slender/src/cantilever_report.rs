@@ -71,7 +71,9 @@ fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path
             for &n in &sweep.element_counts {
                 let rows: Vec<&CantileverRecord> = records
                     .iter()
-                    .filter(|r| r.material == material.name && r.mesh == mesh.name() && r.n_elements == n)
+                    .filter(|r| {
+                        r.material == material.name && r.mesh == mesh.name() && r.n_elements == n
+                    })
                     .collect();
                 ratio_curves.push(Curve {
                     label: format!("{n} elements"),
@@ -81,7 +83,10 @@ fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path
                 });
                 error_curves.push(Curve {
                     label: format!("{n} elements"),
-                    points: rows.iter().map(|r| (r.gamma, 100.0 * r.rel_error)).collect(),
+                    points: rows
+                        .iter()
+                        .map(|r| (r.gamma, 100.0 * r.rel_error))
+                        .collect(),
                     dashed: false,
                     markers: true,
                 });
@@ -98,7 +103,11 @@ fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path
             let stem = out.join(format!("error_{}_{}", material.name, mesh.name()));
             plot_relative_error(
                 &stem,
-                &format!("Error vs master curve, {} — {} mesh", material.label, mesh.name()),
+                &format!(
+                    "Error vs master curve, {} — {} mesh",
+                    material.label,
+                    mesh.name()
+                ),
                 &error_curves,
                 Some(CABLE_RANGE),
             )
@@ -139,7 +148,11 @@ fn plot_coarse_shapes(sweep: &CantileverSweep, out: &Path) -> Result<()> {
                     label: format!(
                         "{} mesh, Δy/Δx {}",
                         mesh.name(),
-                        if run.ratio.is_finite() { format!("{:+.1} %", 100.0 * (run.ratio / exact.ratio() - 1.0)) } else { "not converged".into() }
+                        if run.ratio.is_finite() {
+                            format!("{:+.1} %", 100.0 * (run.ratio / exact.ratio() - 1.0))
+                        } else {
+                            "not converged".into()
+                        }
                     ),
                     points: run.positions.iter().map(|p| (p.x / l, p.y / l)).collect(),
                     dashed: false,

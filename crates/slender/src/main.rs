@@ -88,7 +88,11 @@ fn sweep_from_args(a: &CantileverArgs) -> Result<CantileverSweep> {
         bail!("--gamma-min = {}: must be finite and > 0", a.gamma_min);
     }
     if !(a.gamma_max.is_finite() && a.gamma_max >= a.gamma_min) {
-        bail!("--gamma-max = {}: must be finite and >= --gamma-min ({})", a.gamma_max, a.gamma_min);
+        bail!(
+            "--gamma-max = {}: must be finite and >= --gamma-min ({})",
+            a.gamma_max,
+            a.gamma_min
+        );
     }
     if a.gamma_count == 0 {
         bail!("--gamma-count = 0: must be >= 1");
@@ -100,8 +104,9 @@ fn sweep_from_args(a: &CantileverArgs) -> Result<CantileverSweep> {
         .meshes
         .iter()
         .map(|m| {
-            MeshKind::from_name(m)
-                .with_context(|| format!("--meshes: unknown mesh `{m}`; valid: uniform, quadratic, graded"))
+            MeshKind::from_name(m).with_context(|| {
+                format!("--meshes: unknown mesh `{m}`; valid: uniform, quadratic, graded")
+            })
         })
         .collect::<Result<Vec<_>>>()?;
     let materials = a

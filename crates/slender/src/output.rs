@@ -21,7 +21,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 pub fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
     let mut w = csv::Writer::from_writer(Vec::new());
     for r in rows {
-        w.serialize(r).with_context(|| format!("serializing a row of {}", path.display()))?;
+        w.serialize(r)
+            .with_context(|| format!("serializing a row of {}", path.display()))?;
     }
     let bytes = w.into_inner().context("finishing CSV")?;
     write_atomic(path, &bytes)

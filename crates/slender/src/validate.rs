@@ -46,7 +46,8 @@ fn print_table(checks: &[Check]) {
 }
 
 fn markdown(checks: &[Check]) -> String {
-    let mut s = String::from("| result | benchmark | check | measured | target |\n|---|---|---|---|---|\n");
+    let mut s =
+        String::from("| result | benchmark | check | measured | target |\n|---|---|---|---|---|\n");
     for c in checks {
         s += &format!(
             "| {} | {} | {} | {:.5} | {} |\n",

@@ -2,4 +2,6 @@
 
 pub mod banded;
 
-pub use banded::{smallest_eigenpair, BandLdlt, EigenEstimate, FactorError, Inertia, SymmetricBandMatrix};
+pub use banded::{
+    smallest_eigenpair, BandLdlt, EigenEstimate, FactorError, Inertia, SymmetricBandMatrix,
+};

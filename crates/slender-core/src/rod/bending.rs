@@ -124,8 +124,7 @@ impl BendingHinge {
         }
         let mut second = [HingeMatrix::zeros(); 2];
         let want_hess = hess.is_some();
-        let dkappa =
-            material_curvature_derivatives(h, kappa, want_hess.then_some(&mut second));
+        let dkappa = material_curvature_derivatives(h, kappa, want_hess.then_some(&mut second));
         if let Some(g) = grad {
             *g += dkappa[0] * (w[0] * dk[0]) + dkappa[1] * (w[1] * dk[1]);
         }

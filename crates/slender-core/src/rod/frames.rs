@@ -76,7 +76,11 @@ impl ReferenceFrames {
     pub fn edge(&self, id: EdgeId) -> EdgeFrame {
         match id {
             EdgeId::Real(j) => self.edges[j],
-            EdgeId::GhostStart => self.ghost_start.expect("hinge refers to a start clamp").frame,
+            EdgeId::GhostStart => {
+                self.ghost_start
+                    .expect("hinge refers to a start clamp")
+                    .frame
+            }
             EdgeId::GhostEnd => self.ghost_end.expect("hinge refers to an end clamp").frame,
         }
     }
@@ -95,10 +99,11 @@ impl ReferenceFrames {
         out: &mut ReferenceFrames,
     ) {
         out.edges.clear();
-        out.edges.extend(self.edges.iter().enumerate().map(|(j, f)| {
-            let t = (positions[j + 1] - positions[j]).normalize();
-            f.transported_to(&t)
-        }));
+        out.edges
+            .extend(self.edges.iter().enumerate().map(|(j, f)| {
+                let t = (positions[j + 1] - positions[j]).normalize();
+                f.transported_to(&t)
+            }));
         out.ghost_start = self.ghost_start;
         out.ghost_end = self.ghost_end;
         out.ref_twist.clear();

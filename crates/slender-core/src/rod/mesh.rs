@@ -51,7 +51,11 @@ impl Grading {
                 if exponent.is_finite() && exponent >= 1.0 {
                     Ok(())
                 } else {
-                    Err(ModelError::parameter("exponent", exponent, "finite and >= 1"))
+                    Err(ModelError::parameter(
+                        "exponent",
+                        exponent,
+                        "finite and >= 1",
+                    ))
                 }
             }
             Self::BoundaryLayer { gamma } => require_positive("gamma", gamma).map(|_| ()),
@@ -139,8 +143,14 @@ mod tests {
         let s = Grading::BoundaryLayer { gamma: 1e4 }
             .node_arclengths(20, 1.0)
             .unwrap();
-        assert!(s[1] < 0.01, "first element {} should resolve ℓ_b = 0.01", s[1]);
-        let p = Grading::Power { exponent: 2.0 }.node_arclengths(10, 1.0).unwrap();
+        assert!(
+            s[1] < 0.01,
+            "first element {} should resolve ℓ_b = 0.01",
+            s[1]
+        );
+        let p = Grading::Power { exponent: 2.0 }
+            .node_arclengths(10, 1.0)
+            .unwrap();
         assert!((p[1] - 0.01).abs() < 1e-15);
     }
 

@@ -97,7 +97,11 @@ impl RodState {
             })
         };
         Self {
-            positions: self.positions.iter().map(|x| rotation * x + offset).collect(),
+            positions: self
+                .positions
+                .iter()
+                .map(|x| rotation * x + offset)
+                .collect(),
             thetas: self.thetas.clone(),
             frames: ReferenceFrames {
                 edges: self.frames.edges.iter().map(rot).collect(),
@@ -218,14 +222,18 @@ impl RodBuilder {
     pub fn build(self) -> Result<Rod, ModelError> {
         self.properties.validate()?;
         self.curve.validate()?;
-        for (k, c) in ["gravity.x", "gravity.y", "gravity.z"].iter().zip(self.gravity.iter()) {
+        for (k, c) in ["gravity.x", "gravity.y", "gravity.z"]
+            .iter()
+            .zip(self.gravity.iter())
+        {
             require_finite(k, *c)?;
         }
         let arclengths = self
             .grading
             .node_arclengths(self.n_elements, self.curve.length())?;
         let n = self.n_elements;
-        let points: Vec<(Vec3, Vec3)> = arclengths.iter().map(|&s| self.curve.evaluate(s)).collect();
+        let points: Vec<(Vec3, Vec3)> =
+            arclengths.iter().map(|&s| self.curve.evaluate(s)).collect();
         let positions: Vec<Vec3> = points.iter().map(|p| p.0).collect();
         let rest_lengths: Vec<f64> = positions.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
         let total: f64 = rest_lengths.iter().sum();
@@ -250,17 +258,24 @@ impl RodBuilder {
             if pf.vertex > n {
                 return Err(ModelError::structure(
                     "point_forces.vertex",
-                    format!("vertex {} does not exist; valid vertices are 0..={n}", pf.vertex),
+                    format!(
+                        "vertex {} does not exist; valid vertices are 0..={n}",
+                        pf.vertex
+                    ),
                 ));
             }
             if pf.force.iter().any(|c| !c.is_finite()) {
-                return Err(ModelError::structure("point_forces.force", "must be finite"));
+                return Err(ModelError::structure(
+                    "point_forces.force",
+                    "must be finite",
+                ));
             }
         }
         let mut pins = self.supports.pins.clone();
         pins.sort_unstable();
         pins.dedup();
-        let n_clamps = usize::from(self.supports.clamp_start) + usize::from(self.supports.clamp_end);
+        let n_clamps =
+            usize::from(self.supports.clamp_start) + usize::from(self.supports.clamp_end);
         if n_clamps == 0 && pins.len() < 3 {
             return Err(ModelError::structure(
                 "supports",
@@ -333,7 +348,12 @@ impl RodBuilder {
         // Hinges: interior vertices, plus the clamped ends (half Voronoi cell, design.md §2.5).
         let mut topology: Vec<(usize, EdgeId, EdgeId, f64)> = Vec::new();
         if ghost_start.is_some() {
-            topology.push((0, EdgeId::GhostStart, EdgeId::Real(0), 0.5 * rest_lengths[0]));
+            topology.push((
+                0,
+                EdgeId::GhostStart,
+                EdgeId::Real(0),
+                0.5 * rest_lengths[0],
+            ));
         }
         for i in 1..n {
             topology.push((
@@ -344,7 +364,12 @@ impl RodBuilder {
             ));
         }
         if ghost_end.is_some() {
-            topology.push((n, EdgeId::Real(n - 1), EdgeId::GhostEnd, 0.5 * rest_lengths[n - 1]));
+            topology.push((
+                n,
+                EdgeId::Real(n - 1),
+                EdgeId::GhostEnd,
+                0.5 * rest_lengths[n - 1],
+            ));
         }
         let hinge_edges: Vec<(EdgeId, EdgeId)> = topology.iter().map(|h| (h.1, h.2)).collect();
         let mut frames = ReferenceFrames {
@@ -589,7 +614,14 @@ impl Rod {
                     map[k] = self.dofs.vertex(j, k);
                     map[3 + k] = self.dofs.vertex(j + 1, k);
                 }
-                scatter(&map, g6.as_slice(), &h6, &mut grad, &mut hess, &mut abs_grad);
+                scatter(
+                    &map,
+                    g6.as_slice(),
+                    &h6,
+                    &mut grad,
+                    &mut hess,
+                    &mut abs_grad,
+                );
             }
         }
 
@@ -609,7 +641,14 @@ impl Rod {
                     );
                     info.energy += e;
                     info.energy_magnitude += e.abs();
-                    scatter(&hinge.dofs, g.as_slice(), &h, &mut grad, &mut hess, &mut abs_grad);
+                    scatter(
+                        &hinge.dofs,
+                        g.as_slice(),
+                        &h,
+                        &mut grad,
+                        &mut hess,
+                        &mut abs_grad,
+                    );
                 }
                 if terms.twisting {
                     g.fill(0.0);
@@ -622,7 +661,14 @@ impl Rod {
                     );
                     info.energy += e;
                     info.energy_magnitude += e.abs();
-                    scatter(&hinge.dofs, g.as_slice(), &h, &mut grad, &mut hess, &mut abs_grad);
+                    scatter(
+                        &hinge.dofs,
+                        g.as_slice(),
+                        &h,
+                        &mut grad,
+                        &mut hess,
+                        &mut abs_grad,
+                    );
                 }
             }
         }
@@ -856,7 +902,14 @@ impl EquilibriumProblem for Rod {
         hess: &mut SymmetricBandMatrix,
         abs_grad: &mut [f64],
     ) -> AssemblyInfo {
-        self.assemble_terms(state, load, Terms::ALL, Some(grad), Some(hess), Some(abs_grad))
+        self.assemble_terms(
+            state,
+            load,
+            Terms::ALL,
+            Some(grad),
+            Some(hess),
+            Some(abs_grad),
+        )
     }
 
     fn dof_values(&self, state: &RodState, out: &mut [f64]) {
@@ -923,7 +976,6 @@ impl EquilibriumProblem for Rod {
     }
 
     fn eigenvalue_scale(&self) -> f64 {
-        self.properties.stiffness.ei_min()
-            / (self.properties.linear_density * self.length.powi(4))
+        self.properties.stiffness.ei_min() / (self.properties.linear_density * self.length.powi(4))
     }
 }

@@ -190,11 +190,15 @@ mod tests {
             poisson: 0.3,
             density: 7800.0,
         };
-        let p = CrossSection::Circle { diameter: 0.01 }.properties(&m).unwrap();
+        let p = CrossSection::Circle { diameter: 0.01 }
+            .properties(&m)
+            .unwrap();
         let i = std::f64::consts::PI * 1e-8 / 64.0;
         assert!((p.stiffness.ei1 / (2.0e11 * i) - 1.0).abs() < 1e-14);
         assert!((p.stiffness.gj / p.stiffness.ei1 - 1.0 / 1.3).abs() < 1e-14);
-        assert!((p.linear_density / (7800.0 * std::f64::consts::PI * 1e-4 / 4.0) - 1.0).abs() < 1e-14);
+        assert!(
+            (p.linear_density / (7800.0 * std::f64::consts::PI * 1e-4 / 4.0) - 1.0).abs() < 1e-14
+        );
     }
 
     #[test]
@@ -222,7 +226,9 @@ mod tests {
             poisson: 0.3,
             density: 1.0,
         };
-        let err = CrossSection::Circle { diameter: 1.0 }.properties(&m).unwrap_err();
+        let err = CrossSection::Circle { diameter: 1.0 }
+            .properties(&m)
+            .unwrap_err();
         assert!(err.to_string().contains("young"));
         let s = SectionStiffness::isotropic(1.0, -1.0, 1.0);
         assert!(s.validate().unwrap_err().to_string().contains("ei1"));

@@ -21,8 +21,7 @@ pub fn twist_derivatives(h: &HingeFrame, hessian: Option<&mut HingeMatrix>) -> H
         let hs = EdgeHessian {
             ee: -(kb * se.transpose() + se * kb.transpose()) / (4.0 * le * le),
             ff: -(kb * sf.transpose() + sf * kb.transpose()) / (4.0 * lf * lf),
-            ef: (cross_matrix(&te) * (2.0 / h.chi) - kb * h.t_tilde.transpose())
-                / (2.0 * le * lf),
+            ef: (cross_matrix(&te) * (2.0 / h.chi) - kb * h.t_tilde.transpose()) / (2.0 * le * lf),
             ..Default::default()
         };
         *out = hs.scatter();

@@ -40,7 +40,11 @@ pub struct EquilibriumSolver<S> {
 
 impl<S: Clone> EquilibriumSolver<S> {
     /// A solver for `problem`; `template` is any state of it.
-    pub fn new<P: EquilibriumProblem<State = S>>(problem: &P, template: &S, params: SolverParams) -> Self {
+    pub fn new<P: EquilibriumProblem<State = S>>(
+        problem: &P,
+        template: &S,
+        params: SolverParams,
+    ) -> Self {
         let n = problem.n_free();
         Self {
             params,
@@ -128,14 +132,15 @@ impl<S: Clone> EquilibriumSolver<S> {
                     }
                 }
             }
-            // `last` must describe the returned state: re-measure it after a failure.
+            // After a failure, measure the returned state at the *requested* load, so the
+            // residual shows that it is not an equilibrium of the problem that was asked.
             if failure.is_some() {
                 let mut probe = current.clone();
                 let p = SolverParams {
                     max_iterations: 0,
                     ..params.clone()
                 };
-                last = newton(problem, &mut probe, load, &p, &mut self.ws).last;
+                last = newton(problem, &mut probe, to, &p, &mut self.ws).last;
             }
         }
 

@@ -40,7 +40,8 @@ pub fn armijo_backtracking<P: EquilibriumProblem>(
         let e = problem.energy(trial, load);
         let predicted = params.armijo * alpha * slope;
         if e.is_finite()
-            && (e <= energy + predicted || (-alpha * slope <= energy_noise && e <= energy + energy_noise))
+            && (e <= energy + predicted
+                || (-alpha * slope <= energy_noise && e <= energy + energy_noise))
         {
             return LineSearch::Accepted(alpha);
         }

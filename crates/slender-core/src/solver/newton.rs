@@ -115,7 +115,8 @@ pub fn newton<P: EquilibriumProblem>(
             ws.ldlt.solve_in_place(&mut ws.dx);
             decrement = -dot(&ws.grad, &ws.dx);
             decrement = decrement.abs();
-            tiny_step = (0..n).all(|i| ws.dx[i].abs() <= TINY_STEP * problem.dof_magnitude(state, i));
+            tiny_step =
+                (0..n).all(|i| ws.dx[i].abs() <= TINY_STEP * problem.dof_magnitude(state, i));
         }
         last = IterateMeasures {
             residual,
@@ -126,7 +127,8 @@ pub fn newton<P: EquilibriumProblem>(
             inertia,
         };
         let force_ok = residual <= (params.force_tolerance * info.external_force).max(floor);
-        let energy_ok = decrement <= params.energy_tolerance * info.external_work.abs() || tiny_step;
+        let energy_ok =
+            decrement <= params.energy_tolerance * info.external_work.abs() || tiny_step;
         if force_ok && energy_ok {
             return NewtonOutcome {
                 converged: true,
@@ -143,7 +145,9 @@ pub fn newton<P: EquilibriumProblem>(
         }
 
         let positive_definite = matches!(inertia, Some(i) if i.negative == 0 && i.zero == 0);
-        if positive_definite || (inertia.is_some() && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt)) {
+        if positive_definite
+            || (inertia.is_some() && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
+        {
             // Positive definite: the Newton step. At a symmetric saddle (the gradient has no
             // component along the unstable mode, e.g. a planar state under planar loads) the
             // unshifted step still converges quadratically to that equilibrium, whose
@@ -171,7 +175,11 @@ pub fn newton<P: EquilibriumProblem>(
                 }
                 shift *= 4.0;
                 if shift > MAX_SHIFT {
-                    return failed(iteration, "could not regularize an indefinite Hessian", last);
+                    return failed(
+                        iteration,
+                        "could not regularize an indefinite Hessian",
+                        last,
+                    );
                 }
             }
             for i in 0..n {

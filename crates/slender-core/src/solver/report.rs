@@ -31,7 +31,8 @@ pub struct SolveReport {
     pub load_steps: usize,
     /// Load steps that failed and were retried with a smaller increment.
     pub rejected_steps: usize,
-    /// Largest residual force (N; moments divided by a length) at the returned state.
+    /// Largest residual force (N; moments divided by a length) of the returned state at the
+    /// requested load: small when converged, large when the state is not an equilibrium.
     pub residual: f64,
     /// `residual` divided by the largest external nodal force (0 when there is no load).
     pub relative_residual: f64,

@@ -36,7 +36,9 @@ pub fn lowest_mode<P: EquilibriumProblem>(
         *scaled = SymmetricBandMatrix::new(n, bw);
     }
     scaled.set_zero();
-    let inv_sqrt_m: Vec<f64> = (0..n).map(|i| 1.0 / problem.inertia_metric(i).sqrt()).collect();
+    let inv_sqrt_m: Vec<f64> = (0..n)
+        .map(|i| 1.0 / problem.inertia_metric(i).sqrt())
+        .collect();
     for j in 0..n {
         for i in j..(j + bw + 1).min(n) {
             scaled.add(i, j, hess.get(i, j) * inv_sqrt_m[i] * inv_sqrt_m[j]);

@@ -51,7 +51,12 @@ fn worst_percent(records: &[CantileverRecord], keep: impl Fn(&CantileverRecord) 
 }
 
 /// Relative error of one extra case (graded mesh).
-fn extra_error(material: crate::materials::RodMaterialSet, n: usize, gamma: f64, params: &SolverParams) -> Result<f64, SweepError> {
+fn extra_error(
+    material: crate::materials::RodMaterialSet,
+    n: usize,
+    gamma: f64,
+    params: &SolverParams,
+) -> Result<f64, SweepError> {
     let run = CantileverCase {
         material,
         mesh: MeshKind::Graded,
@@ -76,7 +81,10 @@ pub fn convergence_slope(ns: &[usize], errors: &[f64]) -> f64 {
 
 /// Evaluates the targets on the sweep `records` (which should include Ω_rod and Ω_bundle on
 /// the graded mesh with N = 5, 20, 50) plus a few extra runs (convergence order, Γ = 10⁻³).
-pub fn cantilever_checks(records: &[CantileverRecord], params: &SolverParams) -> Result<Vec<Check>, SweepError> {
+pub fn cantilever_checks(
+    records: &[CantileverRecord],
+    params: &SolverParams,
+) -> Result<Vec<Check>, SweepError> {
     fn graded(mat: &'static str, n: usize) -> impl Fn(&CantileverRecord) -> bool {
         move |r| r.material == mat && r.mesh == "graded" && r.n_elements == n
     }
@@ -88,23 +96,30 @@ pub fn cantilever_checks(records: &[CantileverRecord], params: &SolverParams) ->
         "≤ 0.5 %",
         w <= 0.5,
     ));
-    let w = worst_percent(records, |r| graded("rod", 50)(r) && r.gamma <= 100.0 * 1.001);
+    let w = worst_percent(records, |r| {
+        graded("rod", 50)(r) && r.gamma <= 100.0 * 1.001
+    });
     checks.push(check(
         "Ω_rod, graded, N = 50: worst error (%) over Γ ≤ 100".into(),
         w,
         "≤ 0.1 %",
         w <= 0.1,
     ));
-    let w = worst_percent(records, |r| graded("rod", 5)(r) && r.gamma >= 10.0 * 0.999 && r.gamma <= 1e3 * 1.001);
+    let w = worst_percent(records, |r| {
+        graded("rod", 5)(r) && r.gamma >= 10.0 * 0.999 && r.gamma <= 1e3 * 1.001
+    });
     checks.push(check(
         "Ω_rod, graded, N = 5: worst error (%) over Γ ∈ [10, 10³]".into(),
         w,
         "≤ 3 %",
         w <= 3.0,
     ));
-    let w = worst_percent(records, |r| graded("bundle", 50)(r) && r.gamma <= 1e3 * 1.001);
+    let w = worst_percent(records, |r| {
+        graded("bundle", 50)(r) && r.gamma <= 1e3 * 1.001
+    });
     checks.push(check(
-        "Ω_bundle (finite EA), graded, N = 50: worst error (%) vs the inextensible curve, Γ ≤ 10³".into(),
+        "Ω_bundle (finite EA), graded, N = 50: worst error (%) vs the inextensible curve, Γ ≤ 10³"
+            .into(),
         w,
         "≤ 0.5 %",
         w <= 0.5,
@@ -125,7 +140,8 @@ pub fn cantilever_checks(records: &[CantileverRecord], params: &SolverParams) ->
     }
     let e = 100.0 * extra_error(OMEGA_ROD, 20, 1e-3, params)?.abs();
     checks.push(check(
-        "Ω_rod, graded, N = 20: error (%) at Γ = 10⁻³ (no plateau from an absolute tolerance)".into(),
+        "Ω_rod, graded, N = 20: error (%) at Γ = 10⁻³ (no plateau from an absolute tolerance)"
+            .into(),
         e,
         "≤ 0.5 %",
         e <= 0.5,
@@ -138,7 +154,10 @@ pub fn cantilever_checks(records: &[CantileverRecord], params: &SolverParams) ->
         e <= 0.5,
     ));
     let failed = records.iter().filter(|r| !r.converged).count();
-    let multi = records.iter().filter(|r| r.converged && r.load_steps > 1).count();
+    let multi = records
+        .iter()
+        .filter(|r| r.converged && r.load_steps > 1)
+        .count();
     checks.push(check(
         format!("sweep: solves that did not converge in one call ({} cases; {multi} needed more than one load step, chosen by the solver)", records.len()),
         failed as f64,

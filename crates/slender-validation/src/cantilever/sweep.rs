@@ -102,14 +102,22 @@ pub enum SweepError {
 impl CantileverSweep {
     /// Checks the grid; errors name the field.
     pub fn validate(&self) -> Result<(), SweepError> {
-        if self.gammas.is_empty() || self.element_counts.is_empty() || self.meshes.is_empty() || self.materials.is_empty() {
-            return Err(SweepError::Invalid("gammas, element counts, meshes and materials must all be non-empty".into()));
+        if self.gammas.is_empty()
+            || self.element_counts.is_empty()
+            || self.meshes.is_empty()
+            || self.materials.is_empty()
+        {
+            return Err(SweepError::Invalid(
+                "gammas, element counts, meshes and materials must all be non-empty".into(),
+            ));
         }
         if let Some(g) = self.gammas.iter().find(|g| !(g.is_finite() && **g > 0.0)) {
             return Err(ModelError::parameter("gamma", *g, "finite and > 0").into());
         }
         if self.element_counts.contains(&0) {
-            return Err(ModelError::structure("n_elements", "got 0; need at least 1 element").into());
+            return Err(
+                ModelError::structure("n_elements", "got 0; need at least 1 element").into(),
+            );
         }
         Ok(())
     }
@@ -150,7 +158,11 @@ impl CantileverSweep {
             .map(|&g| master_ratio(g))
             .collect::<Result<_, _>>()?;
         let master_of = |gamma: f64| -> f64 {
-            let k = self.gammas.iter().position(|&g| g == gamma).expect("gamma of the grid");
+            let k = self
+                .gammas
+                .iter()
+                .position(|&g| g == gamma)
+                .expect("gamma of the grid");
             masters[k]
         };
         self.cases()
@@ -211,10 +223,9 @@ pub const CABLE_RANGE: (f64, f64) = (10.0, 1e3);
 pub fn summarize(records: &[CantileverRecord]) -> Vec<DiscretizationSummary> {
     let mut out: Vec<DiscretizationSummary> = Vec::new();
     for r in records {
-        let idx = match out
-            .iter()
-            .position(|s| s.material == r.material && s.mesh == r.mesh && s.n_elements == r.n_elements)
-        {
+        let idx = match out.iter().position(|s| {
+            s.material == r.material && s.mesh == r.mesh && s.n_elements == r.n_elements
+        }) {
             Some(i) => i,
             None => {
                 out.push(DiscretizationSummary {

@@ -1,0 +1,216 @@
+//! The solver against closed forms, and its reporting.
+
+use slender_core::geometry::Vec3;
+use slender_core::rod::{Grading, RestCurve, Rod, RodBuilder, RodProperties, SectionStiffness};
+use slender_core::solver::{EquilibriumSolver, SolveStatus, SolverParams};
+
+fn props(ei: f64) -> RodProperties {
+    RodProperties {
+        stiffness: SectionStiffness::isotropic(1e9, ei, 0.8 * ei),
+        linear_density: 0.2,
+    }
+}
+
+fn solve(
+    rod: &Rod,
+    params: SolverParams,
+) -> slender_core::solver::Solution<slender_core::rod::RodState> {
+    let start = rod.rest_state().clone();
+    EquilibriumSolver::new(rod, &start, params).solve(rod, &start, 0.0, 1.0)
+}
+
+#[test]
+fn unloaded_rest_shapes_stop_at_iteration_zero() {
+    let curves = [
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 2.0, 0.0],
+            length: 1.0,
+        },
+        RestCurve::Circle {
+            start: [0.0; 3],
+            tangent: [0.0, 0.0, -1.0],
+            normal: [1.0, 0.0, 0.0],
+            radius: 0.05,
+            length: 2.0 * std::f64::consts::PI * 0.05 * 10.0, // 10 turns
+        },
+        RestCurve::Helix {
+            start: [0.0; 3],
+            axis: [0.0, 0.0, 1.0],
+            normal: [1.0, 0.0, 0.0],
+            radius: 0.1,
+            pitch: 0.05,
+            length: 3.0,
+        },
+    ];
+    for c in curves {
+        let rod = RodBuilder::new(c.clone(), props(1.0))
+            .elements(200)
+            .clamp_start()
+            .build()
+            .unwrap();
+        let sol = solve(&rod, SolverParams::default());
+        assert!(sol.report.converged(), "{c:?}");
+        assert_eq!(sol.report.iterations, 0, "{c:?}");
+        assert!(
+            sol.report.residual < 1e-12,
+            "{c:?}: {}",
+            sol.report.residual
+        );
+        assert_eq!(sol.report.stable(), Some(true));
+    }
+}
+
+#[test]
+fn small_tip_load_matches_linear_beam_theory() {
+    // δ = P L³ / (3 EI): exact for the continuum in the small-load limit; the discrete rod with
+    // a half-cell clamp converges to it at second order.
+    let (ei, l, p): (f64, f64, f64) = (2.0, 1.5, 1e-4);
+    let exact = p * l.powi(3) / (3.0 * ei);
+    let mut errors = Vec::new();
+    for n in [10, 20, 40] {
+        let rod = RodBuilder::new(
+            RestCurve::Straight {
+                start: [0.0; 3],
+                direction: [1.0, 0.0, 0.0],
+                length: l,
+            },
+            props(ei),
+        )
+        .elements(n)
+        .clamp_start()
+        .point_force(n, Vec3::new(0.0, 0.0, -p))
+        .build()
+        .unwrap();
+        let sol = solve(&rod, SolverParams::default());
+        assert!(sol.report.converged());
+        let tip = sol.state.positions()[n];
+        errors.push((-tip.z / exact - 1.0).abs());
+    }
+    assert!(errors[2] < 1e-3, "{errors:?}");
+    assert!(
+        errors[1] / errors[2] > 3.5,
+        "second order expected: {errors:?}"
+    );
+}
+
+#[test]
+fn large_tip_load_matches_the_elastica() {
+    // Cantilever with a dead end load P ⊥ the rod: for α = P L²/EI = 1 the classical elastica
+    // (Bisshopp & Drucker 1945) gives tip deflections v/L = 0.3017, (L − u)/L = 0.0566.
+    let (ei, l) = (1.0, 1.0);
+    let n = 80;
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: l,
+        },
+        props(ei),
+    )
+    .elements(n)
+    .grading(Grading::Uniform)
+    .clamp_start()
+    .point_force(n, Vec3::new(0.0, -1.0, 0.0))
+    .build()
+    .unwrap();
+    let sol = solve(&rod, SolverParams::default());
+    assert!(sol.report.converged());
+    let tip = sol.state.positions()[n];
+    assert!((-tip.y - 0.3017).abs() < 1e-3, "v/L = {}", -tip.y);
+    assert!(
+        (1.0 - tip.x - 0.0566).abs() < 1e-3,
+        "(L−u)/L = {}",
+        1.0 - tip.x
+    );
+}
+
+#[test]
+fn a_solve_that_cannot_converge_says_so() {
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        props(1.0),
+    )
+    .elements(20)
+    .clamp_start()
+    .gravity(Vec3::new(0.0, -5e3, 0.0))
+    .build()
+    .unwrap();
+    let params = SolverParams {
+        max_iterations: 1,
+        min_load_step: 0.1,
+        ..Default::default()
+    };
+    let sol = solve(&rod, params);
+    match &sol.report.status {
+        SolveStatus::NotConverged { reason } => assert!(!reason.is_empty()),
+        SolveStatus::Converged => panic!("one iteration cannot reach Γ = 1000"),
+    }
+    assert!(sol.report.load_reached < 1.0);
+    assert!(sol.report.residual > 0.0);
+    assert_eq!(
+        sol.report.stable(),
+        None,
+        "no stability claim without convergence"
+    );
+    assert!(sol.lowest_mode.is_none());
+}
+
+#[test]
+fn stability_margin_matches_the_cantilever_frequency() {
+    // Unloaded clamped-free beam: lowest ω² = (1.8751)⁴ EI/(ρA L⁴) = 12.362 EI/(ρA L⁴).
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        props(1.0),
+    )
+    .elements(100)
+    .clamp_start()
+    .build()
+    .unwrap();
+    let sol = solve(&rod, SolverParams::default());
+    let lam = sol.report.lambda_min_normalized.unwrap();
+    assert!(
+        (lam / 1.875_104_f64.powi(4) - 1.0).abs() < 2e-3,
+        "λ̂ = {lam}"
+    );
+}
+
+#[test]
+fn greenhill_heavy_column_loses_stability_at_7_837() {
+    // A clamped rod standing up under its own weight buckles at ρA g L³/EI = 7.837
+    // (Greenhill 1881). Below: stable (no negative pivot); above: the upright state is an
+    // unstable equilibrium, which the inertia reports.
+    for (gamma, stable) in [(7.6, true), (8.1, false)] {
+        let rod = RodBuilder::new(
+            RestCurve::Straight {
+                start: [0.0; 3],
+                direction: [0.0, 0.0, 1.0],
+                length: 1.0,
+            },
+            props(1.0),
+        )
+        .elements(60)
+        .clamp_start()
+        .gravity(Vec3::new(0.0, 0.0, -gamma / 0.2))
+        .build()
+        .unwrap();
+        let sol = solve(&rod, SolverParams::default());
+        assert!(sol.report.converged(), "Γ = {gamma}");
+        assert_eq!(
+            sol.report.stable(),
+            Some(stable),
+            "Γ = {gamma}: {:?}",
+            sol.report.inertia
+        );
+        let lam = sol.report.lambda_min.unwrap();
+        assert_eq!(lam > 0.0, stable, "Γ = {gamma}: λ_min = {lam}");
+    }
+}
