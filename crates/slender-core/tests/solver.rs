@@ -214,3 +214,73 @@ fn greenhill_heavy_column_loses_stability_at_7_837() {
         assert_eq!(lam > 0.0, stable, "Γ = {gamma}: λ_min = {lam}");
     }
 }
+
+#[test]
+fn end_moment_rolls_the_rod_into_a_circle() {
+    // A constant end moment M bends an inextensible rod into an arc of radius EI/M: the tip of
+    // a rod of length L is at (R sin(L/R), R(1 − cos(L/R))). M = π EI/L: a half circle; 2π EI/L:
+    // a full circle, the tip back at the clamp (tip rotation 2π: the load angle must unwrap).
+    // The discrete curvature 2 tan(φ/2) makes the polygon turn slightly less than the arc:
+    // an O(h²) error, so the check is second-order convergence to the closed form.
+    let (ei, l) = (1.0_f64, 1.0_f64);
+    for turns in [0.5_f64, 1.0] {
+        let m = 2.0 * std::f64::consts::PI * turns * ei / l;
+        let r = ei / m;
+        let exact = Vec3::new(r * (l / r).sin(), r * (1.0 - (l / r).cos()), 0.0);
+        let tip_error = |n: usize| {
+            let rod = RodBuilder::new(
+                RestCurve::Straight {
+                    start: [0.0; 3],
+                    direction: [1.0, 0.0, 0.0],
+                    length: l,
+                },
+                props(ei),
+            )
+            .elements(n)
+            .clamp_start()
+            .point_moment(n, Vec3::new(0.0, 0.0, m))
+            .build()
+            .unwrap();
+            let sol = solve(&rod, SolverParams::default());
+            assert!(sol.report.converged(), "{:?}", sol.report.status);
+            (sol.state.positions()[n] - exact).norm() / l
+        };
+        let (coarse, fine) = (tip_error(32), tip_error(64));
+        assert!(fine < 4e-3, "turns {turns}: tip error {fine}");
+        assert!(
+            coarse / fine > 3.5,
+            "turns {turns}: errors {coarse}, {fine}: not second order"
+        );
+    }
+}
+
+#[test]
+fn axial_torque_twists_the_rod_uniformly() {
+    // An end torque T about the axis of a straight clamped rod: twist rate T/GJ, end rotation
+    // T L/GJ, no bending.
+    let (ei, l, n) = (1.0_f64, 2.0_f64, 10);
+    let gj = 0.8 * ei;
+    let t = 0.3;
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: l,
+        },
+        props(ei),
+    )
+    .elements(n)
+    .clamp_start()
+    .point_moment(n, Vec3::new(t, 0.0, 0.0))
+    .build()
+    .unwrap();
+    let sol = solve(&rod, SolverParams::default());
+    assert!(sol.report.converged());
+    // The last edge's θ is measured from the rest frame; half a cell from the free end.
+    let theta = sol.state.thetas()[n - 1];
+    let expected = t / gj * (l - 0.5 * l / n as f64);
+    assert!(
+        (theta / expected - 1.0).abs() < 1e-6,
+        "θ = {theta}, expected {expected}"
+    );
+}

@@ -9,12 +9,13 @@ pub mod gravity;
 pub mod hinge;
 pub mod mesh;
 pub mod model;
+pub mod moment;
 pub mod rest_curve;
 pub mod section;
 pub mod stretching;
 pub mod twisting;
 
 pub use mesh::Grading;
-pub use model::{PointForce, Rod, RodBuilder, RodState, Supports, Terms};
+pub use model::{PointForce, PointMoment, Rod, RodBuilder, RodState, Supports, Terms};
 pub use rest_curve::RestCurve;
 pub use section::{CrossSection, Material, RodProperties, SectionStiffness};

@@ -14,6 +14,7 @@ use super::frames::{updated_ref_twist, EdgeFrame, EdgeId, GhostEdge, ReferenceFr
 use super::gravity::lumped_vertex_masses;
 use super::hinge::{HingeFrame, HingeMatrix, HingeState, HingeVector, HINGE_DOFS};
 use super::mesh::Grading;
+use super::moment::MomentLoad;
 use super::rest_curve::RestCurve;
 use super::section::RodProperties;
 use super::stretching::stretching_energy;
@@ -65,6 +66,8 @@ pub struct RodState {
     positions: Vec<Vec3>,
     thetas: Vec<f64>,
     frames: ReferenceFrames,
+    /// Unwrapped angle (rad) of each moment load's edge about its axis (see `moment.rs`).
+    load_angles: Vec<f64>,
 }
 
 impl RodState {
@@ -109,6 +112,7 @@ impl RodState {
                 ghost_end: ghost(&self.frames.ghost_end),
                 ref_twist: self.frames.ref_twist.clone(),
             },
+            load_angles: self.load_angles.clone(),
         }
     }
 
@@ -141,6 +145,16 @@ pub struct PointForce {
     pub force: Vec3,
 }
 
+/// A moment (N m) on a vertex, scaled by the load factor. It acts on the edge that starts at
+/// the vertex (the last edge for the last vertex); see `moment.rs` for its conservative form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointMoment {
+    /// Vertex index.
+    pub vertex: usize,
+    /// Moment (N m).
+    pub moment: Vec3,
+}
+
 /// Builds a [`Rod`] from a rest curve, section properties, mesh and supports.
 #[derive(Clone, Debug)]
 pub struct RodBuilder {
@@ -151,7 +165,9 @@ pub struct RodBuilder {
     supports: Supports,
     gravity: Vec3,
     point_forces: Vec<PointForce>,
+    point_moments: Vec<PointMoment>,
     first_director: Option<Vec3>,
+    natural_twist: f64,
 }
 
 impl RodBuilder {
@@ -165,7 +181,9 @@ impl RodBuilder {
             supports: Supports::default(),
             gravity: Vec3::zeros(),
             point_forces: Vec::new(),
+            point_moments: Vec::new(),
             first_director: None,
+            natural_twist: 0.0,
         }
     }
 
@@ -208,6 +226,19 @@ impl RodBuilder {
     /// Adds a dead point force (N) on vertex `v`.
     pub fn point_force(mut self, v: usize, force: Vec3) -> Self {
         self.point_forces.push(PointForce { vertex: v, force });
+        self
+    }
+
+    /// Adds a point moment (N m) on vertex `v`.
+    pub fn point_moment(mut self, v: usize, moment: Vec3) -> Self {
+        self.point_moments.push(PointMoment { vertex: v, moment });
+        self
+    }
+
+    /// Natural (stress-free) twist rate of the material frame about the centerline (rad/m),
+    /// e.g. a pre-twisted strip. Default 0.
+    pub fn natural_twist(mut self, rate: f64) -> Self {
+        self.natural_twist = rate;
         self
     }
 
@@ -271,6 +302,24 @@ impl RodBuilder {
                 ));
             }
         }
+        for pm in &self.point_moments {
+            if pm.vertex > n {
+                return Err(ModelError::structure(
+                    "point_moments.vertex",
+                    format!(
+                        "vertex {} does not exist; valid vertices are 0..={n}",
+                        pm.vertex
+                    ),
+                ));
+            }
+            if pm.moment.iter().any(|c| !c.is_finite()) {
+                return Err(ModelError::structure(
+                    "point_moments.moment",
+                    "must be finite",
+                ));
+            }
+        }
+        require_finite("natural_twist", self.natural_twist)?;
         let mut pins = self.supports.pins.clone();
         pins.sort_unstable();
         pins.dedup();
@@ -317,22 +366,31 @@ impl RodBuilder {
             let prev = edges[j - 1];
             edges.push(prev.transported_to(&tangents[j]));
         }
-        let ghost = |end_tangent: Vec3, edge: EdgeFrame, length: f64| GhostEdge {
+        // Natural twist: the rest material angle grows with arc length (edge midpoints), and
+        // each clamp holds the material frame of its end of the rod (s = 0 and s = L).
+        let rest_thetas: Vec<f64> = (0..n)
+            .map(|j| self.natural_twist * 0.5 * (arclengths[j] + arclengths[j + 1]))
+            .collect();
+        let ghost = |end_tangent: Vec3, edge: EdgeFrame, length: f64, theta: f64| GhostEdge {
             frame: EdgeFrame {
                 tangent: end_tangent,
                 a1: parallel_transport(&edge.a1, &edge.tangent, &end_tangent).normalize(),
             },
-            theta: 0.0,
+            theta,
             length,
         };
         let ghost_start = self
             .supports
             .clamp_start
-            .then(|| ghost(points[0].1, edges[0], rest_lengths[0]));
-        let ghost_end = self
-            .supports
-            .clamp_end
-            .then(|| ghost(points[n].1, edges[n - 1], rest_lengths[n - 1]));
+            .then(|| ghost(points[0].1, edges[0], rest_lengths[0], 0.0));
+        let ghost_end = self.supports.clamp_end.then(|| {
+            ghost(
+                points[n].1,
+                edges[n - 1],
+                rest_lengths[n - 1],
+                self.natural_twist * arclengths[n],
+            )
+        });
 
         let mut fixed_vertices = pins.clone();
         if self.supports.clamp_start {
@@ -382,10 +440,19 @@ impl RodBuilder {
             let t = updated_ref_twist(&frames.edge(l), &frames.edge(r), 0.0);
             frames.ref_twist.push(t);
         }
+        let moments: Vec<MomentLoad> = self
+            .point_moments
+            .iter()
+            .map(|pm| {
+                let edge = pm.vertex.min(n - 1);
+                MomentLoad::new(edge, pm.moment, &tangents[edge])
+            })
+            .collect();
         let rest = RodState {
             positions: positions.clone(),
-            thetas: vec![0.0; n],
+            thetas: rest_thetas,
             frames,
+            load_angles: vec![0.0; moments.len()],
         };
 
         let stiffness = self.properties.stiffness;
@@ -398,6 +465,7 @@ impl RodBuilder {
             vertex_masses: Vec::new(),
             nodal_forces: Vec::new(),
             dofs,
+            moments,
             fixed_vertices,
             supports: Supports {
                 pins,
@@ -459,6 +527,8 @@ pub struct Rod {
     /// Dead nodal forces (N) at load factor 1: gravity plus point forces.
     nodal_forces: Vec<Vec3>,
     dofs: DofMap,
+    /// Point moments, split into bending and axial parts.
+    moments: Vec<MomentLoad>,
     /// Vertices with fixed positions (clamps and pins), sorted.
     fixed_vertices: Vec<usize>,
     supports: Supports,
@@ -696,8 +766,56 @@ impl Rod {
                     }
                 }
             }
+            let mut g6 = SVector::<f64, 6>::zeros();
+            let mut h6 = SMatrix::<f64, 6, 6>::zeros();
+            for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
+                let j = m.edge;
+                let e = s.positions[j + 1] - s.positions[j];
+                let v = m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
+                let dtheta = s.thetas[j] - self.rest.thetas[j];
+                let w = -v + load * m.axial * dtheta;
+                info.energy -= w;
+                info.energy_magnitude += w.abs();
+                info.external_work += w;
+                info.external_force = info
+                    .external_force
+                    .max(load * (m.bending + m.axial.abs()) / self.length);
+                let mut map = [FIXED; 6];
+                for k in 0..3 {
+                    map[k] = self.dofs.vertex(j, k);
+                    map[3 + k] = self.dofs.vertex(j + 1, k);
+                }
+                scatter(
+                    &map,
+                    g6.as_slice(),
+                    &h6,
+                    &mut grad,
+                    &mut hess,
+                    &mut abs_grad,
+                );
+                let i = self.dofs.theta(j);
+                if i != FIXED {
+                    if let Some(gr) = grad.as_deref_mut() {
+                        gr[i] -= load * m.axial;
+                    }
+                    if let Some(a) = abs_grad.as_deref_mut() {
+                        a[i] += (load * m.axial).abs();
+                    }
+                }
+            }
         }
         info
+    }
+
+    /// Continues the moment loads' unwrapped angles from `old` to the positions of `out`.
+    fn update_load_angles(&self, old: &RodState, out: &mut RodState) {
+        out.load_angles.clear();
+        for (m, &alpha) in self.moments.iter().zip(&old.load_angles) {
+            let j = m.edge;
+            let e_old = old.positions[j + 1] - old.positions[j];
+            let e_new = out.positions[j + 1] - out.positions[j];
+            out.load_angles.push(m.updated_angle(&e_old, &e_new, alpha));
+        }
     }
 
     /// `out` = `state` + `alpha·dx` in the plain linear sense (x ← x + α dx, θ ← θ + α dθ),
@@ -717,6 +835,7 @@ impl Rod {
         state
             .frames
             .transport_into(&out.positions, &self.hinge_edges, &mut out.frames);
+        self.update_load_angles(state, out);
     }
 
     /// `out` = `state` moved along `alpha·dx` by a rotation-preserving retraction: each edge's
@@ -811,6 +930,7 @@ impl Rod {
         state
             .frames
             .transport_into(&out.positions, &self.hinge_edges, &mut out.frames);
+        self.update_load_angles(state, out);
     }
 
     /// The largest edge-angle rotation (rad) that `alpha·dx` would cause, for the step cap.
