@@ -169,7 +169,42 @@ fn plot_coarse_shapes(sweep: &CantileverSweep, out: &Path) -> Result<()> {
                 &shapes,
             )
             .with_context(|| format!("plotting {}", stem.display()))?;
+            // The boundary layer (width ≈ L/√Γ = 0.01 L) is invisible at full scale: zoom in.
+            let zoom = |c: &Curve| Curve {
+                points: clip_to_clamp(&c.points, 0.04),
+                ..c.clone()
+            };
+            let stem = out.join(format!("shape_gamma1e4_{}_n{}_clamp", material.name, n));
+            plot_shapes_2d(
+                &stem,
+                &format!(
+                    "Γ = 10⁴, {n} elements, {}: the clamp region",
+                    material.label
+                ),
+                "x / L",
+                "y / L",
+                Some(&zoom(&reference)),
+                &shapes.iter().map(zoom).collect::<Vec<_>>(),
+            )
+            .with_context(|| format!("plotting {}", stem.display()))?;
         }
     }
     Ok(())
+}
+
+/// The leading part of a hanging shape down to depth `depth` (units of L); the segment that
+/// crosses y = −depth is cut there by linear interpolation.
+fn clip_to_clamp(points: &[(f64, f64)], depth: f64) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for &p in points {
+        if p.1 < -depth {
+            if let Some(&q) = out.last() {
+                let t = (-depth - q.1) / (p.1 - q.1);
+                out.push((q.0 + t * (p.0 - q.0), -depth));
+            }
+            break;
+        }
+        out.push(p);
+    }
+    out
 }
