@@ -168,6 +168,7 @@ pub struct RodBuilder {
     point_moments: Vec<PointMoment>,
     first_director: Option<Vec3>,
     natural_twist: f64,
+    preload_gravity: Vec3,
 }
 
 impl RodBuilder {
@@ -184,6 +185,7 @@ impl RodBuilder {
             point_moments: Vec::new(),
             first_director: None,
             natural_twist: 0.0,
+            preload_gravity: Vec3::zeros(),
         }
     }
 
@@ -220,6 +222,14 @@ impl RodBuilder {
     /// Gravitational acceleration (m/s²), e.g. (0, −9.81, 0).
     pub fn gravity(mut self, g: Vec3) -> Self {
         self.gravity = g;
+        self
+    }
+
+    /// Gravitational acceleration (m/s²) that is always fully on, whatever the load factor:
+    /// with it, ramping the load factor from 0 to 1 moves the gravity from `preload` to
+    /// `preload + gravity` (e.g. the stages of the seed's bend–twist protocol).
+    pub fn preload_gravity(mut self, g: Vec3) -> Self {
+        self.preload_gravity = g;
         self
     }
 
@@ -464,6 +474,7 @@ impl RodBuilder {
             hinge_edges,
             vertex_masses: Vec::new(),
             nodal_forces: Vec::new(),
+            preload_forces: Vec::new(),
             dofs,
             moments,
             fixed_vertices,
@@ -483,6 +494,11 @@ impl RodBuilder {
         for pf in &self.point_forces {
             rod.nodal_forces[pf.vertex] += pf.force;
         }
+        rod.preload_forces = rod
+            .vertex_masses
+            .iter()
+            .map(|&m| self.preload_gravity * m)
+            .collect();
         for (k, &(vertex, l, r, voronoi)) in topology.iter().enumerate() {
             let mut hinge = Hinge {
                 vertex,
@@ -526,6 +542,8 @@ pub struct Rod {
     vertex_masses: Vec<f64>,
     /// Dead nodal forces (N) at load factor 1: gravity plus point forces.
     nodal_forces: Vec<Vec3>,
+    /// Dead nodal forces (N) on at every load factor (preload gravity).
+    preload_forces: Vec<Vec3>,
     dofs: DofMap,
     /// Point moments, split into bending and axial parts.
     moments: Vec<MomentLoad>,
@@ -746,23 +764,29 @@ impl Rod {
         if terms.external {
             // Dead loads: V = −λ Σ f_v·x_v, measured from the rest positions so that the
             // energy scale is the work done, not an arbitrary datum.
-            for (v, f) in self.nodal_forces.iter().enumerate() {
+            for (v, (f, f0)) in self
+                .nodal_forces
+                .iter()
+                .zip(&self.preload_forces)
+                .enumerate()
+            {
+                let f = f * load + f0;
                 let du = s.positions[v] - self.rest.positions[v];
-                let w = load * f.dot(&du);
+                let w = f.dot(&du);
                 info.energy -= w;
                 info.energy_magnitude += w.abs();
                 info.external_work += w;
-                info.external_force = info.external_force.max((f * load).amax());
+                info.external_force = info.external_force.max(f.amax());
                 for k in 0..3 {
                     let i = self.dofs.vertex(v, k);
                     if i == FIXED {
                         continue;
                     }
                     if let Some(gr) = grad.as_deref_mut() {
-                        gr[i] -= load * f[k];
+                        gr[i] -= f[k];
                     }
                     if let Some(a) = abs_grad.as_deref_mut() {
-                        a[i] += (load * f[k]).abs();
+                        a[i] += f[k].abs();
                     }
                 }
             }
