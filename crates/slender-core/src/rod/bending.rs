@@ -21,11 +21,12 @@ pub fn material_curvature(h: &HingeFrame) -> [f64; 2] {
     ]
 }
 
-/// Gradients of (κ₁, κ₂) over the hinge stencil, and optionally their Hessians.
+/// Gradients of (κ₁, κ₂) over the hinge stencil; when `second` is given, adds
+/// w₁ ∇²κ₁ + w₂ ∇²κ₂ (in edge space) into it.
 pub fn material_curvature_derivatives(
     h: &HingeFrame,
     kappa: [f64; 2],
-    hessians: Option<&mut [HingeMatrix; 2]>,
+    second: Option<(&mut EdgeHessian, [f64; 2])>,
 ) -> [HingeVector; 2] {
     let [te, tf] = h.t;
     let [le, lf] = h.len;
@@ -47,7 +48,7 @@ pub fn material_curvature_derivatives(
         ),
     ];
 
-    if let Some(out) = hessians {
+    if let Some((out, weights)) = second {
         let id = Matrix3::identity();
         let tt_tt = tt * tt.transpose();
         let proj_e = id - te * te.transpose();
@@ -87,7 +88,7 @@ pub fn material_curvature_derivatives(
                 hs.e_theta[j] = (tt * (0.5 * kb.dot(&md)) - tf.cross(&md) / h.chi) / le;
                 hs.f_theta[j] = (tt * (0.5 * kb.dot(&md)) + te.cross(&md) / h.chi) / lf;
             }
-            out[k] = hs.scatter();
+            out.add_scaled(&hs, weights[k]);
         }
     }
     grad
@@ -105,12 +106,14 @@ pub struct BendingHinge {
 }
 
 impl BendingHinge {
-    /// Bending energy (J) of the hinge; adds its gradient and Hessian when asked.
+    /// Bending energy (J) of the hinge. Adds its gradient into `grad`; adds the Gauss–Newton
+    /// part Σ w ∇κ∇κᵀ into the stencil matrix and the curvature part Σ w Δκ ∇²κ into the edge
+    /// blocks of `hess` (the caller chains those to the stencil once for all terms).
     pub fn energy(
         &self,
         h: &HingeFrame,
         grad: Option<&mut HingeVector>,
-        hess: Option<&mut HingeMatrix>,
+        hess: Option<(&mut HingeMatrix, &mut EdgeHessian)>,
     ) -> f64 {
         let kappa = material_curvature(h);
         let dk = [kappa[0] - self.rest_kappa[0], kappa[1] - self.rest_kappa[1]];
@@ -122,15 +125,21 @@ impl BendingHinge {
         if grad.is_none() && hess.is_none() {
             return energy;
         }
-        let mut second = [HingeMatrix::zeros(); 2];
-        let want_hess = hess.is_some();
-        let dkappa = material_curvature_derivatives(h, kappa, want_hess.then_some(&mut second));
+        let (hm, edge) = match hess {
+            Some((hm, edge)) => (Some(hm), Some(edge)),
+            None => (None, None),
+        };
+        let dkappa = material_curvature_derivatives(
+            h,
+            kappa,
+            edge.map(|e| (e, [w[0] * dk[0], w[1] * dk[1]])),
+        );
         if let Some(g) = grad {
             *g += dkappa[0] * (w[0] * dk[0]) + dkappa[1] * (w[1] * dk[1]);
         }
-        if let Some(hm) = hess {
+        if let Some(hm) = hm {
             for k in 0..2 {
-                *hm += dkappa[k] * dkappa[k].transpose() * w[k] + second[k] * (w[k] * dk[k]);
+                hm.ger(w[k], &dkappa[k], &dkappa[k], 1.0);
             }
         }
         energy

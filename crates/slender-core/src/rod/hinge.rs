@@ -121,29 +121,53 @@ pub struct EdgeHessian {
 }
 
 impl EdgeHessian {
-    /// Chains the edge-space second derivatives into the 11×11 stencil Hessian.
-    pub fn scatter(&self) -> HingeMatrix {
-        let mut h = HingeMatrix::zeros();
+    /// Adds `w` times `other`.
+    pub fn add_scaled(&mut self, other: &EdgeHessian, w: f64) {
+        self.ee += other.ee * w;
+        self.ef += other.ef * w;
+        self.ff += other.ff * w;
+        for k in 0..2 {
+            self.e_theta[k] += other.e_theta[k] * w;
+            self.f_theta[k] += other.f_theta[k] * w;
+            self.theta_theta[k] += other.theta_theta[k] * w;
+        }
+    }
+
+    /// Adds these edge-space second derivatives, chained to the stencil DOFs, into `h`.
+    ///
+    /// With e = x₁ − x₀ and f = x₂ − x₁ the vertex blocks are
+    /// (0,0) = ee, (0,1) = ef − ee, (0,2) = −ef, (1,1) = ee − ef − fe + ff, (1,2) = ef − ff,
+    /// (2,2) = ff (and their transposes).
+    pub fn scatter_into(&self, h: &mut HingeMatrix) {
         let fe = self.ef.transpose();
-        for a in 0..3 {
-            for b in 0..3 {
-                let block = self.ee * (DE_DX[a] * DE_DX[b])
-                    + self.ef * (DE_DX[a] * DF_DX[b])
-                    + fe * (DF_DX[a] * DE_DX[b])
-                    + self.ff * (DF_DX[a] * DF_DX[b]);
-                h.fixed_view_mut::<3, 3>(VERTEX_OFFSET[a], VERTEX_OFFSET[b])
-                    .copy_from(&block);
-            }
-            for k in 0..2 {
-                let v = self.e_theta[k] * DE_DX[a] + self.f_theta[k] * DF_DX[a];
-                h.fixed_view_mut::<3, 1>(VERTEX_OFFSET[a], THETA_OFFSET[k])
-                    .copy_from(&v);
-                h.fixed_view_mut::<1, 3>(THETA_OFFSET[k], VERTEX_OFFSET[a])
-                    .copy_from(&v.transpose());
+        let blocks = [
+            (0, 0, self.ee),
+            (0, 1, self.ef - self.ee),
+            (0, 2, -self.ef),
+            (1, 1, self.ee - self.ef - fe + self.ff),
+            (1, 2, self.ef - self.ff),
+            (2, 2, self.ff),
+        ];
+        for (a, b, block) in blocks {
+            let (ra, rb) = (VERTEX_OFFSET[a], VERTEX_OFFSET[b]);
+            let mut view = h.fixed_view_mut::<3, 3>(ra, rb);
+            view += block;
+            if a != b {
+                let mut view = h.fixed_view_mut::<3, 3>(rb, ra);
+                view += block.transpose();
             }
         }
-        h[(THETA_OFFSET[0], THETA_OFFSET[0])] = self.theta_theta[0];
-        h[(THETA_OFFSET[1], THETA_OFFSET[1])] = self.theta_theta[1];
-        h
+        for k in 0..2 {
+            let tk = THETA_OFFSET[k];
+            for a in 0..3 {
+                let v = self.e_theta[k] * DE_DX[a] + self.f_theta[k] * DF_DX[a];
+                let ra = VERTEX_OFFSET[a];
+                for c in 0..3 {
+                    h[(ra + c, tk)] += v[c];
+                    h[(tk, ra + c)] += v[c];
+                }
+            }
+            h[(tk, tk)] += self.theta_theta[k];
+        }
     }
 }

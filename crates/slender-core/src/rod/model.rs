@@ -12,7 +12,7 @@ use super::bending::{material_curvature, BendingHinge};
 use super::dofs::{DofMap, FIXED, ROD_HALF_BANDWIDTH};
 use super::frames::{updated_ref_twist, EdgeFrame, EdgeId, GhostEdge, ReferenceFrames};
 use super::gravity::lumped_vertex_masses;
-use super::hinge::{HingeFrame, HingeMatrix, HingeState, HingeVector, HINGE_DOFS};
+use super::hinge::{EdgeHessian, HingeFrame, HingeMatrix, HingeState, HingeVector, HINGE_DOFS};
 use super::mesh::Grading;
 use super::moment::MomentLoad;
 use super::rest_curve::RestCurve;
@@ -716,48 +716,45 @@ impl Rod {
         if terms.bending || terms.twisting {
             let mut g = HingeVector::zeros();
             let mut h = HingeMatrix::zeros();
+            let mut edge = EdgeHessian::default();
             for (k, hinge) in self.hinges.iter().enumerate() {
                 let hs = self.hinge_state(s, hinge, k);
                 let frame = HingeFrame::new(&hs);
-                if terms.bending {
-                    g.fill(0.0);
+                g.fill(0.0);
+                if want_hess {
                     h.fill(0.0);
+                    edge = EdgeHessian::default();
+                }
+                if terms.bending {
                     let e = hinge.bending.energy(
                         &frame,
                         want_grad.then_some(&mut g),
-                        want_hess.then_some(&mut h),
+                        want_hess.then_some((&mut h, &mut edge)),
                     );
                     info.energy += e;
                     info.energy_magnitude += e.abs();
-                    scatter(
-                        &hinge.dofs,
-                        g.as_slice(),
-                        &h,
-                        &mut grad,
-                        &mut hess,
-                        &mut abs_grad,
-                    );
                 }
                 if terms.twisting {
-                    g.fill(0.0);
-                    h.fill(0.0);
                     let e = hinge.twisting.energy(
                         &frame,
                         twist_strain(&hs),
                         want_grad.then_some(&mut g),
-                        want_hess.then_some(&mut h),
+                        want_hess.then_some((&mut h, &mut edge)),
                     );
                     info.energy += e;
                     info.energy_magnitude += e.abs();
-                    scatter(
-                        &hinge.dofs,
-                        g.as_slice(),
-                        &h,
-                        &mut grad,
-                        &mut hess,
-                        &mut abs_grad,
-                    );
                 }
+                if want_hess {
+                    edge.scatter_into(&mut h);
+                }
+                scatter(
+                    &hinge.dofs,
+                    g.as_slice(),
+                    &h,
+                    &mut grad,
+                    &mut hess,
+                    &mut abs_grad,
+                );
             }
         }
 

@@ -9,12 +9,13 @@ use crate::geometry::cross_matrix;
 
 use super::hinge::{scatter_gradient, EdgeHessian, HingeFrame, HingeMatrix, HingeVector};
 
-/// Gradient of the twist strain over the hinge stencil, and optionally its Hessian.
-pub fn twist_derivatives(h: &HingeFrame, hessian: Option<&mut HingeMatrix>) -> HingeVector {
+/// Gradient of the twist strain over the hinge stencil; when `second` is given, adds
+/// w ∇²m (in edge space) into it.
+pub fn twist_derivatives(h: &HingeFrame, second: Option<(&mut EdgeHessian, f64)>) -> HingeVector {
     let [le, lf] = h.len;
     let kb = h.kb;
     let grad = scatter_gradient(&(kb / (2.0 * le)), &(kb / (2.0 * lf)), [-1.0, 1.0]);
-    if let Some(out) = hessian {
+    if let Some((out, weight)) = second {
         let [te, tf] = h.t;
         let se = te + h.t_tilde;
         let sf = tf + h.t_tilde;
@@ -24,7 +25,7 @@ pub fn twist_derivatives(h: &HingeFrame, hessian: Option<&mut HingeMatrix>) -> H
             ef: (cross_matrix(&te) * (2.0 / h.chi) - kb * h.t_tilde.transpose()) / (2.0 * le * lf),
             ..Default::default()
         };
-        *out = hs.scatter();
+        out.add_scaled(&hs, weight);
     }
     grad
 }
@@ -42,13 +43,13 @@ pub struct TwistingHinge {
 
 impl TwistingHinge {
     /// Twisting energy (J) of the hinge with twist strain `twist` (rad); adds its gradient and
-    /// Hessian when asked.
+    /// Hessian as [`BendingHinge::energy`](super::bending::BendingHinge::energy) does.
     pub fn energy(
         &self,
         h: &HingeFrame,
         twist: f64,
         grad: Option<&mut HingeVector>,
-        hess: Option<&mut HingeMatrix>,
+        hess: Option<(&mut HingeMatrix, &mut EdgeHessian)>,
     ) -> f64 {
         let w = self.stiffness / self.voronoi_length;
         let dm = twist - self.rest_twist;
@@ -56,14 +57,16 @@ impl TwistingHinge {
         if grad.is_none() && hess.is_none() {
             return energy;
         }
-        let mut second = HingeMatrix::zeros();
-        let want_hess = hess.is_some();
-        let dtwist = twist_derivatives(h, want_hess.then_some(&mut second));
+        let (hm, edge) = match hess {
+            Some((hm, edge)) => (Some(hm), Some(edge)),
+            None => (None, None),
+        };
+        let dtwist = twist_derivatives(h, edge.map(|e| (e, w * dm)));
         if let Some(g) = grad {
             *g += dtwist * (w * dm);
         }
-        if let Some(hm) = hess {
-            *hm += dtwist * dtwist.transpose() * w + second * (w * dm);
+        if let Some(hm) = hm {
+            hm.ger(w, &dtwist, &dtwist, 1.0);
         }
         energy
     }

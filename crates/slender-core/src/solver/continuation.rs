@@ -25,7 +25,7 @@ pub struct Solution<S> {
 }
 
 /// Relative accuracy of the reported smallest eigenvalue.
-const EIGEN_TOLERANCE: f64 = 1e-8;
+const EIGEN_TOLERANCE: f64 = 1e-6;
 
 /// An equilibrium solver with reusable buffers for one problem size.
 #[derive(Clone, Debug)]
@@ -153,9 +153,14 @@ impl<S: Clone> EquilibriumSolver<S> {
         // After newton() the workspace holds the Hessian at the last iterate, which is the
         // returned state when converged (the loop returns before stepping).
         let lowest = if failure.is_none() && params.compute_lambda_min {
+            // On convergence the workspace still holds the unshifted factorization of the
+            // final Hessian; if it is positive definite, inverse iteration can reuse it.
+            let positive_definite =
+                matches!(last.inertia, Some(i) if i.negative == 0 && i.zero == 0);
             lowest_mode(
                 problem,
                 &self.ws.hess,
+                positive_definite,
                 &mut self.scaled,
                 &mut self.ws.ldlt,
                 EIGEN_TOLERANCE,
