@@ -19,13 +19,22 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    /// A map for `n_edges` edges with the vertices in `fixed_vertices` held in place.
-    pub fn new(n_edges: usize, fixed_vertices: &[usize]) -> Self {
+    /// A map for `n_edges` edges with the vertices in `fixed_vertices` held in place and, if
+    /// `planar_axis` is `Some(k)`, coordinate k of every vertex and every edge angle fixed
+    /// (motion restricted to the plane ⊥ e_k).
+    pub fn new(n_edges: usize, fixed_vertices: &[usize], planar_axis: Option<usize>) -> Self {
         let n_full = 4 * n_edges + 3;
         let mut fixed = vec![false; n_full];
         for &v in fixed_vertices {
             for k in 0..3 {
                 fixed[4 * v + k] = true;
+            }
+        }
+        if let Some(k) = planar_axis {
+            for (i, f) in fixed.iter_mut().enumerate() {
+                if i % 4 == 3 || i % 4 == k {
+                    *f = true;
+                }
             }
         }
         let mut free_of_full = vec![FIXED; n_full];

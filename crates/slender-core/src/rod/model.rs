@@ -134,6 +134,10 @@ pub struct Supports {
     pub clamp_end: bool,
     /// Pinned vertices: position fixed, rotation free.
     pub pins: Vec<usize>,
+    /// If `Some(k)`: motion restricted to the plane ⊥ e_k through the rest shape (coordinate k
+    /// of every vertex and every twist angle fixed). For following symmetric equilibria of
+    /// planar problems; the rest curve must lie in that plane.
+    pub planar_axis: Option<usize>,
 }
 
 /// A dead force (N) on a vertex, scaled by the load factor.
@@ -210,6 +214,13 @@ impl RodBuilder {
     /// Clamps the last vertex in its rest position and orientation.
     pub fn clamp_end(mut self) -> Self {
         self.supports.clamp_end = true;
+        self
+    }
+
+    /// Restricts the motion to the plane ⊥ coordinate axis `axis` (0, 1, 2 for x, y, z): see
+    /// [`Supports::planar_axis`].
+    pub fn planar_motion(mut self, axis: usize) -> Self {
+        self.supports.planar_axis = Some(axis);
         self
     }
 
@@ -411,7 +422,22 @@ impl RodBuilder {
         }
         fixed_vertices.sort_unstable();
         fixed_vertices.dedup();
-        let dofs = DofMap::new(n, &fixed_vertices);
+        if let Some(k) = self.supports.planar_axis {
+            if k > 2 {
+                return Err(ModelError::structure(
+                    "planar_axis",
+                    format!("got {k}; valid axes are 0 (x), 1 (y), 2 (z)"),
+                ));
+            }
+            let c0 = positions[0][k];
+            if positions.iter().any(|p| (p[k] - c0).abs() > 1e-12 * total) {
+                return Err(ModelError::structure(
+                    "planar_axis",
+                    "the rest curve does not lie in the plane of motion",
+                ));
+            }
+        }
+        let dofs = DofMap::new(n, &fixed_vertices, self.supports.planar_axis);
 
         // Hinges: interior vertices, plus the clamped ends (half Voronoi cell, design.md §2.5).
         let mut topology: Vec<(usize, EdgeId, EdgeId, f64)> = Vec::new();

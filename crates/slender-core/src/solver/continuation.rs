@@ -24,6 +24,9 @@ pub struct Solution<S> {
     pub lowest_mode: Option<LowestMode>,
 }
 
+/// A failed load step is retried once with this many times the usual Newton iterations.
+const SNAP_ITERATION_FACTOR: usize = 10;
+
 /// Relative accuracy of the reported smallest eigenvalue.
 const EIGEN_TOLERANCE: f64 = 1e-6;
 
@@ -76,6 +79,8 @@ impl<S: Clone> EquilibriumSolver<S> {
         let mut last: IterateMeasures;
         let mut failure: Option<String> = None;
         let mut candidate = start.clone();
+        let mut snapped_at: Option<f64> = None;
+        let mut snaps = 0;
 
         // Span 0 (e.g. a warm re-solve at the same load): a single Newton solve.
         if span == 0.0 {
@@ -103,8 +108,25 @@ impl<S: Clone> EquilibriumSolver<S> {
                     }
                     problem.displace(&current, &self.predictor, 1.0, &mut candidate);
                 }
-                let out = newton(problem, &mut candidate, target, &params, &mut self.ws);
+                let mut out = newton(problem, &mut candidate, target, &params, &mut self.ws);
                 iterations += out.iterations;
+                if !out.converged && !snapped_at.is_some_and(|l: f64| l == load) {
+                    // Past a limit point (fold) of the loading path no nearby equilibrium
+                    // exists and smaller steps cannot help: let the minimization run longer
+                    // from the last equilibrium so that it settles on the branch the structure
+                    // snaps to. Tried once per load level.
+                    snapped_at = Some(load);
+                    candidate.clone_from(&current);
+                    let long = SolverParams {
+                        max_iterations: SNAP_ITERATION_FACTOR * params.max_iterations,
+                        ..params.clone()
+                    };
+                    out = newton(problem, &mut candidate, target, &long, &mut self.ws);
+                    iterations += out.iterations;
+                    if out.converged {
+                        snaps += 1;
+                    }
+                }
                 last = out.last;
                 if out.converged {
                     load_steps += 1;
@@ -175,6 +197,7 @@ impl<S: Clone> EquilibriumSolver<S> {
             iterations,
             load_steps,
             rejected_steps: rejected,
+            snaps,
             residual: last.residual,
             relative_residual: if last.external_force > 0.0 {
                 last.residual / last.external_force

@@ -6,6 +6,7 @@ use crate::linalg::{BandLdlt, Inertia, SymmetricBandMatrix};
 use super::line_search::{armijo_backtracking, LineSearch};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
+use super::stability::lowest_mode;
 
 /// Buffers reused across Newton iterations and solves: nothing is allocated per iteration.
 #[derive(Clone, Debug)]
@@ -17,6 +18,7 @@ pub struct NewtonWorkspace<S> {
     pub(crate) hess: SymmetricBandMatrix,
     pub(crate) ldlt: BandLdlt,
     pub(crate) trial: S,
+    pub(crate) scaled: SymmetricBandMatrix,
 }
 
 impl<S: Clone> NewtonWorkspace<S> {
@@ -31,6 +33,7 @@ impl<S: Clone> NewtonWorkspace<S> {
             hess: SymmetricBandMatrix::new(n, problem.half_bandwidth()),
             ldlt: BandLdlt::new(),
             trial: template.clone(),
+            scaled: SymmetricBandMatrix::new(0, 0),
         }
     }
 
@@ -72,9 +75,9 @@ pub struct NewtonOutcome {
 
 /// Largest relative step (per DOF magnitude) still considered a change of the state.
 const TINY_STEP: f64 = 1e-13;
-/// Smallest diagonal shift, relative to each diagonal entry.
+/// Smallest shift, relative to the largest ratio of Hessian diagonal to mass.
 const MIN_SHIFT: f64 = 1e-8;
-/// Largest diagonal shift before giving up.
+/// Largest shift before giving up, in the same relative units.
 const MAX_SHIFT: f64 = 1e12;
 
 /// Newton's method at load factor `load`, starting from and updating `state`.
@@ -155,26 +158,28 @@ pub fn newton<P: EquilibriumProblem>(
             // would only slow convergence to it. `dx` holds the unshifted step already.
             shift *= 0.5;
         } else {
-            // Indefinite or singular: shift the diagonal in proportion to itself (scale-free
-            // across coordinate and angle DOFs) until the factorization is positive definite.
-            let max_diag = ws.hess.max_abs_diagonal();
+            // Indefinite or singular: shift by a multiple of the mass matrix M, H + μM. In that
+            // metric every mode is measured in the same units (squared frequencies), so the
+            // shift does not smother the soft bending directions the way a shift scaled by
+            // diag(H) (dominated by the stretching stiffness) would: it acts like a
+            // pseudo-time step. μ = 2|λ_min(H, M)| leaves a margin of |λ_min| on every mode.
             for i in 0..n {
-                ws.diag[i] = ws.hess.get(i, i).abs().max(1e-12 * max_diag);
+                ws.diag[i] = problem.inertia_metric(i);
             }
-            shift = shift.max(MIN_SHIFT);
+            let lambda = lowest_mode(problem, &ws.hess, false, &mut ws.scaled, &mut ws.ldlt, 1e-3)
+                .map(|m| m.value)
+                .unwrap_or(0.0);
+            shift = shift
+                .max(2.0 * lambda.min(0.0).abs())
+                .max(MIN_SHIFT * ws.hess.max_abs_diagonal() / max_entry(&ws.diag));
             loop {
-                for i in 0..n {
-                    ws.hess.add(i, i, shift * ws.diag[i]);
-                }
-                let ok = matches!(ws.ldlt.factorize(&ws.hess, 0.0), Ok(i) if i.negative == 0 && i.zero == 0);
-                for i in 0..n {
-                    ws.hess.add(i, i, -shift * ws.diag[i]);
-                }
-                if ok {
+                if factor_shifted(ws, n, shift) {
                     break;
                 }
-                shift *= 4.0;
-                if shift > MAX_SHIFT {
+                shift *= 2.0;
+                if !shift.is_finite()
+                    || shift > MAX_SHIFT * ws.hess.max_abs_diagonal() / min_entry(&ws.diag)
+                {
                     return failed(
                         iteration,
                         "could not regularize an indefinite Hessian",
@@ -212,6 +217,30 @@ pub fn newton<P: EquilibriumProblem>(
         &format!("no convergence in {} iterations", params.max_iterations),
         last,
     )
+}
+
+fn max_entry(v: &[f64]) -> f64 {
+    v.iter().cloned().fold(f64::MIN_POSITIVE, f64::max)
+}
+
+fn min_entry(v: &[f64]) -> f64 {
+    v.iter()
+        .cloned()
+        .fold(f64::INFINITY, f64::min)
+        .max(f64::MIN_POSITIVE)
+}
+
+/// Factors H + shift·M with M = `ws.diag` (in place, H restored afterwards); true if positive
+/// definite.
+fn factor_shifted<S>(ws: &mut NewtonWorkspace<S>, n: usize, shift: f64) -> bool {
+    for i in 0..n {
+        ws.hess.add(i, i, shift * ws.diag[i]);
+    }
+    let ok = matches!(ws.ldlt.factorize(&ws.hess, 0.0), Ok(i) if i.negative == 0 && i.zero == 0);
+    for i in 0..n {
+        ws.hess.add(i, i, -shift * ws.diag[i]);
+    }
+    ok
 }
 
 /// True if the gradient is orthogonal (to round-off) to the lowest eigenvector of `hess`,

@@ -31,6 +31,8 @@ pub struct SolveReport {
     pub load_steps: usize,
     /// Load steps that failed and were retried with a smaller increment.
     pub rejected_steps: usize,
+    /// Load steps that needed a long minimization (the structure snapped past a fold).
+    pub snaps: usize,
     /// Largest residual force (N; moments divided by a length) of the returned state at the
     /// requested load: small when converged, large when the state is not an equilibrium.
     pub residual: f64,
