@@ -43,6 +43,13 @@ pub struct HingeState {
     pub ref_twist: f64,
 }
 
+impl HingeState {
+    /// Twist strain m = θᶠ − θᵉ + m_ref (rad).
+    pub fn twist(&self) -> f64 {
+        self.theta[1] - self.theta[0] + self.ref_twist
+    }
+}
+
 /// Quantities derived once per hinge and shared by the curvature and twist formulas.
 #[derive(Clone, Copy, Debug)]
 pub struct HingeFrame {

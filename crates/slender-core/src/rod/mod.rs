@@ -3,7 +3,9 @@
 //! natural curvature, twisting, clamps with a ghost edge and half Voronoi cell, and dead loads.
 
 pub mod bending;
+pub mod builder;
 pub mod dofs;
+pub mod equilibrium;
 pub mod frames;
 pub mod gravity;
 pub mod hinge;
@@ -11,11 +13,15 @@ pub mod mesh;
 pub mod model;
 pub mod moment;
 pub mod rest_curve;
+pub mod retraction;
 pub mod section;
+pub mod state;
 pub mod stretching;
 pub mod twisting;
 
+pub use builder::{PointForce, PointMoment, RodBuilder, Supports};
 pub use mesh::Grading;
-pub use model::{PointForce, PointMoment, Rod, RodBuilder, RodState, Supports, Terms};
+pub use model::{Rod, Terms};
 pub use rest_curve::RestCurve;
 pub use section::{CrossSection, Material, RodProperties, SectionStiffness};
+pub use state::RodState;

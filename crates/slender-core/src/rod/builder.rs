@@ -1,0 +1,444 @@
+//! Building a rod: rest curve, mesh, section, supports and loads, validated.
+
+use crate::error::{require_finite, ModelError};
+use crate::geometry::{any_orthogonal, parallel_transport, Vec3};
+
+use super::bending::{material_curvature, BendingHinge};
+use super::dofs::DofMap;
+use super::frames::{updated_ref_twist, EdgeFrame, EdgeId, GhostEdge, ReferenceFrames};
+use super::gravity::lumped_vertex_masses;
+use super::hinge::HingeFrame;
+use super::mesh::Grading;
+use super::model::{Hinge, Rod};
+use super::moment::MomentLoad;
+use super::rest_curve::RestCurve;
+use super::section::RodProperties;
+use super::state::RodState;
+use super::twisting::TwistingHinge;
+
+/// Where a rod is held.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Supports {
+    /// Clamp at vertex 0: position and material frame fixed (ghost edge, half Voronoi cell).
+    pub clamp_start: bool,
+    /// Clamp at the last vertex.
+    pub clamp_end: bool,
+    /// Pinned vertices: position fixed, rotation free.
+    pub pins: Vec<usize>,
+    /// If `Some(k)`: motion restricted to the plane ⊥ e_k through the rest shape (coordinate k
+    /// of every vertex and every twist angle fixed). For following symmetric equilibria of
+    /// planar problems; the rest curve must lie in that plane.
+    pub planar_axis: Option<usize>,
+}
+
+/// A dead force (N) on a vertex, scaled by the load factor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointForce {
+    /// Vertex index.
+    pub vertex: usize,
+    /// Force (N).
+    pub force: Vec3,
+}
+
+/// A moment (N m) on a vertex, scaled by the load factor. It acts on the edge that starts at
+/// the vertex (the last edge for the last vertex); see `moment.rs` for its conservative form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointMoment {
+    /// Vertex index.
+    pub vertex: usize,
+    /// Moment (N m).
+    pub moment: Vec3,
+}
+
+/// Builds a [`Rod`] from a rest curve, section properties, mesh and supports.
+#[derive(Clone, Debug)]
+pub struct RodBuilder {
+    curve: RestCurve,
+    properties: RodProperties,
+    n_elements: usize,
+    grading: Grading,
+    supports: Supports,
+    gravity: Vec3,
+    point_forces: Vec<PointForce>,
+    point_moments: Vec<PointMoment>,
+    first_director: Option<Vec3>,
+    natural_twist: f64,
+    preload_gravity: Vec3,
+}
+
+impl RodBuilder {
+    /// A rod along `curve` with `properties`, 10 uniform elements, no supports and no loads.
+    pub fn new(curve: RestCurve, properties: RodProperties) -> Self {
+        Self {
+            curve,
+            properties,
+            n_elements: 10,
+            grading: Grading::Uniform,
+            supports: Supports::default(),
+            gravity: Vec3::zeros(),
+            point_forces: Vec::new(),
+            point_moments: Vec::new(),
+            first_director: None,
+            natural_twist: 0.0,
+            preload_gravity: Vec3::zeros(),
+        }
+    }
+
+    /// Number of elements (edges), ≥ 1.
+    pub fn elements(mut self, n: usize) -> Self {
+        self.n_elements = n;
+        self
+    }
+
+    /// Node distribution (graded toward vertex 0).
+    pub fn grading(mut self, grading: Grading) -> Self {
+        self.grading = grading;
+        self
+    }
+
+    /// Clamps vertex 0 in its rest position and orientation.
+    pub fn clamp_start(mut self) -> Self {
+        self.supports.clamp_start = true;
+        self
+    }
+
+    /// Clamps the last vertex in its rest position and orientation.
+    pub fn clamp_end(mut self) -> Self {
+        self.supports.clamp_end = true;
+        self
+    }
+
+    /// Restricts the motion to the plane ⊥ coordinate axis `axis` (0, 1, 2 for x, y, z): see
+    /// [`Supports::planar_axis`].
+    pub fn planar_motion(mut self, axis: usize) -> Self {
+        self.supports.planar_axis = Some(axis);
+        self
+    }
+
+    /// Pins vertex `v` (position fixed).
+    pub fn pin(mut self, v: usize) -> Self {
+        self.supports.pins.push(v);
+        self
+    }
+
+    /// Gravitational acceleration (m/s²), e.g. (0, −9.81, 0).
+    pub fn gravity(mut self, g: Vec3) -> Self {
+        self.gravity = g;
+        self
+    }
+
+    /// Gravitational acceleration (m/s²) that is always fully on, whatever the load factor:
+    /// with it, ramping the load factor from 0 to 1 moves the gravity from `preload` to
+    /// `preload + gravity` (e.g. the stages of the seed's bend–twist protocol).
+    pub fn preload_gravity(mut self, g: Vec3) -> Self {
+        self.preload_gravity = g;
+        self
+    }
+
+    /// Adds a dead point force (N) on vertex `v`.
+    pub fn point_force(mut self, v: usize, force: Vec3) -> Self {
+        self.point_forces.push(PointForce { vertex: v, force });
+        self
+    }
+
+    /// Adds a point moment (N m) on vertex `v`.
+    pub fn point_moment(mut self, v: usize, moment: Vec3) -> Self {
+        self.point_moments.push(PointMoment { vertex: v, moment });
+        self
+    }
+
+    /// Natural (stress-free) twist rate of the material frame about the centerline (rad/m),
+    /// e.g. a pre-twisted strip. Default 0.
+    pub fn natural_twist(mut self, rate: f64) -> Self {
+        self.natural_twist = rate;
+        self
+    }
+
+    /// Direction of the first material director m₁ at the start of the rest curve (made
+    /// orthogonal to the tangent). Default: any deterministic orthogonal direction.
+    pub fn first_director(mut self, m1: Vec3) -> Self {
+        self.first_director = Some(m1);
+        self
+    }
+
+    /// Validates the input and builds the rod.
+    pub fn build(self) -> Result<Rod, ModelError> {
+        self.properties.validate()?;
+        self.curve.validate()?;
+        for (k, c) in ["gravity.x", "gravity.y", "gravity.z"]
+            .iter()
+            .zip(self.gravity.iter())
+        {
+            require_finite(k, *c)?;
+        }
+        let arclengths = self
+            .grading
+            .node_arclengths(self.n_elements, self.curve.length())?;
+        let n = self.n_elements;
+        let points: Vec<(Vec3, Vec3)> =
+            arclengths.iter().map(|&s| self.curve.evaluate(s)).collect();
+        let positions: Vec<Vec3> = points.iter().map(|p| p.0).collect();
+        let rest_lengths: Vec<f64> = positions.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
+        let total: f64 = rest_lengths.iter().sum();
+        if let Some(j) = rest_lengths
+            .iter()
+            .position(|&l| !(l > 1e-9 * total) || !l.is_finite())
+        {
+            return Err(ModelError::structure(
+                "rest_positions",
+                format!("edge {j} has (near) zero length; points must be distinct"),
+            ));
+        }
+        for v in &self.supports.pins {
+            if *v > n {
+                return Err(ModelError::structure(
+                    "pins",
+                    format!("vertex {v} does not exist; valid vertices are 0..={n}"),
+                ));
+            }
+        }
+        for pf in &self.point_forces {
+            if pf.vertex > n {
+                return Err(ModelError::structure(
+                    "point_forces.vertex",
+                    format!(
+                        "vertex {} does not exist; valid vertices are 0..={n}",
+                        pf.vertex
+                    ),
+                ));
+            }
+            if pf.force.iter().any(|c| !c.is_finite()) {
+                return Err(ModelError::structure(
+                    "point_forces.force",
+                    "must be finite",
+                ));
+            }
+        }
+        for pm in &self.point_moments {
+            if pm.vertex > n {
+                return Err(ModelError::structure(
+                    "point_moments.vertex",
+                    format!(
+                        "vertex {} does not exist; valid vertices are 0..={n}",
+                        pm.vertex
+                    ),
+                ));
+            }
+            if pm.moment.iter().any(|c| !c.is_finite()) {
+                return Err(ModelError::structure(
+                    "point_moments.moment",
+                    "must be finite",
+                ));
+            }
+        }
+        require_finite("natural_twist", self.natural_twist)?;
+        let mut pins = self.supports.pins.clone();
+        pins.sort_unstable();
+        pins.dedup();
+        let n_clamps =
+            usize::from(self.supports.clamp_start) + usize::from(self.supports.clamp_end);
+        if n_clamps == 0 && pins.len() < 3 {
+            return Err(ModelError::structure(
+                "supports",
+                "the rod can move as a rigid body; add a clamp, or pin at least three non-collinear vertices",
+            ));
+        }
+
+        // Rest reference frames: space-parallel (Bishop) transport along the rest polygon, so
+        // the rest reference twist is zero and the rest material frame twists only if the
+        // curve does.
+        let tangents: Vec<Vec3> = positions
+            .windows(2)
+            .map(|w| (w[1] - w[0]).normalize())
+            .collect();
+        let t0 = tangents[0];
+        let d = match self.first_director {
+            Some(m) => {
+                let m = m - t0 * t0.dot(&m);
+                if !(m.norm() > 1e-12) || m.iter().any(|c| !c.is_finite()) {
+                    return Err(ModelError::structure(
+                        "first_director",
+                        "must be finite and not parallel to the rod's first tangent",
+                    ));
+                }
+                m.normalize()
+            }
+            None => any_orthogonal(&t0),
+        };
+        // The director is given at the curve's start tangent; carry it to the first chord.
+        let d = EdgeFrame {
+            tangent: points[0].1,
+            a1: (d - points[0].1 * points[0].1.dot(&d)).normalize(),
+        }
+        .transported_to(&t0)
+        .a1;
+        let mut edges = Vec::with_capacity(n);
+        edges.push(EdgeFrame { tangent: t0, a1: d });
+        for j in 1..n {
+            let prev = edges[j - 1];
+            edges.push(prev.transported_to(&tangents[j]));
+        }
+        // Natural twist: the rest material angle grows with arc length (edge midpoints), and
+        // each clamp holds the material frame of its end of the rod (s = 0 and s = L).
+        let rest_thetas: Vec<f64> = (0..n)
+            .map(|j| self.natural_twist * 0.5 * (arclengths[j] + arclengths[j + 1]))
+            .collect();
+        let ghost = |end_tangent: Vec3, edge: EdgeFrame, length: f64, theta: f64| GhostEdge {
+            frame: EdgeFrame {
+                tangent: end_tangent,
+                a1: parallel_transport(&edge.a1, &edge.tangent, &end_tangent).normalize(),
+            },
+            theta,
+            length,
+        };
+        let ghost_start = self
+            .supports
+            .clamp_start
+            .then(|| ghost(points[0].1, edges[0], rest_lengths[0], 0.0));
+        let ghost_end = self.supports.clamp_end.then(|| {
+            ghost(
+                points[n].1,
+                edges[n - 1],
+                rest_lengths[n - 1],
+                self.natural_twist * arclengths[n],
+            )
+        });
+
+        let mut fixed_vertices = pins.clone();
+        if self.supports.clamp_start {
+            fixed_vertices.push(0);
+        }
+        if self.supports.clamp_end {
+            fixed_vertices.push(n);
+        }
+        fixed_vertices.sort_unstable();
+        fixed_vertices.dedup();
+        if let Some(k) = self.supports.planar_axis {
+            if k > 2 {
+                return Err(ModelError::structure(
+                    "planar_axis",
+                    format!("got {k}; valid axes are 0 (x), 1 (y), 2 (z)"),
+                ));
+            }
+            let c0 = positions[0][k];
+            if positions.iter().any(|p| (p[k] - c0).abs() > 1e-12 * total) {
+                return Err(ModelError::structure(
+                    "planar_axis",
+                    "the rest curve does not lie in the plane of motion",
+                ));
+            }
+        }
+        let dofs = DofMap::new(n, &fixed_vertices, self.supports.planar_axis);
+
+        // Hinges: interior vertices, plus the clamped ends (half Voronoi cell, design.md §2.5).
+        let mut topology: Vec<(usize, EdgeId, EdgeId, f64)> = Vec::new();
+        if ghost_start.is_some() {
+            topology.push((
+                0,
+                EdgeId::GhostStart,
+                EdgeId::Real(0),
+                0.5 * rest_lengths[0],
+            ));
+        }
+        for i in 1..n {
+            topology.push((
+                i,
+                EdgeId::Real(i - 1),
+                EdgeId::Real(i),
+                0.5 * (rest_lengths[i - 1] + rest_lengths[i]),
+            ));
+        }
+        if ghost_end.is_some() {
+            topology.push((
+                n,
+                EdgeId::Real(n - 1),
+                EdgeId::GhostEnd,
+                0.5 * rest_lengths[n - 1],
+            ));
+        }
+        let hinge_edges: Vec<(EdgeId, EdgeId)> = topology.iter().map(|h| (h.1, h.2)).collect();
+        let mut frames = ReferenceFrames {
+            edges,
+            ghost_start,
+            ghost_end,
+            ref_twist: Vec::with_capacity(topology.len()),
+        };
+        for &(l, r) in &hinge_edges {
+            let t = updated_ref_twist(&frames.edge(l), &frames.edge(r), 0.0);
+            frames.ref_twist.push(t);
+        }
+        let moments: Vec<MomentLoad> = self
+            .point_moments
+            .iter()
+            .map(|pm| {
+                let edge = pm.vertex.min(n - 1);
+                MomentLoad::new(edge, pm.moment, &tangents[edge])
+            })
+            .collect();
+        let rest = RodState {
+            positions: positions.clone(),
+            thetas: rest_thetas,
+            frames,
+            load_angles: vec![0.0; moments.len()],
+        };
+
+        let stiffness = self.properties.stiffness;
+        let mut rod = Rod {
+            properties: self.properties,
+            rest_lengths,
+            length: total,
+            hinges: Vec::with_capacity(topology.len()),
+            hinge_edges,
+            vertex_masses: Vec::new(),
+            nodal_forces: Vec::new(),
+            preload_forces: Vec::new(),
+            dofs,
+            moments,
+            fixed_vertices,
+            supports: Supports {
+                pins,
+                ..self.supports
+            },
+            gravity: self.gravity,
+            rest: rest.clone(),
+        };
+        rod.vertex_masses = lumped_vertex_masses(&rod.rest_lengths, self.properties.linear_density);
+        rod.nodal_forces = rod
+            .vertex_masses
+            .iter()
+            .map(|&m| self.gravity * m)
+            .collect();
+        for pf in &self.point_forces {
+            rod.nodal_forces[pf.vertex] += pf.force;
+        }
+        rod.preload_forces = rod
+            .vertex_masses
+            .iter()
+            .map(|&m| self.preload_gravity * m)
+            .collect();
+        for (k, &(vertex, l, r, voronoi)) in topology.iter().enumerate() {
+            let mut hinge = Hinge {
+                vertex,
+                edges: (l, r),
+                dofs: rod.hinge_dofs(vertex, l, r),
+                bending: BendingHinge {
+                    stiffness: [stiffness.ei1, stiffness.ei2],
+                    rest_kappa: [0.0; 2],
+                    voronoi_length: voronoi,
+                },
+                twisting: TwistingHinge {
+                    stiffness: stiffness.gj,
+                    rest_twist: 0.0,
+                    voronoi_length: voronoi,
+                },
+            };
+            // Rest strains are evaluated by the same code as deformed ones, so the rest state
+            // has exactly zero bending and twisting energy and gradient.
+            let hs = rod.hinge_state(&rest, &hinge, k);
+            hinge.bending.rest_kappa = material_curvature(&HingeFrame::new(&hs));
+            hinge.twisting.rest_twist = hs.twist();
+            rod.hinges.push(hinge);
+        }
+        Ok(rod)
+    }
+}

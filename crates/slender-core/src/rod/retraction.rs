@@ -1,0 +1,164 @@
+//! Moving a rod state along a step: the linear update and the rotation-preserving retraction
+//! the solver uses, with frames and load angles carried along.
+
+use crate::geometry::Vec3;
+
+use super::dofs::FIXED;
+use super::model::Rod;
+use super::state::RodState;
+
+impl Rod {
+    /// Continues the moment loads' unwrapped angles from `old` to the positions of `out`.
+    pub(super) fn update_load_angles(&self, old: &RodState, out: &mut RodState) {
+        out.load_angles.clear();
+        for (m, &alpha) in self.moments.iter().zip(&old.load_angles) {
+            let j = m.edge;
+            let e_old = old.positions[j + 1] - old.positions[j];
+            let e_new = out.positions[j + 1] - out.positions[j];
+            out.load_angles.push(m.updated_angle(&e_old, &e_new, alpha));
+        }
+    }
+
+    /// `out` = `state` + `alpha·dx` in the plain linear sense (x ← x + α dx, θ ← θ + α dθ),
+    /// with frames transported. The solver uses [`Rod::retract`]; this is the map whose
+    /// derivatives the energy's gradient and Hessian are (finite-difference tests use it).
+    pub fn displace_linear(&self, state: &RodState, dx: &[f64], alpha: f64, out: &mut RodState) {
+        out.positions.clone_from(&state.positions);
+        out.thetas.clone_from(&state.thetas);
+        for (i, &d) in dx.iter().enumerate() {
+            let f = self.dofs.full_index(i);
+            if f % 4 == 3 {
+                out.thetas[f / 4] += alpha * d;
+            } else {
+                out.positions[f / 4][f % 4] += alpha * d;
+            }
+        }
+        state
+            .frames
+            .transport_into(&out.positions, &self.hinge_edges, &mut out.frames);
+        self.update_load_angles(state, out);
+    }
+
+    /// `out` = `state` moved along `alpha·dx` by a rotation-preserving retraction: each edge's
+    /// step is applied as a rotation (by its transverse part) and an axial change (by its
+    /// tangential part), and positions are rebuilt by walking the edges away from the
+    /// supports. It agrees with x + α dx to first order, so Newton's convergence is unchanged,
+    /// but a rotation no longer stretches edges at second order — with EA L²/EI ≈ 10⁷ that
+    /// second-order stretch would otherwise force line searches to crawl.
+    ///
+    /// Between two fixed vertices the walks from both ends are blended linearly in arc length,
+    /// so supports stay exact and only the O(|dx|²) closure gap is spread along the segment.
+    pub fn retract(&self, state: &RodState, dx: &[f64], alpha: f64, out: &mut RodState) {
+        out.thetas.clone_from(&state.thetas);
+        for j in 0..self.n_edges() {
+            let i = self.dofs.theta(j);
+            if i != FIXED {
+                out.thetas[j] += alpha * dx[i];
+            }
+        }
+        let x = &state.positions;
+        let disp = |v: usize| -> Vec3 {
+            let mut d = Vec3::zeros();
+            for k in 0..3 {
+                let i = self.dofs.vertex(v, k);
+                if i != FIXED {
+                    d[k] = alpha * dx[i];
+                }
+            }
+            d
+        };
+        let new_edge = |j: usize| -> Vec3 {
+            let e = x[j + 1] - x[j];
+            let de = disp(j + 1) - disp(j);
+            let len = e.norm();
+            let t = e / len;
+            let along = t.dot(&de);
+            let across = de - t * along;
+            let turn = across.norm() / len;
+            let dir = if turn > 0.0 {
+                let axis = t.cross(&across) / (turn * len);
+                crate::geometry::rotate_about_axis(&t, &axis, turn)
+            } else {
+                t
+            };
+            dir * (len + along)
+        };
+        let n = self.n_edges();
+        let p = &mut out.positions;
+        p.clone_from(x);
+        let fixed = &self.fixed_vertices;
+        if fixed.is_empty() {
+            for v in 0..=n {
+                p[v] += disp(v);
+            }
+        } else {
+            let first = fixed[0];
+            let last = fixed[fixed.len() - 1];
+            // Free tail before the first support: walk backward.
+            for j in (0..first).rev() {
+                p[j] = p[j + 1] - new_edge(j);
+            }
+            // Free tail after the last support: walk forward.
+            for j in last..n {
+                p[j + 1] = p[j] + new_edge(j);
+            }
+            // Segments between supports: blend the two walks.
+            for w in fixed.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                if b <= a + 1 {
+                    continue;
+                }
+                let mut forward = x[a];
+                let mut fwd = Vec::with_capacity(b - a + 1);
+                fwd.push(forward);
+                for j in a..b {
+                    forward += new_edge(j);
+                    fwd.push(forward);
+                }
+                let mut backward = x[b];
+                let s_total: f64 = self.rest_lengths[a..b].iter().sum();
+                let mut s_from_b = 0.0;
+                for j in (a..b).rev() {
+                    backward -= new_edge(j);
+                    s_from_b += self.rest_lengths[j];
+                    if j > a {
+                        let wb = 1.0 - s_from_b / s_total;
+                        p[j] = fwd[j - a] * (1.0 - wb) + backward * wb;
+                    }
+                }
+            }
+        }
+        state
+            .frames
+            .transport_into(&out.positions, &self.hinge_edges, &mut out.frames);
+        self.update_load_angles(state, out);
+    }
+
+    /// The largest edge-angle rotation (rad) that `alpha·dx` would cause, for the step cap.
+    pub(super) fn max_edge_rotation(&self, s: &RodState, dx: &[f64]) -> (f64, f64) {
+        let n = self.n_edges();
+        let disp = |v: usize| -> Vec3 {
+            let mut d = Vec3::zeros();
+            for k in 0..3 {
+                let i = self.dofs.vertex(v, k);
+                if i != FIXED {
+                    d[k] = dx[i];
+                }
+            }
+            d
+        };
+        let mut max_turn: f64 = 0.0;
+        let mut max_stretch: f64 = 0.0;
+        for j in 0..n {
+            let e = s.positions[j + 1] - s.positions[j];
+            let de = disp(j + 1) - disp(j);
+            let len = e.norm();
+            // Rotation of the edge direction ≈ |de⊥|/|e|, exact angle for the full step.
+            let new = e + de;
+            let turn = e.cross(&new).norm().atan2(e.dot(&new));
+            max_turn = max_turn.max(turn);
+            max_stretch = max_stretch.max(de.norm() / len);
+        }
+        (max_turn, max_stretch)
+    }
+}

@@ -1,0 +1,70 @@
+//! The state of a rod: positions, edge angles and the reference frames adapted to them.
+
+use crate::geometry::Vec3;
+
+use super::frames::{EdgeFrame, GhostEdge, ReferenceFrames};
+
+/// Positions, edge angles and adapted reference frames of a rod.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RodState {
+    pub(super) positions: Vec<Vec3>,
+    pub(super) thetas: Vec<f64>,
+    pub(super) frames: ReferenceFrames,
+    /// Unwrapped angle (rad) of each moment load's edge about its axis (see `moment.rs`).
+    pub(super) load_angles: Vec<f64>,
+}
+
+impl RodState {
+    /// Vertex positions (m), from the start to the end of the rod.
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    /// Edge material angles θ (rad) relative to the reference frames.
+    pub fn thetas(&self) -> &[f64] {
+        &self.thetas
+    }
+
+    /// Reference frames adapted to [`Self::positions`].
+    pub fn frames(&self) -> &ReferenceFrames {
+        &self.frames
+    }
+
+    /// This state moved rigidly: x ↦ R x + c for every vertex, frames (and clamp frames)
+    /// rotated by R. Angles and reference twists are unchanged, so internal energy is too.
+    pub fn rigidly_transformed(&self, rotation: &nalgebra::Rotation3<f64>, offset: &Vec3) -> Self {
+        let rot = |f: &EdgeFrame| EdgeFrame {
+            tangent: rotation * f.tangent,
+            a1: rotation * f.a1,
+        };
+        let ghost = |g: &Option<GhostEdge>| {
+            g.map(|g| GhostEdge {
+                frame: rot(&g.frame),
+                ..g
+            })
+        };
+        Self {
+            positions: self
+                .positions
+                .iter()
+                .map(|x| rotation * x + offset)
+                .collect(),
+            thetas: self.thetas.clone(),
+            frames: ReferenceFrames {
+                edges: self.frames.edges.iter().map(rot).collect(),
+                ghost_start: ghost(&self.frames.ghost_start),
+                ghost_end: ghost(&self.frames.ghost_end),
+                ref_twist: self.frames.ref_twist.clone(),
+            },
+            load_angles: self.load_angles.clone(),
+        }
+    }
+
+    /// Material frame (m₁, m₂, t) of edge `j`.
+    pub fn material_frame(&self, j: usize) -> [Vec3; 3] {
+        let f = self.frames.edges[j];
+        let a2 = f.tangent.cross(&f.a1);
+        let (s, c) = self.thetas[j].sin_cos();
+        [f.a1 * c + a2 * s, a2 * c - f.a1 * s, f.tangent]
+    }
+}
