@@ -4,6 +4,7 @@
 //! (ODE shooting and finite-difference boundary-value solves), so that comparing the model
 //! against them is a real test.
 
+pub mod bend_twist;
 pub mod cantilever;
 pub mod materials;
 pub mod ode;

@@ -41,7 +41,10 @@ fn a_coil_in_the_unstable_window_buckles_by_both_routes() {
     assert!(lam.unwrap() < 0.0);
     // The branch switch and the protocol find the same 3-D equilibrium.
     let b = buckled.expect("branch switch converged");
-    assert!((b / xi_y - 1.0).abs() < 1e-3, "buckled Ξ_y {b} vs protocol {xi_y}");
+    assert!(
+        (b / xi_y - 1.0).abs() < 1e-3,
+        "buckled Ξ_y {b} vs protocol {xi_y}"
+    );
 }
 
 #[test]
@@ -51,7 +54,10 @@ fn the_stability_margin_changes_sign_across_the_lower_boundary() {
     let xs = [0.2, 0.3, 0.4, 0.5];
     let lams: Vec<f64> = xs.iter().map(|&x| both(x, 2.0).2.unwrap()).collect();
     assert!(lams[0] > 0.0 && lams[3] < 0.0, "{lams:?}");
-    let sign_changes = lams.windows(2).filter(|w| (w[0] > 0.0) != (w[1] > 0.0)).count();
+    let sign_changes = lams
+        .windows(2)
+        .filter(|w| (w[0] > 0.0) != (w[1] > 0.0))
+        .count();
     assert_eq!(sign_changes, 1, "{lams:?}");
 }
 
@@ -61,6 +67,11 @@ fn invalid_points_are_errors_naming_the_field() {
     let err = decide_by_stability(&case, &SolverParams::default()).unwrap_err();
     assert!(err.to_string().contains('x'), "{err}");
     let case = BendTwistCase::new(1.0, -1.0, 20.0);
-    let err = run_protocol(&case, &ProtocolSettings::default(), &SolverParams::default()).unwrap_err();
+    let err = run_protocol(
+        &case,
+        &ProtocolSettings::default(),
+        &SolverParams::default(),
+    )
+    .unwrap_err();
     assert!(err.to_string().contains('y'), "{err}");
 }

@@ -2,6 +2,7 @@
 //!
 //! Subcommands run the seed's benchmarks and write data files, plots and a pass/fail summary.
 
+mod bend_twist_report;
 mod cantilever_report;
 mod output;
 #[allow(dead_code)]
@@ -14,6 +15,7 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
+use slender_validation::bend_twist::sweep::BendTwistSweep;
 use slender_validation::cantilever::{log_space, CantileverSweep, MeshKind};
 use slender_validation::materials::ROD_SETS;
 
@@ -30,8 +32,77 @@ enum Command {
     /// The cantilever benchmark (seed §3, Fig. 2): Δy/Δx against Γ, every discretization
     /// against the heavy-elastica master curve.
     Cantilever(CantileverArgs),
+    /// The bend–twist bifurcation benchmark (seed §4, Figs. 6–8): 2-D or 3-D over a grid in
+    /// (X, Y), decided by the seed's protocol and by stability, against the master curve.
+    BendTwist(BendTwistArgs),
     /// Run the validation suite and print a pass/fail table (exit code 1 if a target fails).
     Validate(ValidateArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct BendTwistArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out/bend-twist")]
+    out: PathBuf,
+    /// Grid and resolution: quick (12 × 12, 20·Y elements) or full (25 × 25, 100·Y, the seed's).
+    #[arg(long, value_enum, default_value_t = Preset::Quick)]
+    preset: Preset,
+    /// Number of X values (overrides the preset), log-spaced in [0.1, 10].
+    #[arg(long)]
+    points_x: Option<usize>,
+    /// Number of Y values (overrides the preset), log-spaced in [0.1, 10].
+    #[arg(long)]
+    points_y: Option<usize>,
+    /// Elements per unit Y (overrides the preset).
+    #[arg(long)]
+    elements_per_turn: Option<f64>,
+    /// Protocol threshold on Ξ₁[ξ_y]/L².
+    #[arg(long)]
+    threshold_y: Option<f64>,
+    /// Protocol threshold on Ξ₁[ξ_τ] (rad).
+    #[arg(long)]
+    threshold_tau: Option<f64>,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+fn bend_twist_sweep(a: &BendTwistArgs) -> Result<BendTwistSweep> {
+    let mut s = match a.preset {
+        Preset::Quick => BendTwistSweep::quick(),
+        Preset::Full => BendTwistSweep::full(),
+    };
+    if let Some(n) = a.points_x {
+        if n == 0 {
+            bail!("--points-x = 0: must be >= 1");
+        }
+        s.xs = log_space(0.1, 10.0, n);
+    }
+    if let Some(n) = a.points_y {
+        if n == 0 {
+            bail!("--points-y = 0: must be >= 1");
+        }
+        s.ys = log_space(0.1, 10.0, n);
+    }
+    if let Some(k) = a.elements_per_turn {
+        if !(k.is_finite() && k > 0.0) {
+            bail!("--elements-per-turn = {k}: must be finite and > 0");
+        }
+        s.elements_per_turn = k;
+    }
+    if let Some(t) = a.threshold_y {
+        if !(t.is_finite() && t >= 0.0) {
+            bail!("--threshold-y = {t}: must be finite and >= 0");
+        }
+        s.protocol.threshold_y = t;
+    }
+    if let Some(t) = a.threshold_tau {
+        if !(t.is_finite() && t >= 0.0) {
+            bail!("--threshold-tau = {t}: must be finite and >= 0");
+        }
+        s.protocol.threshold_tau = t;
+    }
+    Ok(s)
 }
 
 #[derive(clap::Args, Debug)]
@@ -146,6 +217,14 @@ fn run(cli: Cli) -> Result<bool> {
             let pool = thread_pool(a.jobs)?;
             let out = pool.install(|| cantilever_report::run(&sweep, &a.out))?;
             cantilever_report::print_summary(&out.summary);
+            println!("wrote {}", a.out.display());
+            Ok(true)
+        }
+        Command::BendTwist(a) => {
+            let sweep = bend_twist_sweep(&a)?;
+            let pool = thread_pool(a.jobs)?;
+            let out = pool.install(|| bend_twist_report::run(&sweep, &a.out))?;
+            bend_twist_report::print_summary(&out.summary);
             println!("wrote {}", a.out.display());
             Ok(true)
         }

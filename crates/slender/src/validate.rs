@@ -6,17 +6,27 @@ use std::time::Instant;
 
 use anyhow::Result;
 use slender_core::solver::SolverParams;
+use slender_validation::bend_twist::acceptance::bend_twist_checks;
+use slender_validation::bend_twist::sweep::BendTwistSweep;
 use slender_validation::cantilever::{cantilever_checks, CantileverSweep, Check};
 
 use crate::output::{write_atomic, write_csv};
 
 /// Runs the validation; returns whether every target passed.
-pub fn run(out: &Path, _full: bool) -> Result<bool> {
+pub fn run(out: &Path, full: bool) -> Result<bool> {
     let clock = Instant::now();
     let sweep = CantileverSweep::default();
     let cantilever = crate::cantilever_report::run(&sweep, &out.join("cantilever"))?;
     crate::cantilever_report::print_summary(&cantilever.summary);
-    let checks = cantilever_checks(&cantilever.records, &SolverParams::default())?;
+    let mut checks = cantilever_checks(&cantilever.records, &SolverParams::default())?;
+    let bt_sweep = if full {
+        BendTwistSweep::full()
+    } else {
+        BendTwistSweep::quick()
+    };
+    let bend_twist = crate::bend_twist_report::run(&bt_sweep, &out.join("bend-twist"))?;
+    crate::bend_twist_report::print_summary(&bend_twist.summary);
+    checks.extend(bend_twist_checks(&bend_twist.summary));
     write_csv(&out.join("checks.csv"), &checks)?;
     write_atomic(&out.join("checks.md"), markdown(&checks).as_bytes())?;
     println!();

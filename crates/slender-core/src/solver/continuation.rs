@@ -24,6 +24,9 @@ pub struct Solution<S> {
     pub lowest_mode: Option<LowestMode>,
 }
 
+/// Largest load step (fraction of the span) that may be retried as a snap.
+const SNAP_MAX_STEP: f64 = 1.0 / 32.0;
+
 /// A failed load step is retried once with this many times the usual Newton iterations.
 const SNAP_ITERATION_FACTOR: usize = 10;
 
@@ -110,11 +113,16 @@ impl<S: Clone> EquilibriumSolver<S> {
                 }
                 let mut out = newton(problem, &mut candidate, target, &params, &mut self.ws);
                 iterations += out.iterations;
-                if !out.converged && !snapped_at.is_some_and(|l: f64| l == load) {
+                if !out.converged
+                    && step.abs() <= SNAP_MAX_STEP * span.abs()
+                    && !snapped_at.is_some_and(|l: f64| l == load)
+                {
                     // Past a limit point (fold) of the loading path no nearby equilibrium
                     // exists and smaller steps cannot help: let the minimization run longer
                     // from the last equilibrium so that it settles on the branch the structure
-                    // snaps to. Tried once per load level.
+                    // snaps to. Tried once per load level, and only once steps are small: a
+                    // long minimization over a large load step could settle in a distant,
+                    // spurious minimum instead (e.g. a kinked coil).
                     snapped_at = Some(load);
                     candidate.clone_from(&current);
                     let long = SolverParams {

@@ -9,7 +9,7 @@ use slender_core::solver::SolverParams;
 use slender_core::ModelError;
 
 use super::case::BendTwistCase;
-use super::master_curve::{planar_stable, BendTwistError};
+use super::master_curve::{critical_boundaries, BendTwistError, StabilityBoundary};
 use super::protocol::{run_protocol, ProtocolSettings};
 use super::stability::decide_by_stability;
 use crate::cantilever::log_space;
@@ -63,14 +63,35 @@ impl BendTwistSweep {
         params: &SolverParams,
         progress: &(dyn Fn() + Sync),
     ) -> Result<Vec<BendTwistRecord>, BendTwistSweepError> {
+        // The master curve once per row of the grid.
+        let c = self.torsion_ratio();
+        let boundaries: Vec<StabilityBoundary> = self
+            .ys
+            .par_iter()
+            .map(|&y| critical_boundaries(y, c))
+            .collect::<Result<_, _>>()?;
         self.cases()
             .par_iter()
             .map(|case| {
-                let r = run_point(case, &self.protocol, params);
+                let k = self
+                    .ys
+                    .iter()
+                    .position(|&y| y == case.y)
+                    .expect("row of the grid");
+                let r = run_point(case, &boundaries[k], &self.protocol, params);
                 progress();
                 r
             })
             .collect()
+    }
+
+    /// GJ/EI of the benchmark's material.
+    pub fn torsion_ratio(&self) -> f64 {
+        let m = BendTwistCase::new(1.0, 1.0, 1.0)
+            .material
+            .properties
+            .stiffness;
+        m.gj / m.ei_min()
     }
 }
 
@@ -120,7 +141,11 @@ pub struct BendTwistRecord {
     pub buckled_xi_y: Option<f64>,
     /// Ξ₁[ξ_τ] of the buckled state.
     pub buckled_xi_tau: Option<f64>,
-    /// Ground truth from the master curve (3-D iff the continuum planar state is unstable).
+    /// Lower boundary X_c1 of the master curve at this Y (empty: none).
+    pub x_c1: Option<f64>,
+    /// Upper boundary X_c2 at this Y.
+    pub x_c2: Option<f64>,
+    /// Ground truth from the master curve: 3-D iff X_c1 < X < X_c2.
     pub truth_3d: bool,
     /// Newton iterations (protocol + stability route).
     pub iterations: usize,
@@ -130,14 +155,16 @@ pub struct BendTwistRecord {
     pub failure: String,
 }
 
-/// Runs both routes at one point.
+/// Runs both routes at one point; `boundary` is the master curve at `case.y`.
 pub fn run_point(
     case: &BendTwistCase,
+    boundary: &StabilityBoundary,
     protocol: &ProtocolSettings,
     params: &SolverParams,
 ) -> Result<BendTwistRecord, BendTwistSweepError> {
     let clock = Instant::now();
-    let truth_3d = !planar_stable(case.x, case.y, case.material.properties.stiffness.gj / case.material.properties.stiffness.ei_min())?;
+    let truth_3d =
+        matches!((boundary.lower, boundary.upper), (Some(l), Some(u)) if case.x > l && case.x < u);
     let (p, _) = run_protocol(case, protocol, params)?;
     let (s, _) = decide_by_stability(case, params)?;
     let mut failure = String::new();
@@ -145,7 +172,11 @@ pub fn run_point(
         failure += &format!("protocol: {}", p.failure);
     }
     if !s.planar_converged {
-        failure += &format!("{}planar: {}", if failure.is_empty() { "" } else { "; " }, s.failure);
+        failure += &format!(
+            "{}planar: {}",
+            if failure.is_empty() { "" } else { "; " },
+            s.failure
+        );
     }
     Ok(BendTwistRecord {
         x: case.x,
@@ -164,6 +195,8 @@ pub fn run_point(
         stability_3d: s.three_dimensional(),
         buckled_xi_y: s.buckled.map(|m| m.xi_y),
         buckled_xi_tau: s.buckled.map(|m| m.xi_tau),
+        x_c1: boundary.lower,
+        x_c2: boundary.upper,
         truth_3d,
         iterations: p.iterations + s.iterations,
         seconds: clock.elapsed().as_secs_f64(),

@@ -11,14 +11,20 @@
 
 mod cantilever_ratio;
 mod font;
+mod height_map;
+mod phase_diagram;
 mod relative_error;
 mod shape_2d;
+mod shape_3d;
 mod style;
 
 pub use cantilever_ratio::{plot_cantilever_ratio, Curve};
 pub use font::ensure_font_registered;
+pub use height_map::{plot_height_map, Overlay};
+pub use phase_diagram::{plot_phase_diagram, Phase, PhasePoint};
 pub use relative_error::plot_relative_error;
 pub use shape_2d::plot_shapes_2d;
+pub use shape_3d::{plot_shape_views, Polyline3};
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};

@@ -1,0 +1,301 @@
+//! `slender bend-twist`: the bend–twist sweep (seed §4, Figs. 6–8): results.csv, height maps
+//! of both measures with the master curve, phase diagrams of the stability and protocol
+//! decisions, a 3-D picture of a buckled coil, and the score against the master curve.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::path::Path;
+
+use rayon::prelude::*;
+
+use anyhow::{Context, Result};
+use slender_core::solver::SolverParams;
+use slender_validation::bend_twist::acceptance::{summarize, BendTwistSummary};
+use slender_validation::bend_twist::case::BendTwistCase;
+use slender_validation::bend_twist::master_curve::{critical_boundaries, StabilityBoundary};
+use slender_validation::bend_twist::stability::decide_by_stability;
+use slender_validation::bend_twist::sweep::{BendTwistRecord, BendTwistSweep};
+use slender_validation::cantilever::log_space;
+
+use crate::output::{write_atomic, write_csv};
+use crate::plot::{
+    plot_height_map, plot_phase_diagram, plot_shape_views, Overlay, Phase, PhasePoint, Polyline3,
+};
+use crate::progress::Progress;
+
+/// GJ/EI of the benchmark's material (Ω_rod).
+fn torsion_ratio(sweep: &BendTwistSweep) -> f64 {
+    let case = sweep.cases()[0];
+    case.material.properties.stiffness.gj / case.material.properties.stiffness.ei_min()
+}
+
+/// What the bend–twist benchmark produced.
+pub struct BendTwistOutput {
+    /// One record per grid point.
+    pub records: Vec<BendTwistRecord>,
+    /// Scores and disagreements.
+    pub summary: BendTwistSummary,
+}
+
+/// Runs `sweep` and writes everything under `out`.
+pub fn run(sweep: &BendTwistSweep, out: &Path) -> Result<BendTwistOutput> {
+    let params = SolverParams::default();
+    let progress = Progress::new("bend-twist", sweep.cases().len());
+    let records = sweep.run(&params, &|| progress.tick())?;
+    progress.finish();
+    write_csv(&out.join("results.csv"), &records)?;
+    let c = torsion_ratio(sweep);
+    let summary = summarize(&records, sweep.elements_per_turn);
+    write_csv(&out.join("disagreements.csv"), &summary.disagreements)?;
+    write_atomic(
+        &out.join("summary.json"),
+        serde_json::to_string_pretty(&summary)?.as_bytes(),
+    )?;
+    plots(sweep, &records, c, out)?;
+    Ok(BendTwistOutput { records, summary })
+}
+
+/// Prints the scores and the disagreements.
+pub fn print_summary(s: &BendTwistSummary) {
+    println!(
+        "bend-twist: {} points ({} outside the ±5 % band), {}·Y elements",
+        s.points, s.outside_band, s.elements_per_turn
+    );
+    for (name, score) in [
+        ("stability (inertia)", s.stability),
+        ("protocol, Ξ[ξ_y] > ε", s.protocol_y),
+        ("protocol, Ξ[ξ_τ] > ε", s.protocol_tau),
+        ("protocol, both", s.protocol_combined),
+    ] {
+        println!(
+            "  {name:<22} {:>6.2} % correct ({}/{}), {} unclassified",
+            score.percent(),
+            score.correct,
+            score.scored,
+            score.unclassified
+        );
+    }
+    if !s.disagreements.is_empty() {
+        println!(
+            "  protocol and stability disagree at {} points:",
+            s.disagreements.len()
+        );
+        for d in &s.disagreements {
+            println!(
+                "    X {:7.4} Y {:7.4}: stability {} protocol {} truth {}, λ_min {:+.3e}, Ξ_y {:.2e}, Ξ_τ {:.2e}",
+                d.x,
+                d.y,
+                if d.stability_3d { "3D" } else { "2D" },
+                if d.protocol_3d { "3D" } else { "2D" },
+                if d.truth_3d { "3D" } else { "2D" },
+                d.lambda_min,
+                d.xi_y,
+                d.xi_tau
+            );
+        }
+    }
+}
+
+/// The master curve as two polylines in (X, Y) and the cable corridor X·Y ∈ [0.74, 1.6]
+/// (Γ ∈ [10², 10³], design.md §B).
+fn overlays(c: f64, y_range: (f64, f64), x_range: (f64, f64)) -> Result<Vec<Overlay>> {
+    let mut lower = Vec::new();
+    let mut upper = Vec::new();
+    let rows: Vec<StabilityBoundary> = log_space(y_range.0, y_range.1, 80)
+        .into_par_iter()
+        .map(|y| critical_boundaries(y, c))
+        .collect::<Result<_, _>>()?;
+    for b in rows {
+        let y = b.y;
+        if let Some(x) = b.lower {
+            lower.push((x, y));
+        }
+        if let Some(x) = b.upper {
+            upper.push((x, y));
+        }
+    }
+    let red = plotters::style::RGBColor(200, 30, 30);
+    let mut v = vec![
+        Overlay {
+            label: "master curve: X_c1 (coil loses stability)".into(),
+            points: lower,
+            dashed: false,
+            color: Some(red),
+        },
+        Overlay {
+            label: "master curve: X_c2 (hanging curl restabilizes)".into(),
+            points: upper,
+            dashed: false,
+            color: Some(plotters::style::RGBColor(120, 0, 60)),
+        },
+    ];
+    for (k, xy) in [100.0_f64, 1000.0]
+        .iter()
+        .map(|g| g.cbrt() / (2.0 * std::f64::consts::PI))
+        .enumerate()
+    {
+        v.push(Overlay {
+            label: if k == 0 {
+                "cable corridor, Γ ∈ [10², 10³]".into()
+            } else {
+                String::new()
+            },
+            points: log_space(x_range.0, x_range.1, 30)
+                .into_iter()
+                .map(|x| (x, xy / x))
+                .filter(|p| p.1 >= y_range.0 && p.1 <= y_range.1)
+                .collect(),
+            dashed: true,
+            color: Some(plotters::style::RGBColor(60, 60, 60)),
+        });
+    }
+    Ok(v)
+}
+
+fn plots(sweep: &BendTwistSweep, records: &[BendTwistRecord], c: f64, out: &Path) -> Result<()> {
+    let xr = (sweep.xs[0], *sweep.xs.last().expect("non-empty"));
+    let yr = (sweep.ys[0], *sweep.ys.last().expect("non-empty"));
+    let ov = overlays(c, yr, xr)?;
+    let grid = |f: &dyn Fn(&BendTwistRecord) -> f64| -> Vec<Vec<f64>> {
+        sweep
+            .ys
+            .iter()
+            .enumerate()
+            .map(|(iy, _)| {
+                (0..sweep.xs.len())
+                    .map(|ix| f(&records[iy * sweep.xs.len() + ix]))
+                    .collect()
+            })
+            .collect()
+    };
+    let xl = "X = (R/L) Γ^(1/3)";
+    let yl = "Y = L / (2πR)";
+    for (name, title, label, f) in [
+        (
+            "height_xi_y",
+            "Protocol: integrated y-deviation Ξ₁[ξ_y]",
+            "Ξ₁[ξ_y] / L²",
+            &(|r: &BendTwistRecord| {
+                if r.protocol_converged {
+                    r.xi_y
+                } else {
+                    f64::NAN
+                }
+            }) as &dyn Fn(&BendTwistRecord) -> f64,
+        ),
+        (
+            "height_xi_tau",
+            "Protocol: integrated torsion Ξ₁[ξ_τ]",
+            "Ξ₁[ξ_τ] (rad)",
+            &|r: &BendTwistRecord| {
+                if r.protocol_converged {
+                    r.xi_tau
+                } else {
+                    f64::NAN
+                }
+            },
+        ),
+        (
+            "height_lambda_min",
+            "Stability: smallest out-of-plane eigenvalue of the planar state",
+            "λ_min ρA L⁴ / EI",
+            &|r: &BendTwistRecord| r.lambda_min.unwrap_or(f64::NAN),
+        ),
+    ] {
+        let stem = out.join(name);
+        let log = name != "height_lambda_min";
+        plot_height_map(
+            &stem,
+            title,
+            xl,
+            yl,
+            &sweep.xs,
+            &sweep.ys,
+            &grid(f),
+            label,
+            log,
+            &ov,
+        )
+        .with_context(|| format!("plotting {}", stem.display()))?;
+    }
+    // The background samples the ground truth on a fine grid whose rows share Y: compute the
+    // master curve once per row.
+    let cache: RefCell<HashMap<u64, Option<StabilityBoundary>>> = RefCell::new(HashMap::new());
+    let truth = |x: f64, y: f64| -> Option<bool> {
+        let b = *cache
+            .borrow_mut()
+            .entry(y.to_bits())
+            .or_insert_with(|| critical_boundaries(y, c).ok());
+        b.map(|b| matches!((b.lower, b.upper), (Some(l), Some(u)) if x > l && x < u))
+    };
+    for (name, title, decision) in [
+        (
+            "phase_stability",
+            "Bend–twist phase diagram: stability decision",
+            &(|r: &BendTwistRecord| r.stability_3d) as &dyn Fn(&BendTwistRecord) -> Option<bool>,
+        ),
+        (
+            "phase_protocol",
+            "Bend–twist phase diagram: seed protocol (both measures)",
+            &|r: &BendTwistRecord| r.protocol_3d,
+        ),
+    ] {
+        let points: Vec<PhasePoint> = records
+            .iter()
+            .map(|r| PhasePoint {
+                x: r.x,
+                y: r.y,
+                phase: match decision(r) {
+                    Some(true) => Phase::ThreeD,
+                    Some(false) => Phase::TwoD,
+                    None => Phase::NotConverged,
+                },
+                disagrees: matches!((r.stability_3d, r.protocol_3d), (Some(a), Some(b)) if a != b),
+            })
+            .collect();
+        let stem = out.join(name);
+        plot_phase_diagram(&stem, title, xl, yl, xr, yr, &truth, &points, &ov)
+            .with_context(|| format!("plotting {}", stem.display()))?;
+    }
+    // A buckled coil: the 3-D point with the largest out-of-plane deviation.
+    if let Some(r) = records
+        .iter()
+        .filter(|r| r.stability_3d == Some(true) && r.buckled_xi_y.is_some())
+        .max_by(|a, b| {
+            a.buckled_xi_y
+                .unwrap_or(0.0)
+                .total_cmp(&b.buckled_xi_y.unwrap_or(0.0))
+        })
+    {
+        let case = BendTwistCase::new(r.x, r.y, sweep.elements_per_turn);
+        let (_, positions) = decide_by_stability(&case, &SolverParams::default())?;
+        let rest = case.build(Default::default(), Default::default())?;
+        let stem = out.join("shape_buckled");
+        plot_shape_views(
+            &stem,
+            &format!(
+                "Buckled coil at X = {:.3}, Y = {:.3} (Γ = {:.3e})",
+                r.x, r.y, r.gamma
+            ),
+            &[
+                Polyline3 {
+                    label: "rest coil".into(),
+                    points: rest
+                        .rest_state()
+                        .positions()
+                        .iter()
+                        .map(|p| [p.x, p.y, p.z])
+                        .collect(),
+                    markers: false,
+                },
+                Polyline3 {
+                    label: "3-D equilibrium (branch switch)".into(),
+                    points: positions.iter().map(|p| [p.x, p.y, p.z]).collect(),
+                    markers: false,
+                },
+            ],
+        )
+        .with_context(|| format!("plotting {}", stem.display()))?;
+    }
+    Ok(())
+}
