@@ -7,6 +7,9 @@
 //! This crate does no file I/O, no plotting and spawns no threads, so that it builds for
 //! `wasm32` and can be embedded anywhere. Units are SI throughout (m, N, kg, s, rad).
 
+// `!(x > 0.0)` is used on purpose: unlike `x <= 0.0` it also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod error;
 pub mod geometry;
 pub mod linalg;

@@ -31,8 +31,6 @@ fn torsion_ratio(sweep: &BendTwistSweep) -> f64 {
 
 /// What the bend–twist benchmark produced.
 pub struct BendTwistOutput {
-    /// One record per grid point.
-    pub records: Vec<BendTwistRecord>,
     /// Scores and disagreements.
     pub summary: BendTwistSummary,
 }
@@ -52,7 +50,7 @@ pub fn run(sweep: &BendTwistSweep, out: &Path) -> Result<BendTwistOutput> {
         serde_json::to_string_pretty(&summary)?.as_bytes(),
     )?;
     plots(sweep, &records, c, out)?;
-    Ok(BendTwistOutput { records, summary })
+    Ok(BendTwistOutput { summary })
 }
 
 /// Prints the scores and the disagreements.

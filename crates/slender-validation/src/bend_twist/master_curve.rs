@@ -64,10 +64,11 @@
 //!
 //! * The planar BVP is solved by *single* shooting on the clamp curvature, written in Prüfer
 //!   form, `θ = r sin ψ`, `θ' = r cos ψ`, with the log-amplitude measured against the WKB growth,
-//!   `Λ = ln r + ⅔√Γ (1 − S)^{3/2}`. The shooting unknown is `η = Λ(0) = ln θ'(0) + ⅔√Γ`, which
-//!   stays `O(1)` from the coil (`η → ln 2πY`) to the hanging rod, where `θ'(0) ~ e^{−⅔√Γ}` is far
-//!   below the smallest double. Forward integration follows the growing solution, so the
-//!   shooting is well conditioned for every `Γ` (no multiple shooting needed).
+//!   `Λ = ln r + ⅔√Γ (1 − S)^{3/2}`. The shooting unknown is `η = Λ(0) = ln θ'(0) + ⅔√Γ`: it is
+//!   `ln 2πY` for the stress-free coil and stays of order `ln Γ` on the hanging rod, where
+//!   `θ'(0) ~ e^{−⅔√Γ}` is far below the smallest double (it reaches ≈70 on the heavy coil at
+//!   `Y = 20`). Forward integration follows the growing solution, so the shooting is well
+//!   conditioned for every `Γ` (no multiple shooting needed).
 //! * The out-of-plane system is integrated with the continuous positive rescaling
 //!   `e^{−∫√(Γ(1−S))}` (it grows like `e^{⅔√Γ}`), which keeps the sign of `f`; the reported
 //!   stability function is `f̂ = δm_x(1)/|(φ_x, φ_z, δm_x)(1)|`, which has the sign of `f`.
@@ -83,8 +84,8 @@
 //!
 //! Along the branch the Morse index goes 0 → 1 → … → 1 → 0: one loss of stability at
 //! `X_c1(Y)` (out-of-plane: the loaded coil twists out of its plane) and one recovery at
-//! `X_c2(Y)` (the hanging curl becomes stable again). All in-plane folds (snaps, from
-//! `Y ≈ 1.1`) and every other change of the index lie between them, where every planar
+//! `X_c2(Y)` (the hanging curl becomes stable again). All in-plane folds (snaps; none at
+//! `Y = 1`, two at `Y = 1.2`) and every other change of the index lie between them, where every planar
 //! equilibrium of the branch is unstable (up to 10 unstable modes at `Y = 10`). For
 //! `c = 0.77`: below `Y* = 0.931984` the branch is stable for every `X`; the tongue tip is at
 //! `X* = 0.44056` and the window opens like `√(Y − Y*)`; `X_c1` falls monotonically (with a
@@ -109,8 +110,8 @@ pub const Y_MAX: f64 = 20.0;
 /// Smallest accepted torsion ratio `c = GJ/EI` (a round section has `1/(1 + ν)`).
 pub const C_MIN: f64 = 0.5;
 /// Largest accepted torsion ratio `c = GJ/EI`. Above 1 (twisting stiffer than bending) the
-/// first instability of the loaded coil becomes an in-plane snap onto a stable hanging sheet
-/// (at `c = 2`), and the two-boundary description no longer holds.
+/// first instability of the loaded coil can be an in-plane snap onto a stable hanging sheet
+/// (observed at `c = 2`), and the two-boundary description no longer holds.
 pub const C_MAX: f64 = 1.0;
 /// Largest load parameter `Γ = (2πXY)³` at which [`stability_function`] is evaluated.
 pub const GAMMA_MAX: f64 = 1e10;

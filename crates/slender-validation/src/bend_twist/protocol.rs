@@ -50,13 +50,13 @@ pub struct ProtocolOutcome {
 impl ProtocolOutcome {
     /// 3-D by the y-measure threshold; `None` if not converged.
     pub fn by_y(&self, s: &ProtocolSettings) -> Option<bool> {
-        self.converged.then(|| self.measures.xi_y > s.threshold_y)
+        self.converged.then_some(self.measures.xi_y > s.threshold_y)
     }
 
     /// 3-D by the torsion threshold; `None` if not converged.
     pub fn by_tau(&self, s: &ProtocolSettings) -> Option<bool> {
         self.converged
-            .then(|| self.measures.xi_tau > s.threshold_tau)
+            .then_some(self.measures.xi_tau > s.threshold_tau)
     }
 
     /// The combination the seed recommends: 3-D only if both measures say so (each covers

@@ -19,7 +19,6 @@ mod shape_3d;
 mod style;
 
 pub use cantilever_ratio::{plot_cantilever_ratio, Curve};
-pub use font::ensure_font_registered;
 pub use height_map::{plot_height_map, Overlay};
 pub use phase_diagram::{plot_phase_diagram, Phase, PhasePoint};
 pub use relative_error::plot_relative_error;
@@ -29,7 +28,7 @@ pub use shape_3d::{plot_shape_views, Polyline3};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{Context, Result};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
