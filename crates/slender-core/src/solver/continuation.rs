@@ -27,9 +27,6 @@ pub struct Solution<S> {
 /// Largest load step (fraction of the span) that may be retried as a snap.
 const SNAP_MAX_STEP: f64 = 1.0 / 32.0;
 
-/// A failed load step is retried once with this many times the usual Newton iterations.
-const SNAP_ITERATION_FACTOR: usize = 10;
-
 /// Relative accuracy of the reported smallest eigenvalue.
 const EIGEN_TOLERANCE: f64 = 1e-6;
 
@@ -126,7 +123,7 @@ impl<S: Clone> EquilibriumSolver<S> {
                     snapped_at = Some(load);
                     candidate.clone_from(&current);
                     let long = SolverParams {
-                        max_iterations: SNAP_ITERATION_FACTOR * params.max_iterations,
+                        max_iterations: params.snap_iterations,
                         ..params.clone()
                     };
                     out = newton(problem, &mut candidate, target, &long, &mut self.ws);

@@ -36,6 +36,9 @@ pub struct SolverParams {
     pub fast_iterations: usize,
     /// Whether to compute the smallest eigenvalue of the Hessian at the solution. Default true.
     pub compute_lambda_min: bool,
+    /// Newton iterations allowed when a small failed load step is retried as a snap past a
+    /// fold of the loading path. Default 300.
+    pub snap_iterations: usize,
 }
 
 impl Default for SolverParams {
@@ -51,6 +54,7 @@ impl Default for SolverParams {
             min_load_step: 1e-6,
             fast_iterations: 5,
             compute_lambda_min: true,
+            snap_iterations: 300,
         }
     }
 }

@@ -23,6 +23,9 @@ use super::measures::{shape_measures, ShapeMeasures};
 /// couples five consecutive entries.
 const OUT_OF_PLANE_BANDWIDTH: usize = 4;
 
+/// Snap budget of the second attempt at the planar ramp.
+const PATIENT_SNAP_ITERATIONS: usize = 3000;
+
 /// Largest displacement (units of L) of the perturbation along the unstable mode.
 const SWITCH_AMPLITUDE: f64 = 1e-2;
 
