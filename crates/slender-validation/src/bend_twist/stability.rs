@@ -118,12 +118,28 @@ pub fn decide_by_stability(
     // rod's Hessian at that state.
     let planar_rod = case.build_planar(gravity)?;
     let start = planar_rod.rest_state().clone();
-    let planar = EquilibriumSolver::new(&planar_rod, &start, params.clone()).solve(
+    let mut planar = EquilibriumSolver::new(&planar_rod, &start, params.clone()).solve(
         &planar_rod,
         &start,
         0.0,
         1.0,
     );
+    if !planar.report.converged() {
+        // Fine meshes of many-turn coils at very large Γ unwind through long in-plane snaps:
+        // give them a larger minimization budget before declaring failure.
+        let patient = SolverParams {
+            snap_iterations: PATIENT_SNAP_ITERATIONS.max(params.snap_iterations),
+            ..params.clone()
+        };
+        let first = planar.report.iterations;
+        planar = EquilibriumSolver::new(&planar_rod, &start, patient).solve(
+            &planar_rod,
+            &start,
+            0.0,
+            1.0,
+        );
+        planar.report.iterations += first;
+    }
     let rod = case.build(gravity, Vec3::zeros())?;
     let switch_params = SolverParams {
         max_iterations: 10 * params.max_iterations,
