@@ -11,6 +11,18 @@ fn props(ei: f64) -> RodProperties {
     }
 }
 
+/// A straight rod of length `l` along x.
+fn straight(l: f64, ei: f64) -> RodBuilder {
+    RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: l,
+        },
+        props(ei),
+    )
+}
+
 fn solve(
     rod: &Rod,
     params: SolverParams,
@@ -69,19 +81,12 @@ fn small_tip_load_matches_linear_beam_theory() {
     let exact = p * l.powi(3) / (3.0 * ei);
     let mut errors = Vec::new();
     for n in [10, 20, 40] {
-        let rod = RodBuilder::new(
-            RestCurve::Straight {
-                start: [0.0; 3],
-                direction: [1.0, 0.0, 0.0],
-                length: l,
-            },
-            props(ei),
-        )
-        .elements(n)
-        .clamp_start()
-        .point_force(n, Vec3::new(0.0, 0.0, -p))
-        .build()
-        .unwrap();
+        let rod = straight(l, ei)
+            .elements(n)
+            .clamp_start()
+            .point_force(n, Vec3::new(0.0, 0.0, -p))
+            .build()
+            .unwrap();
         let sol = solve(&rod, SolverParams::default());
         assert!(sol.report.converged());
         let tip = sol.state.positions()[n];
@@ -100,20 +105,13 @@ fn large_tip_load_matches_the_elastica() {
     // (Bisshopp & Drucker 1945) gives tip deflections v/L = 0.3017, (L − u)/L = 0.0566.
     let (ei, l) = (1.0, 1.0);
     let n = 80;
-    let rod = RodBuilder::new(
-        RestCurve::Straight {
-            start: [0.0; 3],
-            direction: [1.0, 0.0, 0.0],
-            length: l,
-        },
-        props(ei),
-    )
-    .elements(n)
-    .grading(Grading::Uniform)
-    .clamp_start()
-    .point_force(n, Vec3::new(0.0, -1.0, 0.0))
-    .build()
-    .unwrap();
+    let rod = straight(l, ei)
+        .elements(n)
+        .grading(Grading::Uniform)
+        .clamp_start()
+        .point_force(n, Vec3::new(0.0, -1.0, 0.0))
+        .build()
+        .unwrap();
     let sol = solve(&rod, SolverParams::default());
     assert!(sol.report.converged());
     let tip = sol.state.positions()[n];
@@ -127,19 +125,12 @@ fn large_tip_load_matches_the_elastica() {
 
 #[test]
 fn a_solve_that_cannot_converge_says_so() {
-    let rod = RodBuilder::new(
-        RestCurve::Straight {
-            start: [0.0; 3],
-            direction: [1.0, 0.0, 0.0],
-            length: 1.0,
-        },
-        props(1.0),
-    )
-    .elements(20)
-    .clamp_start()
-    .gravity(Vec3::new(0.0, -5e5, 0.0))
-    .build()
-    .unwrap();
+    let rod = straight(1.0, 1.0)
+        .elements(20)
+        .clamp_start()
+        .gravity(Vec3::new(0.0, -5e5, 0.0))
+        .build()
+        .unwrap();
     // Γ = 10⁵ with one Newton iteration per step (ten on the snap retry) and steps no smaller
     // than 10 % of the load: out of reach.
     let params = SolverParams {
@@ -165,18 +156,11 @@ fn a_solve_that_cannot_converge_says_so() {
 #[test]
 fn stability_margin_matches_the_cantilever_frequency() {
     // Unloaded clamped-free beam: lowest ω² = (1.8751)⁴ EI/(ρA L⁴) = 12.362 EI/(ρA L⁴).
-    let rod = RodBuilder::new(
-        RestCurve::Straight {
-            start: [0.0; 3],
-            direction: [1.0, 0.0, 0.0],
-            length: 1.0,
-        },
-        props(1.0),
-    )
-    .elements(100)
-    .clamp_start()
-    .build()
-    .unwrap();
+    let rod = straight(1.0, 1.0)
+        .elements(100)
+        .clamp_start()
+        .build()
+        .unwrap();
     let sol = solve(&rod, SolverParams::default());
     let lam = sol.report.lambda_min_normalized.unwrap();
     assert!(
@@ -230,19 +214,12 @@ fn end_moment_rolls_the_rod_into_a_circle() {
         let r = ei / m;
         let exact = Vec3::new(r * (l / r).sin(), r * (1.0 - (l / r).cos()), 0.0);
         let tip_error = |n: usize| {
-            let rod = RodBuilder::new(
-                RestCurve::Straight {
-                    start: [0.0; 3],
-                    direction: [1.0, 0.0, 0.0],
-                    length: l,
-                },
-                props(ei),
-            )
-            .elements(n)
-            .clamp_start()
-            .point_moment(n, Vec3::new(0.0, 0.0, m))
-            .build()
-            .unwrap();
+            let rod = straight(l, ei)
+                .elements(n)
+                .clamp_start()
+                .point_moment(n, Vec3::new(0.0, 0.0, m))
+                .build()
+                .unwrap();
             let sol = solve(&rod, SolverParams::default());
             assert!(sol.report.converged(), "{:?}", sol.report.status);
             (sol.state.positions()[n] - exact).norm() / l
@@ -263,19 +240,12 @@ fn axial_torque_twists_the_rod_uniformly() {
     let (ei, l, n) = (1.0_f64, 2.0_f64, 10);
     let gj = 0.8 * ei;
     let t = 0.3;
-    let rod = RodBuilder::new(
-        RestCurve::Straight {
-            start: [0.0; 3],
-            direction: [1.0, 0.0, 0.0],
-            length: l,
-        },
-        props(ei),
-    )
-    .elements(n)
-    .clamp_start()
-    .point_moment(n, Vec3::new(t, 0.0, 0.0))
-    .build()
-    .unwrap();
+    let rod = straight(l, ei)
+        .elements(n)
+        .clamp_start()
+        .point_moment(n, Vec3::new(t, 0.0, 0.0))
+        .build()
+        .unwrap();
     let sol = solve(&rod, SolverParams::default());
     assert!(sol.report.converged());
     // The last edge's θ is measured from the rest frame; half a cell from the free end.

@@ -134,6 +134,16 @@ impl Rod {
         v
     }
 
+    /// Free indices of the two end vertices of edge `j` (the stretching stencil).
+    fn edge_dofs(&self, j: usize) -> [usize; 6] {
+        let mut map = [FIXED; 6];
+        for k in 0..3 {
+            map[k] = self.dofs.vertex(j, k);
+            map[3 + k] = self.dofs.vertex(j + 1, k);
+        }
+        map
+    }
+
     pub(super) fn hinge_dofs(&self, vertex: usize, l: EdgeId, r: EdgeId) -> [usize; HINGE_DOFS] {
         let mut d = [FIXED; HINGE_DOFS];
         let put_vertex = |slot: usize, v: usize, d: &mut [usize; HINGE_DOFS]| {
@@ -224,13 +234,8 @@ impl Rod {
                 );
                 info.energy += e;
                 info.energy_magnitude += e.abs();
-                let mut map = [FIXED; 6];
-                for k in 0..3 {
-                    map[k] = self.dofs.vertex(j, k);
-                    map[3 + k] = self.dofs.vertex(j + 1, k);
-                }
                 scatter(
-                    &map,
+                    &self.edge_dofs(j),
                     g6.as_slice(),
                     &h6,
                     &mut grad,
@@ -328,13 +333,8 @@ impl Rod {
                 info.external_force = info
                     .external_force
                     .max(load * (m.bending + m.axial.abs()) / self.length);
-                let mut map = [FIXED; 6];
-                for k in 0..3 {
-                    map[k] = self.dofs.vertex(j, k);
-                    map[3 + k] = self.dofs.vertex(j + 1, k);
-                }
                 scatter(
-                    &map,
+                    &self.edge_dofs(j),
                     g6.as_slice(),
                     &h6,
                     &mut grad,
