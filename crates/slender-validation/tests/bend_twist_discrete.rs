@@ -75,3 +75,20 @@ fn invalid_points_are_errors_naming_the_field() {
     .unwrap_err();
     assert!(err.to_string().contains('y'), "{err}");
 }
+
+#[test]
+fn the_coil_buckles_supercritically_at_the_lower_boundary() {
+    // Following the 3-D branch toward X_c1 its amplitude vanishes like √δ (A² linear in δ),
+    // at the boundary up to the mesh's offset: a supercritical pitchfork, so the protocol
+    // shows no hysteresis there.
+    use slender_validation::bend_twist::criticality::criticality;
+    let cs = criticality(1.5, 50.0, &SolverParams::default()).unwrap();
+    let lower = cs.iter().find(|c| c.boundary == "lower").unwrap();
+    assert_eq!(lower.kind, "supercritical", "{lower:?}");
+    assert!(lower.delta_0.abs() < 0.005, "{lower:?}");
+    let (_, a) = *lower.amplitudes.last().unwrap();
+    assert!(
+        a < 0.05,
+        "amplitude {a} close to the boundary should be small"
+    );
+}

@@ -12,6 +12,7 @@ use anyhow::{Context, Result};
 use slender_core::solver::SolverParams;
 use slender_validation::bend_twist::acceptance::{summarize, BendTwistSummary};
 use slender_validation::bend_twist::case::BendTwistCase;
+use slender_validation::bend_twist::criticality::{criticality, Criticality};
 use slender_validation::bend_twist::master_curve::{critical_boundaries, StabilityBoundary};
 use slender_validation::bend_twist::stability::decide_by_stability;
 use slender_validation::bend_twist::sweep::{BendTwistRecord, BendTwistSweep};
@@ -50,7 +51,70 @@ pub fn run(sweep: &BendTwistSweep, out: &Path) -> Result<BendTwistOutput> {
         serde_json::to_string_pretty(&summary)?.as_bytes(),
     )?;
     plots(sweep, &records, c, out)?;
+    // Sub- or supercritical: the buckled branch followed toward both boundaries.
+    let criticality: Vec<Criticality> = CRITICALITY_ROWS
+        .par_iter()
+        .map(|&y| criticality(y, CRITICALITY_ELEMENTS_PER_TURN, &params))
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .flatten()
+        .collect();
+    let rows: Vec<CriticalityRow> = criticality.iter().map(CriticalityRow::from).collect();
+    write_csv(&out.join("criticality.csv"), &rows)?;
+    print_criticality(&criticality);
     Ok(BendTwistOutput { summary })
+}
+
+/// Rows of Y at which the criticality of both boundaries is measured.
+const CRITICALITY_ROWS: [f64; 2] = [1.5, 3.0];
+/// Mesh for the criticality measurement (finer than the quick grid: the boundary offset must
+/// stay well below the distances probed).
+const CRITICALITY_ELEMENTS_PER_TURN: f64 = 50.0;
+
+/// One line of `criticality.csv`.
+#[derive(serde::Serialize)]
+struct CriticalityRow {
+    y: f64,
+    boundary: String,
+    x_c: f64,
+    kind: String,
+    exponent: f64,
+    delta_0: f64,
+    nonlinearity: f64,
+    closest_delta: f64,
+    closest_amplitude: f64,
+}
+
+impl From<&Criticality> for CriticalityRow {
+    fn from(c: &Criticality) -> Self {
+        let (d, a) = c.amplitudes.last().copied().unwrap_or((f64::NAN, f64::NAN));
+        Self {
+            y: c.y,
+            boundary: c.boundary.clone(),
+            x_c: c.x_c,
+            kind: c.kind.clone(),
+            exponent: c.exponent,
+            delta_0: c.delta_0,
+            nonlinearity: c.nonlinearity,
+            closest_delta: d,
+            closest_amplitude: a,
+        }
+    }
+}
+
+fn print_criticality(cs: &[Criticality]) {
+    println!("  criticality (buckled branch continued toward the boundary; A² = k(δ − δ₀)):");
+    for c in cs {
+        println!(
+            "    Y {:5.2} {:<5} X_c {:.5}: {:<13} (A² slopes differ {:.0} %, branch vanishes at δ₀ = {:+.2} %)",
+            c.y,
+            c.boundary,
+            c.x_c,
+            c.kind,
+            100.0 * c.nonlinearity,
+            100.0 * c.delta_0
+        );
+    }
 }
 
 /// Prints the scores and the disagreements.

@@ -2,6 +2,7 @@
 
 pub mod acceptance;
 pub mod case;
+pub mod criticality;
 pub mod master_curve;
 pub mod measures;
 pub mod protocol;

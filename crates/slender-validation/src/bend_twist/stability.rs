@@ -111,6 +111,16 @@ pub fn decide_by_stability(
     case: &BendTwistCase,
     params: &SolverParams,
 ) -> Result<(StabilityOutcome, Vec<Vec3>), ModelError> {
+    let (out, state) = decide_with_state(case, params)?;
+    Ok((out, state.positions().to_vec()))
+}
+
+/// As [`decide_by_stability`], returning the final state (the buckled one if the planar state
+/// is unstable and the switch converged, else the planar one).
+pub fn decide_with_state(
+    case: &BendTwistCase,
+    params: &SolverParams,
+) -> Result<(StabilityOutcome, RodState), ModelError> {
     let g = case.gravity();
     let gravity = Vec3::new(0.0, 0.0, -g);
     // The planar equilibrium is followed with the motion restricted to the plane, so that the
@@ -161,7 +171,7 @@ pub fn decide_by_stability(
         buckled_energy_drop: None,
     };
     if !out.planar_converged {
-        return Ok((out, planar.state.positions().to_vec()));
+        return Ok((out, planar.state));
     }
     let n = rod.n_free();
     let mut grad = vec![0.0; n];
@@ -175,10 +185,10 @@ pub fn decide_by_stability(
     let mode = smallest_eigenpair(&block(&rod, &hess, &idx, true), &mut ldlt, 1e-8).ok();
     out.lambda_out_normalized = mode.as_ref().map(|m| m.value / rod.eigenvalue_scale());
     if out.three_dimensional() != Some(true) {
-        return Ok((out, planar.state.positions().to_vec()));
+        return Ok((out, planar.state));
     }
     let Some(mode) = mode else {
-        return Ok((out, planar.state.positions().to_vec()));
+        return Ok((out, planar.state));
     };
     // Branch switching: the mode in the free DOFs (mass scaling undone), scaled so that the
     // largest displacement is SWITCH_AMPLITUDE·L; try both signs, keep the lower energy.
@@ -209,7 +219,7 @@ pub fn decide_by_stability(
             }
         }
     }
-    let positions = match best {
+    let state = match best {
         Some((e, state, stable)) => {
             out.buckled = Some(shape_measures(
                 state.positions(),
@@ -218,9 +228,9 @@ pub fn decide_by_stability(
             ));
             out.buckled_stable = Some(stable);
             out.buckled_energy_drop = Some(e - planar_energy);
-            state.positions().to_vec()
+            state
         }
-        None => planar.state.positions().to_vec(),
+        None => planar.state,
     };
-    Ok((out, positions))
+    Ok((out, state))
 }
