@@ -10,7 +10,7 @@
 use slender_core::rod::{RodProperties, SectionStiffness};
 
 /// A named rod parameter set.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct RodMaterialSet {
     /// Identifier used in files and plots (`rod`, `bundle`).
     pub name: &'static str,

@@ -9,20 +9,23 @@ use std::path::Path;
 use rayon::prelude::*;
 
 use anyhow::{Context, Result};
+use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::bend_twist::acceptance::{summarize, BendTwistSummary};
 use slender_validation::bend_twist::case::BendTwistCase;
 use slender_validation::bend_twist::criticality::{criticality, Criticality};
 use slender_validation::bend_twist::master_curve::{critical_boundaries, StabilityBoundary};
+use slender_validation::bend_twist::protocol::ProtocolSettings;
 use slender_validation::bend_twist::stability::decide_by_stability;
-use slender_validation::bend_twist::sweep::{BendTwistRecord, BendTwistSweep};
+use slender_validation::bend_twist::sweep::{run_point, BendTwistRecord, BendTwistSweep};
 use slender_validation::cantilever::log_space;
 
 use crate::output::{write_atomic, write_csv};
 use crate::plot::{
     plot_height_map, plot_phase_diagram, plot_shape_views, Overlay, Phase, PhasePoint, Polyline3,
 };
-use crate::progress::Progress;
+use crate::store::runner::{run_cases, RunStats, StoreOptions};
+use crate::store::BenchmarkStore;
 
 /// GJ/EI of the benchmark's material (Ω_rod).
 fn torsion_ratio(sweep: &BendTwistSweep) -> f64 {
@@ -34,16 +37,62 @@ fn torsion_ratio(sweep: &BendTwistSweep) -> f64 {
 pub struct BendTwistOutput {
     /// Scores and disagreements.
     pub summary: BendTwistSummary,
+    /// Cases computed, reused and their compute time.
+    pub stats: RunStats,
 }
 
-/// Runs `sweep` and writes everything under `out`.
-pub fn run(sweep: &BendTwistSweep, out: &Path) -> Result<BendTwistOutput> {
+/// Everything a bend–twist record depends on: the store key.
+#[derive(Serialize)]
+struct BendTwistKey {
+    case: BendTwistCase,
+    protocol: ProtocolSettings,
+    solver: SolverParams,
+}
+
+/// Runs `sweep` through the store and writes everything under `out`; `None` if this run
+/// computed one shard only (no report).
+pub fn run(
+    sweep: &BendTwistSweep,
+    out: &Path,
+    store: &StoreOptions,
+) -> Result<Option<BendTwistOutput>> {
     let params = SolverParams::default();
-    let progress = Progress::new("bend-twist", sweep.cases().len());
-    let records = sweep.run(&params, &|| progress.tick())?;
-    progress.finish();
-    write_csv(&out.join("results.csv"), &records)?;
+    params.validate()?;
+    let keys: Vec<BendTwistKey> = sweep
+        .cases()
+        .into_iter()
+        .map(|case| BendTwistKey {
+            case,
+            protocol: sweep.protocol,
+            solver: params.clone(),
+        })
+        .collect();
+    // The master curve once per row of the grid; each record carries its row's boundaries.
     let c = torsion_ratio(sweep);
+    let boundaries: Vec<StabilityBoundary> = sweep
+        .ys
+        .par_iter()
+        .map(|&y| critical_boundaries(y, c))
+        .collect::<Result<_, _>>()?;
+    let bench = BenchmarkStore::new(&store.root, "bend-twist");
+    let run = run_cases(&bench, store.shard, &keys, |k| {
+        let row = sweep
+            .ys
+            .iter()
+            .position(|&y| y == k.case.y)
+            .context("grid row of a case")?;
+        Ok(run_point(
+            &k.case,
+            &boundaries[row],
+            &k.protocol,
+            &k.solver,
+        )?)
+    })?;
+    let stats = RunStats::of(&run);
+    let Some(records) = run.complete() else {
+        return Ok(None);
+    };
+    write_csv(&out.join("results.csv"), &records)?;
     let summary = summarize(&records, sweep.elements_per_turn);
     write_csv(&out.join("disagreements.csv"), &summary.disagreements)?;
     write_atomic(
@@ -62,7 +111,7 @@ pub fn run(sweep: &BendTwistSweep, out: &Path) -> Result<BendTwistOutput> {
     let rows: Vec<CriticalityRow> = criticality.iter().map(CriticalityRow::from).collect();
     write_csv(&out.join("criticality.csv"), &rows)?;
     print_criticality(&criticality);
-    Ok(BendTwistOutput { summary })
+    Ok(Some(BendTwistOutput { summary, stats }))
 }
 
 /// Rows of Y at which the criticality of both boundaries is measured.

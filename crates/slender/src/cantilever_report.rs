@@ -4,16 +4,19 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::master_curve::heavy_elastica;
 use slender_validation::cantilever::{
-    log_space, summarize, CantileverCase, CantileverRecord, CantileverSweep, DiscretizationSummary,
-    MeshKind, CABLE_RANGE,
+    log_space, run_case, summarize, CantileverCase, CantileverRecord, CantileverSweep,
+    DiscretizationSummary, MeshKind, CABLE_RANGE,
 };
 
 use crate::output::write_csv;
 use crate::plot::{plot_cantilever_ratio, plot_relative_error, plot_shapes_2d, Curve};
-use crate::progress::Progress;
+use crate::store::runner::RunStats;
+use crate::store::runner::{run_cases, StoreOptions};
+use crate::store::BenchmarkStore;
 
 /// What the cantilever benchmark produced.
 pub struct CantileverOutput {
@@ -21,20 +24,53 @@ pub struct CantileverOutput {
     pub records: Vec<CantileverRecord>,
     /// Worst errors per discretization.
     pub summary: Vec<DiscretizationSummary>,
+    /// Cases computed, reused and their compute time.
+    pub stats: RunStats,
 }
 
-/// Runs `sweep` and writes everything under `out`.
-pub fn run(sweep: &CantileverSweep, out: &Path) -> Result<CantileverOutput> {
-    let params = SolverParams::default();
-    let progress = Progress::new("cantilever", sweep.cases().len());
-    let records = sweep.run(&params, &|| progress.tick())?;
-    progress.finish();
+/// Everything a cantilever record depends on: the store key.
+#[derive(Serialize)]
+struct CantileverKey {
+    case: CantileverCase,
+    solver: SolverParams,
+}
+
+/// Runs `sweep` through the store and writes everything under `out`; `None` if this run
+/// computed one shard only (no report).
+pub fn run(
+    sweep: &CantileverSweep,
+    out: &Path,
+    store: &StoreOptions,
+) -> Result<Option<CantileverOutput>> {
+    let solver = SolverParams::default();
+    sweep.validate()?;
+    solver.validate()?;
+    let keys: Vec<CantileverKey> = sweep
+        .cases()
+        .into_iter()
+        .map(|case| CantileverKey {
+            case,
+            solver: solver.clone(),
+        })
+        .collect();
+    let bench = BenchmarkStore::new(&store.root, "cantilever");
+    let run = run_cases(&bench, store.shard, &keys, |k| {
+        Ok(run_case(&k.case, &k.solver)?)
+    })?;
+    let stats = RunStats::of(&run);
+    let Some(records) = run.complete() else {
+        return Ok(None);
+    };
     write_csv(&out.join("results.csv"), &records)?;
     let summary = summarize(&records);
     write_csv(&out.join("summary.csv"), &summary)?;
     plot_ratios(sweep, &records, out)?;
     plot_coarse_shapes(sweep, out)?;
-    Ok(CantileverOutput { records, summary })
+    Ok(Some(CantileverOutput {
+        records,
+        summary,
+        stats,
+    }))
 }
 
 /// Prints the worst errors per discretization.

@@ -8,6 +8,8 @@ mod output;
 #[allow(dead_code)]
 mod plot;
 mod progress;
+mod report_html;
+mod store;
 mod validate;
 
 use std::path::PathBuf;
@@ -18,6 +20,8 @@ use clap::{Parser, Subcommand, ValueEnum};
 use slender_validation::bend_twist::sweep::BendTwistSweep;
 use slender_validation::cantilever::{log_space, CantileverSweep, MeshKind};
 use slender_validation::materials::ROD_SETS;
+use store::runner::StoreOptions;
+use store::shard::Shard;
 
 /// Large deformations of cables, hoses and flat cables, with the validation to prove them.
 #[derive(Parser, Debug)]
@@ -35,8 +39,33 @@ enum Command {
     /// The bend–twist bifurcation benchmark (seed §4, Figs. 6–8): 2-D or 3-D over a grid in
     /// (X, Y), decided by the seed's protocol and by stability, against the master curve.
     BendTwist(BendTwistArgs),
-    /// Run the validation suite and print a pass/fail table (exit code 1 if a target fails).
+    /// Run every benchmark and write the validation report OUT/index.html with a pass/fail
+    /// table of the acceptance targets (exit code 1 if a target fails).
     Validate(ValidateArgs),
+    /// Combine result stores (e.g. of `--shard` runs) into one.
+    Merge(MergeArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct MergeArgs {
+    /// Destination store (created if missing).
+    #[arg(long)]
+    into: PathBuf,
+    /// Source stores.
+    #[arg(required = true)]
+    sources: Vec<PathBuf>,
+}
+
+/// Store root and shard of a run.
+fn store_options(
+    out: &std::path::Path,
+    store: &Option<PathBuf>,
+    shard: Option<Shard>,
+) -> StoreOptions {
+    StoreOptions {
+        root: store.clone().unwrap_or_else(|| out.join("store")),
+        shard,
+    }
 }
 
 #[derive(clap::Args, Debug)]
@@ -65,6 +94,13 @@ struct BendTwistArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
+    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
+    #[arg(long)]
+    store: Option<PathBuf>,
+    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
+    /// shards with `slender merge`, then rerun without --shard to write the report.
+    #[arg(long)]
+    shard: Option<Shard>,
 }
 
 fn bend_twist_sweep(a: &BendTwistArgs) -> Result<BendTwistSweep> {
@@ -131,6 +167,13 @@ struct CantileverArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
+    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
+    #[arg(long)]
+    store: Option<PathBuf>,
+    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
+    /// shards with `slender merge`, then rerun without --shard to write the report.
+    #[arg(long)]
+    shard: Option<Shard>,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -152,6 +195,13 @@ struct ValidateArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
+    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
+    #[arg(long)]
+    store: Option<PathBuf>,
+    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
+    /// shards with `slender merge`, then rerun without --shard to write the report.
+    #[arg(long)]
+    shard: Option<Shard>,
 }
 
 fn sweep_from_args(a: &CantileverArgs) -> Result<CantileverSweep> {
@@ -215,23 +265,55 @@ fn run(cli: Cli) -> Result<bool> {
         Command::Cantilever(a) => {
             let sweep = sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
-            let out = pool.install(|| cantilever_report::run(&sweep, &a.out))?;
-            cantilever_report::print_summary(&out.summary);
-            println!("wrote {}", a.out.display());
+            let store = store_options(&a.out, &a.store, a.shard);
+            match pool.install(|| cantilever_report::run(&sweep, &a.out, &store))? {
+                Some(out) => {
+                    cantilever_report::print_summary(&out.summary);
+                    println!("wrote {}", a.out.display());
+                }
+                None => print_shard_done(&store),
+            }
             Ok(true)
         }
         Command::BendTwist(a) => {
             let sweep = bend_twist_sweep(&a)?;
             let pool = thread_pool(a.jobs)?;
-            let out = pool.install(|| bend_twist_report::run(&sweep, &a.out))?;
-            bend_twist_report::print_summary(&out.summary);
-            println!("wrote {}", a.out.display());
+            let store = store_options(&a.out, &a.store, a.shard);
+            match pool.install(|| bend_twist_report::run(&sweep, &a.out, &store))? {
+                Some(out) => {
+                    bend_twist_report::print_summary(&out.summary);
+                    println!("wrote {}", a.out.display());
+                }
+                None => print_shard_done(&store),
+            }
             Ok(true)
         }
         Command::Validate(a) => {
             let pool = thread_pool(a.jobs)?;
-            pool.install(|| validate::run(&a.out, a.preset == Preset::Full))
+            let store = store_options(&a.out, &a.store, a.shard);
+            let jobs = pool.current_num_threads();
+            pool.install(|| validate::run(&a.out, a.preset == Preset::Full, &store, jobs))
         }
+        Command::Merge(a) => {
+            let s = store::merge::merge_stores(&a.into, &a.sources)?;
+            println!(
+                "merged into {}: {} records copied, {} already there, {} unreadable left out",
+                a.into.display(),
+                s.copied,
+                s.identical,
+                s.skipped
+            );
+            Ok(true)
+        }
+    }
+}
+
+pub(crate) fn print_shard_done(store: &StoreOptions) {
+    if let Some(s) = store.shard {
+        println!(
+            "shard {s}: records in {}; merge the shards with `slender merge`, then rerun without --shard for the report",
+            store.root.display()
+        );
     }
 }
 

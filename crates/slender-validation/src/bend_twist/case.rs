@@ -12,7 +12,7 @@ use slender_core::ModelError;
 use crate::materials::{RodMaterialSet, OMEGA_ROD};
 
 /// One point of the (X, Y) plane and its discretization.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct BendTwistCase {
     /// X = (R/L) Γ^{1/3} (> 0).
     pub x: f64,

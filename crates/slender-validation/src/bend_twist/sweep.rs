@@ -1,8 +1,6 @@
 //! The bend–twist sweep over a log grid in (X, Y) (seed Figs. 7–8): each point decided by the
 //! seed's protocol and by stability, both compared with the master curve.
 
-use std::time::Instant;
-
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use slender_core::solver::SolverParams;
@@ -149,8 +147,6 @@ pub struct BendTwistRecord {
     pub truth_3d: bool,
     /// Newton iterations (protocol + stability route).
     pub iterations: usize,
-    /// Wall time of the point (s).
-    pub seconds: f64,
     /// Non-convergence reasons, if any.
     pub failure: String,
 }
@@ -162,7 +158,6 @@ pub fn run_point(
     protocol: &ProtocolSettings,
     params: &SolverParams,
 ) -> Result<BendTwistRecord, BendTwistSweepError> {
-    let clock = Instant::now();
     let truth_3d =
         matches!((boundary.lower, boundary.upper), (Some(l), Some(u)) if case.x > l && case.x < u);
     let (p, _) = run_protocol(case, protocol, params)?;
@@ -199,7 +194,6 @@ pub fn run_point(
         x_c2: boundary.upper,
         truth_3d,
         iterations: p.iterations + s.iterations,
-        seconds: clock.elapsed().as_secs_f64(),
         failure,
     })
 }

@@ -52,7 +52,7 @@ impl MeshKind {
 }
 
 /// Parameters of one cantilever run.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct CantileverCase {
     /// Material and geometry set.
     pub material: RodMaterialSet,

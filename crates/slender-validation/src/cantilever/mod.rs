@@ -8,6 +8,6 @@ pub mod sweep;
 pub use acceptance::{cantilever_checks, Check};
 pub use case::{end_point_ratio, CantileverCase, CantileverRun, MeshKind};
 pub use sweep::{
-    log_space, summarize, CantileverRecord, CantileverSweep, DiscretizationSummary, SweepError,
-    CABLE_RANGE,
+    log_space, run_case, summarize, CantileverRecord, CantileverSweep, DiscretizationSummary,
+    SweepError, CABLE_RANGE,
 };

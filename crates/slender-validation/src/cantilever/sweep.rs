@@ -73,8 +73,6 @@ pub struct CantileverRecord {
     pub iterations: usize,
     /// Accepted load steps (1: solved in one step).
     pub load_steps: usize,
-    /// Wall time of the solve (s).
-    pub seconds: f64,
     /// Final residual relative to the largest external nodal force.
     pub relative_residual: f64,
     /// Negative eigenvalues of the Hessian at the solution (0: stable).
@@ -152,49 +150,44 @@ impl CantileverSweep {
     ) -> Result<Vec<CantileverRecord>, SweepError> {
         self.validate()?;
         params.validate()?;
-        let masters: Vec<f64> = self
-            .gammas
-            .par_iter()
-            .map(|&g| master_ratio(g))
-            .collect::<Result<_, _>>()?;
-        let master_of = |gamma: f64| -> f64 {
-            let k = self
-                .gammas
-                .iter()
-                .position(|&g| g == gamma)
-                .expect("gamma of the grid");
-            masters[k]
-        };
         self.cases()
             .par_iter()
             .map(|case| {
-                let run = case.run(params)?;
+                let r = run_case(case, params);
                 progress();
-                let master = master_of(case.gamma);
-                let (converged, failure) = match &run.report.status {
-                    SolveStatus::Converged => (true, String::new()),
-                    SolveStatus::NotConverged { reason } => (false, reason.clone()),
-                };
-                Ok(CantileverRecord {
-                    material: case.material.name.to_string(),
-                    mesh: case.mesh.name().to_string(),
-                    n_elements: case.n_elements,
-                    gamma: case.gamma,
-                    ratio: run.ratio,
-                    master,
-                    rel_error: run.ratio / master - 1.0,
-                    converged,
-                    iterations: run.report.iterations,
-                    load_steps: run.report.load_steps,
-                    seconds: run.seconds,
-                    relative_residual: run.report.relative_residual,
-                    negative_eigenvalues: run.report.inertia.map(|i| i.negative),
-                    lambda_min_normalized: run.report.lambda_min_normalized,
-                    failure,
-                })
+                r
             })
             .collect()
     }
+}
+
+/// Runs one case and scores it against the master curve at its Γ.
+pub fn run_case(
+    case: &CantileverCase,
+    params: &SolverParams,
+) -> Result<CantileverRecord, SweepError> {
+    let master = master_ratio(case.gamma)?;
+    let run = case.run(params)?;
+    let (converged, failure) = match &run.report.status {
+        SolveStatus::Converged => (true, String::new()),
+        SolveStatus::NotConverged { reason } => (false, reason.clone()),
+    };
+    Ok(CantileverRecord {
+        material: case.material.name.to_string(),
+        mesh: case.mesh.name().to_string(),
+        n_elements: case.n_elements,
+        gamma: case.gamma,
+        ratio: run.ratio,
+        master,
+        rel_error: run.ratio / master - 1.0,
+        converged,
+        iterations: run.report.iterations,
+        load_steps: run.report.load_steps,
+        relative_residual: run.report.relative_residual,
+        negative_eigenvalues: run.report.inertia.map(|i| i.negative),
+        lambda_min_normalized: run.report.lambda_min_normalized,
+        failure,
+    })
 }
 
 /// Worst relative errors of one discretization (material, mesh, N) over Γ.
