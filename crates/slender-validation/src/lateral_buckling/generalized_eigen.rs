@@ -29,16 +29,28 @@ pub enum PencilError {
 pub fn largest_pencil_eigenvalue(k: &Mat<f64>, g: &Mat<f64>) -> Result<f64, PencilError> {
     debug_assert_eq!(k.nrows(), k.ncols());
     debug_assert_eq!((g.nrows(), g.ncols()), (k.nrows(), k.ncols()));
+    // Jacobi scaling (eigenvalues unchanged): the Ritz bases are far from orthonormal, and
+    // a unit diagonal keeps the Cholesky factor as well conditioned as the basis allows.
+    let n = k.nrows();
+    let mut d = vec![0.0; n];
+    for (i, di) in d.iter_mut().enumerate() {
+        let kii = k[(i, i)];
+        if !(kii > 0.0 && kii.is_finite()) {
+            return Err(PencilError::NotPositiveDefinite);
+        }
+        *di = 1.0 / kii.sqrt();
+    }
+    let k = Mat::from_fn(n, n, |i, j| d[i] * k[(i, j)] * d[j]);
+    let g = Mat::from_fn(n, n, |i, j| d[i] * g[(i, j)] * d[j]);
     let llt = k
         .llt(Side::Lower)
         .map_err(|_| PencilError::NotPositiveDefinite)?;
     let l = llt.L();
     // X = L⁻¹ G, then M = L⁻¹ Xᵀ = L⁻¹ G L⁻ᵀ (G symmetric).
-    let mut x = g.clone();
+    let mut x = g;
     l.solve_lower_triangular_in_place(x.as_mut());
     let mut m = x.transpose().to_owned();
     l.solve_lower_triangular_in_place(m.as_mut());
-    let n = m.nrows();
     let sym = Mat::from_fn(n, n, |i, j| 0.5 * (m[(i, j)] + m[(j, i)]));
     let eigenvalues = sym
         .self_adjoint_eigenvalues(Side::Lower)

@@ -11,6 +11,13 @@
 pub mod error;
 pub mod generalized_eigen;
 pub mod legendre;
+pub mod master_curve;
+pub mod plate_buckling;
 pub mod vlasov;
 
 pub use error::LateralBucklingError;
+pub use master_curve::{
+    critical_gamma, linear_samples, master_curves, narrow_strip_limit, sample_master_curve,
+    MasterCurve, MasterCurves,
+};
+pub use vlasov::WeakAxisStiffness;
