@@ -53,3 +53,31 @@ pub enum LateralBucklingError {
         source: PencilError,
     },
 }
+
+/// `ν` must lie in the open interval `(−1, 0.5)` (positive definite isotropic plane
+/// stress and plate bending).
+pub(crate) fn check_poisson_ratio(nu: f64) -> Result<(), LateralBucklingError> {
+    if nu > -1.0 && nu < 0.5 {
+        Ok(())
+    } else {
+        Err(LateralBucklingError::InvalidArgument {
+            name: "nu (Poisson's ratio)",
+            value: nu,
+            range: "in the open interval (-1, 0.5)",
+        })
+    }
+}
+
+/// The plate's `w/L` must be finite and positive (the Ritz bases need a nondegenerate
+/// rectangle; the converged range of the defaults is narrower, see `critical_gamma`).
+pub(crate) fn check_positive_aspect_ratio(w_over_l: f64) -> Result<(), LateralBucklingError> {
+    if w_over_l > 0.0 && w_over_l.is_finite() {
+        Ok(())
+    } else {
+        Err(LateralBucklingError::InvalidArgument {
+            name: "w_over_l (width/length)",
+            value: w_over_l,
+            range: "finite and > 0",
+        })
+    }
+}

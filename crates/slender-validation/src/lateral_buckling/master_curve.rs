@@ -5,7 +5,7 @@
 //! at `x = 0` with its width `w` along gravity: below it the planar state is stable, above
 //! it the strip buckles sideways.
 
-use super::error::LateralBucklingError;
+use super::error::{check_poisson_ratio, LateralBucklingError};
 use super::plate_buckling::{plate_critical_gamma, PlateDiscretization};
 use super::vlasov::{
     critical_lambda_ritz, critical_lambda_shooting, gamma_per_lambda, warping_parameter,
@@ -50,7 +50,7 @@ impl MasterCurve {
         }
     }
 
-    /// Valid range `[min, max]` of `w/L`.
+    /// Valid range of `w/L`: `(0, 4]` for the Vlasov curves, `[0.01, 2]` for the plate.
     pub fn w_over_l_range(self) -> (f64, f64) {
         match self {
             MasterCurve::KirchhoffPlate => (PLATE_W_OVER_L_MIN, PLATE_W_OVER_L_MAX),
@@ -59,8 +59,10 @@ impl MasterCurve {
     }
 }
 
-/// Smallest `w/L` of the Vlasov curves (`K ≈ 2.4e-4`; use [`narrow_strip_limit`] for 0).
-pub const VLASOV_W_OVER_L_MIN: f64 = 1e-3;
+/// Exclusive lower end of `w/L` for the Vlasov curves: any positive value is accepted
+/// (`w/L → 0` is [`narrow_strip_limit`]). Accuracy ~1e-9 relative for `K ≥ 1e-5`
+/// (`w/L ≳ 4e-5`), ~1e-5 below.
+pub const VLASOV_W_OVER_L_MIN: f64 = 0.0;
 /// Largest `w/L` of the Vlasov curves (a beam model means little beyond `w ~ L` anyway).
 pub const VLASOV_W_OVER_L_MAX: f64 = 4.0;
 /// Smallest `w/L` of the plate curve (its default basis is converged down to here).
@@ -68,26 +70,19 @@ pub const PLATE_W_OVER_L_MIN: f64 = 0.01;
 /// Largest `w/L` of the plate curve.
 pub const PLATE_W_OVER_L_MAX: f64 = 2.0;
 
-fn check_nu(nu: f64) -> Result<(), LateralBucklingError> {
-    if !(nu > -1.0 && nu < 0.5) {
-        return Err(LateralBucklingError::InvalidArgument {
-            name: "nu (Poisson's ratio)",
-            value: nu,
-            range: "in the open interval (-1, 0.5)",
-        });
-    }
-    Ok(())
-}
-
 fn check_w_over_l(w_over_l: f64, curve: MasterCurve) -> Result<(), LateralBucklingError> {
     let (lo, hi) = curve.w_over_l_range();
-    if !(w_over_l >= lo && w_over_l <= hi) {
+    let above_lo = match curve {
+        MasterCurve::KirchhoffPlate => w_over_l >= lo,
+        _ => w_over_l > lo,
+    };
+    if !(above_lo && w_over_l <= hi) {
         return Err(LateralBucklingError::InvalidArgument {
             name: "w_over_l (width/length)",
             value: w_over_l,
             range: match curve {
                 MasterCurve::KirchhoffPlate => "in [0.01, 2] for the Kirchhoff plate",
-                _ => "in [0.001, 4] for the Vlasov curves",
+                _ => "in (0, 4] for the Vlasov curves",
             },
         });
     }
@@ -107,7 +102,7 @@ pub fn critical_gamma(
     nu: f64,
     curve: MasterCurve,
 ) -> Result<f64, LateralBucklingError> {
-    check_nu(nu)?;
+    check_poisson_ratio(nu)?;
     check_w_over_l(w_over_l, curve)?;
     let vlasov = |stiffness| -> Result<f64, LateralBucklingError> {
         let k = warping_parameter(w_over_l, nu);
@@ -131,7 +126,7 @@ pub fn narrow_strip_limit(
     nu: f64,
     stiffness: WeakAxisStiffness,
 ) -> Result<f64, LateralBucklingError> {
-    check_nu(nu)?;
+    check_poisson_ratio(nu)?;
     Ok(critical_lambda_shooting(0.0)? * gamma_per_lambda(nu, stiffness))
 }
 

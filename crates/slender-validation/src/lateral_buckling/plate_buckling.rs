@@ -21,7 +21,7 @@
 //! basis grows; the membrane field converges in energy, with the clamp-corner stress
 //! singularity as the slowest part.
 
-use super::error::LateralBucklingError;
+use super::error::{check_poisson_ratio, check_positive_aspect_ratio, LateralBucklingError};
 use super::generalized_eigen::largest_pencil_eigenvalue;
 use super::legendre::{gauss_legendre, legendre_with_derivatives};
 use faer::linalg::solvers::Solve;
@@ -289,6 +289,13 @@ pub fn solve_membrane(
     nu: f64,
     orders: TensorOrders,
 ) -> Result<MembraneSolution, LateralBucklingError> {
+    check_positive_aspect_ratio(w_over_l)?;
+    check_poisson_ratio(nu)?;
+    PlateDiscretization {
+        buckling: orders,
+        membrane: orders,
+    }
+    .validate()?;
     let (mx, nz) = (orders.along_length, orders.across_width);
     let a = w_over_l;
     // 1-D Gram matrices, exact (degree ≤ 2·order in each direction).
@@ -349,13 +356,15 @@ pub fn solve_membrane(
 }
 
 /// Critical `Γ_shell = ρhgL³/D` of the clamped Kirchhoff plate under in-plane self-weight,
-/// for aspect ratio `w_over_l` and Poisson's ratio `nu` (arguments assumed validated by
-/// the caller, see [`super::master_curve::critical_gamma`]).
+/// for aspect ratio `w_over_l > 0` and Poisson's ratio `nu ∈ (−1, 0.5)` with the given
+/// bases ([`super::master_curve::critical_gamma`] picks converged defaults).
 pub fn plate_critical_gamma(
     w_over_l: f64,
     nu: f64,
     disc: &PlateDiscretization,
 ) -> Result<f64, LateralBucklingError> {
+    check_positive_aspect_ratio(w_over_l)?;
+    check_poisson_ratio(nu)?;
     disc.validate()?;
     let membrane = solve_membrane(w_over_l, nu, disc.membrane)?;
     let a = w_over_l;
