@@ -4,9 +4,10 @@
 //!
 //! Run in release: `cargo test -p slender-validation --release --test lateral_buckling_master_curve`.
 
+use slender_validation::lateral_buckling::generalized_eigen::PencilError;
 use slender_validation::lateral_buckling::legendre::gauss_legendre;
 use slender_validation::lateral_buckling::plate_buckling::{
-    plate_critical_gamma, solve_membrane, PlateDiscretization, TensorOrders,
+    buckling_multiplier, plate_critical_gamma, solve_membrane, PlateDiscretization, TensorOrders,
 };
 use slender_validation::lateral_buckling::vlasov::{
     critical_lambda_ritz, critical_lambda_ritz_single, critical_lambda_shooting, gamma_per_lambda,
@@ -200,6 +201,47 @@ fn membrane_forces_satisfy_section_statics() {
     }
     assert!(worst[2] < 5e-4, "{worst:?}");
     assert!(worst[2] < worst[0], "{worst:?}");
+}
+
+#[test]
+fn plate_under_uniform_compression_is_the_euler_cantilever() {
+    // Prescribed n_xx = −1: with ν = 0 the cylindrical mode u = 1 − cos(πx/2) satisfies
+    // every plate equation and free-edge condition, so Γ = π²/4 exactly, for any width.
+    // With ν > 0 it lies between the beam (anticlastic free, π²(1−ν²)/4) and the
+    // cylindrical plate (π²/4), approaching the beam for narrow strips.
+    let uniform = |xs: &[f64], zs: &[f64]| vec![[-1.0, 0.0, 0.0]; xs.len() * zs.len()];
+    let orders = TensorOrders {
+        along_length: 14,
+        across_width: 6,
+    };
+    let field = TensorOrders {
+        along_length: 2,
+        across_width: 2,
+    };
+    let euler = std::f64::consts::PI.powi(2) / 4.0;
+    for a in [0.1, 1.0] {
+        let g = buckling_multiplier(a, 0.0, orders, field, uniform).unwrap();
+        println!("ν = 0, w/L = {a}: Γ = {g:.12} (π²/4 = {euler:.12})");
+        assert!(rel(g, euler) < 1e-10, "{g}");
+    }
+    let nu = 0.3;
+    let beam = euler * (1.0 - nu * nu);
+    let narrow = buckling_multiplier(0.05, nu, orders, field, uniform).unwrap();
+    let wide = buckling_multiplier(1.0, nu, orders, field, uniform).unwrap();
+    println!(
+        "ν = 0.3: beam {beam:.5}, w/L = 0.05 {narrow:.5}, w/L = 1 {wide:.5}, plate {euler:.5}"
+    );
+    assert!(beam < narrow && narrow < wide && wide < euler);
+    assert!(rel(narrow, beam) < 1e-2);
+    // Uniform tension never buckles: reported, not a bogus number.
+    let tension = |xs: &[f64], zs: &[f64]| vec![[1.0, 0.0, 0.0]; xs.len() * zs.len()];
+    assert!(matches!(
+        buckling_multiplier(0.5, nu, orders, field, tension),
+        Err(LateralBucklingError::Pencil {
+            source: PencilError::NoPositiveEigenvalue,
+            ..
+        })
+    ));
 }
 
 #[test]

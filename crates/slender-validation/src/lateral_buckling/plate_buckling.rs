@@ -367,9 +367,39 @@ pub fn plate_critical_gamma(
     check_poisson_ratio(nu)?;
     disc.validate()?;
     let membrane = solve_membrane(w_over_l, nu, disc.membrane)?;
+    buckling_multiplier(w_over_l, nu, disc.buckling, disc.membrane, |xs, zs| {
+        membrane.forces_on_grid(xs, zs)
+    })
+}
+
+/// Smallest positive multiplier `Γ` of a prescribed membrane force field `n(x, z)` at
+/// which the clamped plate (`D = L = 1`, width `w_over_l`) buckles out of plane:
+/// `K_b c = Γ (−K_g[n]) c`.
+///
+/// `forces(xs, zs)` returns `[n_xx, n_xz, n_zz]` (tension positive) on the grid `xs × zs`,
+/// indexed `[ix · zs.len() + iz]`. `field_orders` bounds the polynomial degree of the field
+/// (`< along_length` in x, `< across_width` in z) so that the Gauss rules integrate the
+/// geometric stiffness exactly; the self-weight field passes its membrane basis orders.
+pub fn buckling_multiplier<F>(
+    w_over_l: f64,
+    nu: f64,
+    buckling: TensorOrders,
+    field_orders: TensorOrders,
+    forces: F,
+) -> Result<f64, LateralBucklingError>
+where
+    F: Fn(&[f64], &[f64]) -> Vec<[f64; 3]>,
+{
+    check_positive_aspect_ratio(w_over_l)?;
+    check_poisson_ratio(nu)?;
+    PlateDiscretization {
+        buckling,
+        membrane: field_orders,
+    }
+    .validate()?;
     let a = w_over_l;
-    let (mb, nb) = (disc.buckling.along_length, disc.buckling.across_width);
-    let (mm, nm) = (disc.membrane.along_length, disc.membrane.across_width);
+    let (mb, nb) = (buckling.along_length, buckling.across_width);
+    let (mm, nm) = (field_orders.along_length, field_orders.across_width);
 
     // Bending stiffness (D = 1): u_xx² + u_zz² + 2ν u_xx u_zz + 2(1−ν) u_xz².
     let (tx, wx) = rule(mb + 3, 1.0);
@@ -388,17 +418,25 @@ pub fn plate_critical_gamma(
         (2.0 * (1.0 - nu), &g11, &y11),
     ]);
 
-    // Geometric stiffness: exact for degree 2·(mb+1)−2 + mm along x and 2·nb−2 + nm−1
-    // across.
+    // Geometric stiffness: integrand degree ≤ 2(mb+1) + mm along x and ≤ 2nb − 2 + nm
+    // across, so these Gauss rules are exact.
     let (tx, wx) = rule(mb + mm / 2 + 2, 1.0);
     let (tz, wz) = rule(nb + nm / 2 + 1, a);
     let gx = tabulate(&tx, mb, 0.5, ClampFactor::Quadratic);
     let hz = tabulate(&tz, nb, 0.5 * a, ClampFactor::None);
-    let fxm = tabulate(&tx, mm, 0.5, ClampFactor::Linear);
-    let hzm = tabulate(&tz, nm, 0.5 * a, ClampFactor::None);
-    let forces = membrane.forces_from_tables(&fxm, &hzm);
+    let xs: Vec<f64> = tx.iter().map(|t| 0.5 * (t + 1.0)).collect();
+    let zs: Vec<f64> = tz.iter().map(|t| 0.5 * a * t).collect();
+    let field = forces(&xs, &zs);
     let (qx, qz) = (tx.len(), tz.len());
     let nq = qx * qz;
+    if field.len() != nq {
+        return Err(LateralBucklingError::InvalidSize {
+            name: "forces(xs, zs).len()",
+            value: field.len(),
+            min: nq,
+            max: nq,
+        });
+    }
     let nd = mb * nb;
     // Rows q: u_,x of each basis function; rows nq + q: u_,z.
     let grad = Mat::from_fn(2 * nq, nd, |r, i| {
@@ -416,7 +454,7 @@ pub fn plate_critical_gamma(
         let q = r % nq;
         let (ix, iz) = (q / qz, q % qz);
         let w = wx[ix] * wz[iz];
-        let [nxx, nxz, nzz] = forces[q];
+        let [nxx, nxz, nzz] = field[q];
         let (ux, uz) = (grad[(q, i)], grad[(nq + q, i)]);
         if r < nq {
             -w * (nxx * ux + nxz * uz)
