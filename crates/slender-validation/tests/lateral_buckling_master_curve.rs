@@ -370,3 +370,21 @@ fn bad_input_is_rejected_naming_the_argument() {
         Err(LateralBucklingError::InvalidSize { .. })
     ));
 }
+
+#[test]
+fn acceptance_rows_all_pass() {
+    let t = Instant::now();
+    let checks = slender_validation::lateral_buckling::master_curve_checks().unwrap();
+    println!("master_curve_checks: {:.2?}", t.elapsed());
+    for c in &checks {
+        println!(
+            "{} | {:.3e} | {} | {}",
+            c.description,
+            c.measured,
+            c.target,
+            if c.passed { "PASS" } else { "FAIL" }
+        );
+    }
+    assert_eq!(checks.len(), 7);
+    assert!(checks.iter().all(|c| c.passed));
+}
