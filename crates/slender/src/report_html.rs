@@ -115,6 +115,12 @@ fn caption(dir: &str, stem: &str) -> String {
                 .into(),
             _ => words(stem),
         },
+        "lateral-buckling" => match stem {
+            "master_curves" => "Ground truth of the seed's Figs. 10–11: critical Γ_shell against \
+                                w/L, Kirchhoff plate and Vlasov beam (both weak-axis stiffnesses)."
+                .into(),
+            _ => words(stem),
+        },
         _ => words(stem),
     }
 }

@@ -35,8 +35,12 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     };
     crate::cantilever_report::print_summary(&cantilever.summary);
     crate::bend_twist_report::print_summary(&bend_twist.summary);
+    let lb_clock = Instant::now();
+    let lateral_checks = crate::lateral_buckling_report::run(&out.join("lateral-buckling"))?;
+    let lateral_seconds = lb_clock.elapsed().as_secs_f64();
     let mut checks = cantilever_checks(&cantilever.records, &SolverParams::default())?;
     checks.extend(bend_twist_checks(&bend_twist.summary));
+    checks.extend(lateral_checks);
     write_csv(&out.join("checks.csv"), &checks)?;
     write_atomic(&out.join("checks.md"), markdown(&checks).as_bytes())?;
     println!();
@@ -75,6 +79,21 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                         bt_sweep.xs.len(),
                         bt_sweep.ys.len(),
                         bt_sweep.elements_per_turn
+                    ),
+                },
+                Section {
+                    title: "Lateral buckling of a heavy clamped strip: master curves".into(),
+                    dir: "lateral-buckling".into(),
+                    wall_seconds: lateral_seconds,
+                    stats: Default::default(),
+                    about: format!(
+                        "The critical Γ_shell of a strip clamped with its width along gravity, against \
+                         w/L (ν = {}), computed in code by two methods independent of any shell: the \
+                         linear buckling load of the clamped Kirchhoff plate under its in-plane \
+                         self-weight (Legendre Ritz), and the Vlasov warping-torsion beam with both \
+                         weak-axis stiffness conventions (shooting and Hermite Ritz). The shell model \
+                         and its lateral-buckling sweep are not in this version yet.",
+                        crate::lateral_buckling_report::NU
                     ),
                 },
             ],

@@ -12,6 +12,7 @@
 mod cantilever_ratio;
 mod font;
 mod height_map;
+mod line_chart;
 mod phase_diagram;
 mod relative_error;
 mod shape_2d;
@@ -20,6 +21,7 @@ mod style;
 
 pub use cantilever_ratio::{plot_cantilever_ratio, Curve};
 pub use height_map::{plot_height_map, Overlay};
+pub use line_chart::{plot_lines, LineAxes};
 pub use phase_diagram::{plot_phase_diagram, Phase, PhasePoint};
 pub use relative_error::plot_relative_error;
 pub use shape_2d::plot_shapes_2d;
@@ -96,8 +98,10 @@ fn render(stem: &Path, figure: &impl Figure) -> Result<()> {
 
 /// How an axis maps values to positions.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Scale {
+pub enum Scale {
+    /// Linear axis.
     Linear,
+    /// Logarithmic axis (positive values only).
     Log,
 }
 
