@@ -45,7 +45,7 @@ impl Progress {
             None => {
                 // About ten lines per run in logs.
                 let step = (self.total / 10).max(1);
-                if done % step == 0 || done == self.total {
+                if done.is_multiple_of(step) || done == self.total {
                     eprintln!(
                         "{}: {done}/{} done ({:.1} s)",
                         self.label,

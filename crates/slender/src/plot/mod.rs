@@ -9,6 +9,7 @@
 //! (tick choice, label-area sizes), filtering of unplottable data, series and
 //! legend drawing.
 
+mod boxplot;
 mod cantilever_ratio;
 mod font;
 mod height_map;
@@ -19,6 +20,9 @@ mod shape_2d;
 mod shape_3d;
 mod style;
 
+// Used by the sensitivity study of the lateral-buckling benchmark (issue 4).
+#[allow(unused_imports)]
+pub use boxplot::{plot_boxplots, BoxPanel, BoxSample};
 pub use cantilever_ratio::{plot_cantilever_ratio, Curve};
 pub use height_map::{plot_height_map, Overlay};
 pub use line_chart::{plot_lines, LineAxes};
