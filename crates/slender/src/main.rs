@@ -4,7 +4,7 @@
 
 mod bend_twist_report;
 mod cantilever_report;
-mod lateral_buckling_report;
+mod lateral_buckling_curves_report;
 mod output;
 #[allow(dead_code)]
 mod plot;

@@ -36,7 +36,7 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     crate::cantilever_report::print_summary(&cantilever.summary);
     crate::bend_twist_report::print_summary(&bend_twist.summary);
     let lb_clock = Instant::now();
-    let lateral_checks = crate::lateral_buckling_report::run(&out.join("lateral-buckling"))?;
+    let lateral_checks = crate::lateral_buckling_curves_report::run(&out.join("lateral-buckling"))?;
     let lateral_seconds = lb_clock.elapsed().as_secs_f64();
     let mut checks = cantilever_checks(&cantilever.records, &SolverParams::default())?;
     checks.extend(bend_twist_checks(&bend_twist.summary));
@@ -93,7 +93,7 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                          self-weight (Legendre Ritz), and the Vlasov warping-torsion beam with both \
                          weak-axis stiffness conventions (shooting and Hermite Ritz). The shell model \
                          and its lateral-buckling sweep are not in this version yet.",
-                        crate::lateral_buckling_report::NU
+                        crate::lateral_buckling_curves_report::NU
                     ),
                 },
             ],

@@ -8,7 +8,7 @@
 //!   in-plane self-weight, by a two-stage Legendre Ritz method;
 //! * [`master_curve`]: the public API (`critical_gamma`, samplers) the sweep and plots use.
 
-pub mod acceptance;
+pub mod master_curve_checks;
 pub mod error;
 pub mod generalized_eigen;
 pub mod legendre;
@@ -16,7 +16,7 @@ pub mod master_curve;
 pub mod plate_buckling;
 pub mod vlasov;
 
-pub use acceptance::master_curve_checks;
+pub use master_curve_checks::master_curve_checks;
 pub use error::LateralBucklingError;
 pub use master_curve::{
     critical_gamma, linear_samples, master_curves, narrow_strip_limit, sample_master_curve,
