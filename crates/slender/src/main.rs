@@ -8,6 +8,7 @@ mod output;
 #[allow(dead_code)]
 mod plot;
 mod progress;
+mod solve;
 mod validate;
 
 use std::path::PathBuf;
@@ -37,6 +38,18 @@ enum Command {
     BendTwist(BendTwistArgs),
     /// Run the validation suite and print a pass/fail table (exit code 1 if a target fails).
     Validate(ValidateArgs),
+    /// Equilibria of a scene file (TOML or JSON): shapes (VTK, glTF, PNG), frames, strains,
+    /// reactions and solver reports (JSON, CSV); prescribed support motion in steps.
+    Solve(solve::SolveArgs),
+    /// Print (or write with --out) the JSON Schema of the scene format.
+    SceneSchema(SceneSchemaArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct SceneSchemaArgs {
+    /// Write the schema to this file instead of printing it.
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -226,6 +239,19 @@ fn run(cli: Cli) -> Result<bool> {
             let out = pool.install(|| bend_twist_report::run(&sweep, &a.out))?;
             bend_twist_report::print_summary(&out.summary);
             println!("wrote {}", a.out.display());
+            Ok(true)
+        }
+        Command::Solve(a) => {
+            let ok = solve::run(&a)?;
+            solve::print_summary(&a.out)?;
+            println!("wrote {}", a.out.display());
+            if !ok {
+                eprintln!("error: some step did not converge; see solver.csv and report.json");
+            }
+            Ok(ok)
+        }
+        Command::SceneSchema(a) => {
+            solve::write_schema(a.out.as_deref())?;
             Ok(true)
         }
         Command::Validate(a) => {

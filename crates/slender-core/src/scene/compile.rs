@@ -449,12 +449,20 @@ fn compile_rod(
     let whole_curve = RestCurve::Polyline {
         points: positions.iter().map(|p| [p.x, p.y, p.z]).collect(),
     };
+    let chord_nodes = |pts: &[Vec3]| -> Vec<f64> {
+        std::iter::once(0.0)
+            .chain(pts.windows(2).scan(0.0, |s, w| {
+                *s += (w[1] - w[0]).norm();
+                Some(*s)
+            }))
+            .collect()
+    };
     let segment_director = |a: usize| -> Result<Option<Vec3>, SceneError> {
         if bounds.len() == 2 {
             return Ok(first_director);
         }
         let mut b = RodBuilder::new(whole_curve.clone(), properties)
-            .nodes_at(nodes.clone())
+            .nodes_at(chord_nodes(&positions))
             .clamp_start();
         if let Some(d) = first_director {
             b = b.first_director(d);
@@ -480,12 +488,7 @@ fn compile_rod(
             }
         } else {
             let pts: Vec<[f64; 3]> = positions[a..=b].iter().map(|p| [p.x, p.y, p.z]).collect();
-            let local: Vec<f64> = std::iter::once(0.0)
-                .chain(pts.windows(2).scan(0.0, |s, w| {
-                    *s += (Vec3::from(w[1]) - Vec3::from(w[0])).norm();
-                    Some(*s)
-                }))
-                .collect();
+            let local = chord_nodes(&positions[a..=b]);
             RodBuilder::new(RestCurve::Polyline { points: pts }, properties).nodes_at(local)
         };
         if let Some(d) = segment_director(a)? {
