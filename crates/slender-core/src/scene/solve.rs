@@ -4,10 +4,12 @@
 use serde::Serialize;
 
 use crate::geometry::Vec3;
-use crate::rod::{Rod, RodState, SupportMotion};
-use crate::rod::Terms;
 use crate::linalg::{BandLdlt, SymmetricBandMatrix};
-use crate::solver::{EquilibriumProblem, EquilibriumSolver, SolveReport, SolveStatus, SolverParams};
+use crate::rod::Terms;
+use crate::rod::{Rod, RodState, SupportMotion};
+use crate::solver::{
+    EquilibriumProblem, EquilibriumSolver, SolveReport, SolveStatus, SolverParams,
+};
 
 use super::compile::{CompiledRod, CompiledScene};
 use super::spec::{MotionStage, SupportKind};

@@ -62,9 +62,8 @@ pub fn run(args: &SolveArgs) -> Result<bool> {
                 fs::remove_dir_all(&args.out)
                     .with_context(|| format!("replacing {}", args.out.display()))?;
             }
-            fs::rename(&tmp, &args.out).with_context(|| {
-                format!("renaming {} to {}", tmp.display(), args.out.display())
-            })?;
+            fs::rename(&tmp, &args.out)
+                .with_context(|| format!("renaming {} to {}", tmp.display(), args.out.display()))?;
             Ok(ok)
         }
         Err(e) => {
@@ -243,8 +242,7 @@ fn solve_into(scene: &CompiledScene, dir: &Path, preview: bool) -> Result<bool> 
             break;
         }
     }
-    let converged = steps.iter().all(|s| s.converged)
-        && steps.len() == solver.motion_steps() + 1;
+    let converged = steps.iter().all(|s| s.converged) && steps.len() == solver.motion_steps() + 1;
     write_summaries(dir, &steps, converged, clock.elapsed().as_secs_f64())?;
     if preview {
         preview::write_preview(scene, &steps, &dir.join("preview"))?;

@@ -46,9 +46,8 @@ pub fn parse_scene(text: &str, syntax: Syntax, name: &str) -> Result<Scene> {
             };
             anyhow::anyhow!("{place}: {}", e.message().trim_end())
         }),
-        Syntax::Json => serde_json::from_str::<Scene>(text).map_err(|e| {
-            anyhow::anyhow!("{name}:{}:{}: {e}", e.line(), e.column())
-        }),
+        Syntax::Json => serde_json::from_str::<Scene>(text)
+            .map_err(|e| anyhow::anyhow!("{name}:{}:{}: {e}", e.line(), e.column())),
     }
 }
 

@@ -11,7 +11,10 @@ pub fn rods_to_vtk(title: &str, rods: &[CompiledRod], results: &[RodResult]) -> 
     let n_points: usize = results.iter().map(|r| r.positions.len()).sum();
     let mut s = String::new();
     let title: String = title.chars().filter(|c| *c != '\n').take(250).collect();
-    let _ = writeln!(s, "# vtk DataFile Version 3.0\n{title}\nASCII\nDATASET POLYDATA");
+    let _ = writeln!(
+        s,
+        "# vtk DataFile Version 3.0\n{title}\nASCII\nDATASET POLYDATA"
+    );
     let _ = writeln!(s, "POINTS {n_points} double");
     for r in results {
         for p in &r.positions {
