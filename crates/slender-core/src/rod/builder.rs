@@ -282,8 +282,20 @@ impl RodBuilder {
         let t0 = tangents[0];
         let d = match self.first_director {
             Some(m) => {
+                // Rescale a finite director whose norm would overflow or underflow (only then,
+                // so that ordinary inputs keep their exact bits).
+                let big = m.amax();
+                let m = if big.is_finite() && big > 0.0 && !(m.norm() > 1e-150 && m.norm() < 1e150) {
+                    m / big
+                } else {
+                    m
+                };
+                let scale = m.norm();
                 let m = m - t0 * t0.dot(&m);
-                if !(m.norm() > 1e-12) || m.iter().any(|c| !c.is_finite()) {
+                if !(m.norm() > 1e-12 * scale.min(1.0))
+                    || !scale.is_finite()
+                    || m.iter().any(|c| !c.is_finite())
+                {
                     return Err(ModelError::structure(
                         "first_director",
                         "must be finite and not parallel to the rod's first tangent",

@@ -6,6 +6,7 @@
 //! *segments*, each clamped at the shared vertex (a ghost edge and half Voronoi cell, exactly
 //! like an end clamp). A clip is a pin on its vertex and on the next one (twist left free).
 
+use crate::error::ModelError;
 use crate::geometry::Vec3;
 use crate::rod::{CrossSection, Grading, Material, RestCurve, Rod, RodBuilder, RodProperties};
 use crate::rod::{RodState, SectionStiffness};
@@ -179,9 +180,19 @@ fn section(path: &str, spec: &RodSpec, length: f64) -> Result<(RodProperties, f6
             )
         })?;
         let mat = material(&format!("{path}.material"), m)?;
-        let props = shape
-            .properties(&mat)
-            .map_err(|e| SceneError::model(format!("{path}.section/material"), e))?;
+        let props = shape.properties(&mat).map_err(|e| {
+            // Name the table the offending field is in.
+            let field = match &e {
+                ModelError::InvalidParameter { field, .. }
+                | ModelError::InvalidStructure { field, .. } => field.as_str(),
+            };
+            let table = if ["young", "poisson", "density"].contains(&field) {
+                "material"
+            } else {
+                "section"
+            };
+            SceneError::model(format!("{path}.{table}"), e)
+        })?;
         Ok((props, radius))
     };
     match spec.section {
@@ -203,7 +214,7 @@ fn section(path: &str, spec: &RodSpec, length: f64) -> Result<(RodProperties, f6
             if spec.material.is_some() {
                 return Err(SceneError::new(
                     format!("{path}.material"),
-                    "not allowed with shape = \"stiffness\" (the stiffnesses and linear_density say it all)",
+                    "not allowed with section shape = \"stiffness\" (the stiffnesses and linear_density say it all)",
                 ));
             }
             let props = RodProperties {
@@ -333,7 +344,7 @@ fn compile_rod(
         .validate()
         .map_err(|e| SceneError::model(format!("{path}.centerline"), e))?;
     let length = curve.length();
-    let (properties, display_radius) = section(&format!("{path}.section"), spec, length)?;
+    let (properties, display_radius) = section(path, spec, length)?;
 
     // Node arc lengths of the whole rod.
     let nodes: Vec<f64> = match (&spec.centerline, spec.elements, spec.grading) {
@@ -562,6 +573,16 @@ fn check_no_free_motion(
     params: &SolverParams,
 ) -> Result<(), SceneError> {
     let rest: RodState = rod.rest_state().clone();
+    // Overflowing inputs (e.g. a length of 1e308) can leave a finite scene with a non-finite
+    // mesh; nothing can be solved on it.
+    if rest.positions().iter().flatten().any(|c| !c.is_finite())
+        || rod.rest_lengths().iter().any(|l| !(l.is_finite() && *l > 0.0))
+    {
+        return Err(SceneError::new(
+            path,
+            format!("{seg_path}: the mesh has non-finite coordinates; check lengths, radii and points for overflow"),
+        ));
+    }
     let p = SolverParams {
         compute_lambda_min: true,
         ..params.clone()
