@@ -93,10 +93,7 @@ fn unknown_keys_are_located() {
 fn missing_fields_are_named() {
     rejects(
         "missing-section",
-        &GOOD.replace(
-            "section = { shape = \"circle\", diameter = 0.005 }\n",
-            "",
-        ),
+        &GOOD.replace("section = { shape = \"circle\", diameter = 0.005 }\n", ""),
         &["scene.toml:", "missing field `section`"],
     );
     rejects(
@@ -110,7 +107,10 @@ fn missing_fields_are_named() {
     rejects(
         "nu-and-g",
         &GOOD.replace("poisson = 0.4,", "poisson = 0.4, shear_modulus = 3e8,"),
-        &["rods[0].material", "exactly one of `poisson` or `shear_modulus`"],
+        &[
+            "rods[0].material",
+            "exactly one of `poisson` or `shear_modulus`",
+        ],
     );
 }
 
@@ -140,7 +140,11 @@ fn nan_and_non_positive_values_are_rejected_with_the_valid_range() {
             "material = { young = 1.0e9, poisson = 0.4, density = 1400.0 }\n",
             "",
         );
-    rejects("zero-ei", &stiff, &["rods[0].section", "ei1", "finite and > 0"]);
+    rejects(
+        "zero-ei",
+        &stiff,
+        &["rods[0].section", "ei1", "finite and > 0"],
+    );
     rejects(
         "zero-length",
         &GOOD.replace("length = 1.0", "length = 0.0"),
@@ -169,7 +173,11 @@ fn coincident_points_are_named() {
     rejects(
         "coincident",
         &poly.replace("{ kind = \"pin\", vertex = 12 },", ""),
-        &["rods[0].centerline", "points[2]", "coincides with points[1]"],
+        &[
+            "rods[0].centerline",
+            "points[2]",
+            "coincides with points[1]",
+        ],
     );
 }
 
@@ -213,7 +221,11 @@ fn free_rigid_body_motions_are_rejected() {
         "supports = [\n    { kind = \"clamp\", vertex = \"start\" },\n    { kind = \"pin\", vertex = 12 },\n]\n",
         "",
     );
-    rejects("no-support", &no_supports, &["rods[0].supports", "rigid body"]);
+    rejects(
+        "no-support",
+        &no_supports,
+        &["rods[0].supports", "rigid body"],
+    );
     rejects(
         "one-pin",
         &GOOD.replace("{ kind = \"clamp\", vertex = \"start\" },", ""),
@@ -224,8 +236,14 @@ fn free_rigid_body_motions_are_rejected() {
     rejects(
         "clips-spin",
         &GOOD
-            .replace("{ kind = \"clamp\", vertex = \"start\" },", "{ kind = \"clip\", vertex = \"start\" },")
-            .replace("{ kind = \"pin\", vertex = 12 },", "{ kind = \"clip\", vertex = \"end\" },"),
+            .replace(
+                "{ kind = \"clamp\", vertex = \"start\" },",
+                "{ kind = \"clip\", vertex = \"start\" },",
+            )
+            .replace(
+                "{ kind = \"pin\", vertex = 12 },",
+                "{ kind = \"clip\", vertex = \"end\" },",
+            ),
         &["rods[0].supports", "free rigid-body motion"],
     );
 }
@@ -234,7 +252,9 @@ fn free_rigid_body_motions_are_rejected() {
 fn shells_are_not_supported_yet() {
     rejects(
         "shell",
-        &format!("{GOOD}\n[[shells]]\nlength = 1.0\nwidth = 0.1\nthickness = 0.001\nmesh = [20, 4]\n"),
+        &format!(
+            "{GOOD}\n[[shells]]\nlength = 1.0\nwidth = 0.1\nthickness = 0.001\nmesh = [20, 4]\n"
+        ),
         &["shells", "not supported yet"],
     );
 }
@@ -252,7 +272,10 @@ fn json_scenes_are_located_too() {
 }"#;
     let (code, err) = run("json-unknown", "scene.json", json);
     assert_ne!(code, 0);
-    assert!(err.contains("scene.json:7:") && err.contains("colour"), "{err}");
+    assert!(
+        err.contains("scene.json:7:") && err.contains("colour"),
+        "{err}"
+    );
     let (code, err) = run("json-syntax", "scene.json", "{\"rods\": [}");
     assert_ne!(code, 0);
     assert!(err.contains("scene.json:1:"), "{err}");
@@ -292,5 +315,8 @@ fn a_foreign_output_directory_is_not_overwritten() {
         .unwrap();
     assert_ne!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stderr).contains("not empty"));
-    assert_eq!(std::fs::read_to_string(out.join("precious.txt")).unwrap(), "keep");
+    assert_eq!(
+        std::fs::read_to_string(out.join("precious.txt")).unwrap(),
+        "keep"
+    );
 }

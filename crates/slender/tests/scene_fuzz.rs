@@ -10,7 +10,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use proptest::prelude::*;
 
 /// How far fuzzed inputs got: parsed, compiled, solved (printed with --nocapture).
-static REACHED: [AtomicUsize; 3] = [AtomicUsize::new(0), AtomicUsize::new(0), AtomicUsize::new(0)];
+static REACHED: [AtomicUsize; 3] = [
+    AtomicUsize::new(0),
+    AtomicUsize::new(0),
+    AtomicUsize::new(0),
+];
 use scene_io::{parse_scene, Syntax};
 use slender_core::scene::solve::SceneSolver;
 
@@ -30,11 +34,48 @@ fn examples() -> Vec<String> {
 
 /// Replacement tokens for numbers, names and keys: edge cases a user could type.
 const TOKENS: &[&str] = &[
-    "0", "1", "-1", "2", "3", "7", "19", "20", "21", "40", "41", "1000000", "0.0", "-0.0",
-    "1e-300", "1e308", "-1e308", "nan", "inf", "-inf", "0.5", "-2.5", "\"start\"", "\"end\"",
-    "\"clip\"", "\"pin\"", "\"clamp\"", "\"polyline\"", "\"helix\"", "\"arc\"", "\"stiffness\"",
-    "\"rectangle\"", "[]", "[0.0, 0.0]", "[1.0, 0.0, 0.0]", "[0.0, 0.0, 0.0]", "{}", "true",
-    "\"x\"", "elements", "vertex", "[[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]",
+    "0",
+    "1",
+    "-1",
+    "2",
+    "3",
+    "7",
+    "19",
+    "20",
+    "21",
+    "40",
+    "41",
+    "1000000",
+    "0.0",
+    "-0.0",
+    "1e-300",
+    "1e308",
+    "-1e308",
+    "nan",
+    "inf",
+    "-inf",
+    "0.5",
+    "-2.5",
+    "\"start\"",
+    "\"end\"",
+    "\"clip\"",
+    "\"pin\"",
+    "\"clamp\"",
+    "\"polyline\"",
+    "\"helix\"",
+    "\"arc\"",
+    "\"stiffness\"",
+    "\"rectangle\"",
+    "[]",
+    "[0.0, 0.0]",
+    "[1.0, 0.0, 0.0]",
+    "[0.0, 0.0, 0.0]",
+    "{}",
+    "true",
+    "\"x\"",
+    "elements",
+    "vertex",
+    "[[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]",
 ];
 
 /// One edit of a scene text.
@@ -79,9 +120,7 @@ fn tokens(text: &str) -> Vec<(usize, usize)> {
             out.push((s, i.min(b.len())));
         } else if b[i].is_ascii_alphanumeric() || b[i] == b'-' || b[i] == b'.' {
             let s = i;
-            while i < b.len()
-                && (b[i].is_ascii_alphanumeric() || b"-.+_".contains(&b[i]))
-            {
+            while i < b.len() && (b[i].is_ascii_alphanumeric() || b"-.+_".contains(&b[i])) {
                 i += 1;
             }
             out.push((s, i));
@@ -228,6 +267,8 @@ proptest! {
 fn every_example_parses_and_compiles() {
     for (i, text) in examples().iter().enumerate() {
         let scene = parse_scene(text, Syntax::Toml, "example").unwrap();
-        scene.compile().unwrap_or_else(|e| panic!("example {i}: {e}"));
+        scene
+            .compile()
+            .unwrap_or_else(|e| panic!("example {i}: {e}"));
     }
 }

@@ -42,10 +42,9 @@ fn solve_scene(name: &str) -> (PathBuf, Value) {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let result: Value = serde_json::from_str(
-        &std::fs::read_to_string(out.join("step_000/result.json")).unwrap(),
-    )
-    .unwrap();
+    let result: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("step_000/result.json")).unwrap())
+            .unwrap();
     (out, result)
 }
 
@@ -70,7 +69,10 @@ struct Vtk {
 
 fn read_vtk(text: &str) -> Vtk {
     let mut lines_iter = text.lines();
-    assert!(lines_iter.next().unwrap().starts_with("# vtk DataFile Version"));
+    assert!(lines_iter
+        .next()
+        .unwrap()
+        .starts_with("# vtk DataFile Version"));
     let _title = lines_iter.next().unwrap();
     assert_eq!(lines_iter.next().unwrap(), "ASCII");
     assert_eq!(lines_iter.next().unwrap(), "DATASET POLYDATA");
@@ -90,7 +92,11 @@ fn read_vtk(text: &str) -> Vtk {
     let mut count = 0;
     for _ in 0..n_lines {
         let m: usize = word().parse().unwrap();
-        lines.push((0..m).map(|_| word().parse().unwrap()).collect::<Vec<usize>>());
+        lines.push(
+            (0..m)
+                .map(|_| word().parse().unwrap())
+                .collect::<Vec<usize>>(),
+        );
         count += m + 1;
     }
     assert_eq!(count, size, "LINES size field");
@@ -128,7 +134,10 @@ fn vtk_reads_back_with_exact_positions_and_radii() {
     // bit up to serde_json's reader (not correctly rounded by default: allow 1 ulp).
     for (p, q) in vtk.points.iter().zip(arm.iter().chain(ring.iter())) {
         for c in 0..3 {
-            assert!((p[c] - q[c]).abs() <= f64::EPSILON * q[c].abs(), "{p:?} vs {q:?}");
+            assert!(
+                (p[c] - q[c]).abs() <= f64::EPSILON * q[c].abs(),
+                "{p:?} vs {q:?}"
+            );
         }
     }
     let radius = &vtk.scalars.iter().find(|s| s.0 == "radius").unwrap().1;
@@ -195,7 +204,10 @@ fn gltf_reads_back_with_matching_accessors() {
         }
         let a = &doc["accessors"][acc];
         for c in 0..3 {
-            let lo = positions.iter().map(|p| p[c] as f32).fold(f32::INFINITY, f32::min);
+            let lo = positions
+                .iter()
+                .map(|p| p[c] as f32)
+                .fold(f32::INFINITY, f32::min);
             let hi = positions
                 .iter()
                 .map(|p| p[c] as f32)
@@ -252,5 +264,8 @@ fn the_json_schema_is_generated_from_the_types_and_matches_the_committed_copy() 
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scene.schema.json"),
     )
     .expect("examples/scene.schema.json (regenerate: slender scene-schema --out examples/scene.schema.json)");
-    assert_eq!(committed, text, "examples/scene.schema.json is stale; regenerate it");
+    assert_eq!(
+        committed, text,
+        "examples/scene.schema.json is stale; regenerate it"
+    );
 }

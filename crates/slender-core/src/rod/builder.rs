@@ -285,7 +285,8 @@ impl RodBuilder {
                 // Rescale a finite director whose norm would overflow or underflow (only then,
                 // so that ordinary inputs keep their exact bits).
                 let big = m.amax();
-                let m = if big.is_finite() && big > 0.0 && !(m.norm() > 1e-150 && m.norm() < 1e150) {
+                let m = if big.is_finite() && big > 0.0 && !(m.norm() > 1e-150 && m.norm() < 1e150)
+                {
                     m / big
                 } else {
                     m

@@ -20,6 +20,9 @@ use super::spec::{
 /// Default number of elements of a rod whose centerline is not a polyline.
 pub const DEFAULT_ELEMENTS: usize = 20;
 
+/// Largest number of solved pieces one motion step may need (see `solve.rs`).
+const MAX_PIECES_PER_STEP: f64 = 1000.0;
+
 /// A support after validation, with its vertices in the whole rod's numbering.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CompiledSupport {
@@ -321,6 +324,28 @@ impl Scene {
                     format!("{}: must be in 1..=10000", stage.steps),
                 ));
             }
+            // Each step is solved in pieces small enough for Newton (see solve.rs); bound
+            // their number so that an absurd motion is an error, not an endless run.
+            let shortest = rod
+                .segments
+                .iter()
+                .map(|s| s.rod.length())
+                .fold(f64::INFINITY, f64::min);
+            let per_step = |v: [f64; 3]| Vec3::from(v).norm() / stage.steps as f64;
+            let pieces = (per_step(stage.rotate) / super::solve::MAX_PIECE_ROTATION)
+                .max(per_step(stage.translate) / (super::solve::MAX_PIECE_TRANSLATION * shortest));
+            if !(pieces <= MAX_PIECES_PER_STEP) {
+                return Err(SceneError::new(
+                    path,
+                    format!(
+                        "the motion per step is too large ({:.3e} rad, {:.3e} m per step would need {pieces:.3e} solves); at most {} rad and {} m per step here: use more steps",
+                        per_step(stage.rotate),
+                        per_step(stage.translate),
+                        MAX_PIECES_PER_STEP * super::solve::MAX_PIECE_ROTATION,
+                        MAX_PIECES_PER_STEP * super::solve::MAX_PIECE_TRANSLATION * shortest
+                    ),
+                ));
+            }
         }
         Ok(CompiledScene {
             rods,
@@ -576,7 +601,10 @@ fn check_no_free_motion(
     // Overflowing inputs (e.g. a length of 1e308) can leave a finite scene with a non-finite
     // mesh; nothing can be solved on it.
     if rest.positions().iter().flatten().any(|c| !c.is_finite())
-        || rod.rest_lengths().iter().any(|l| !(l.is_finite() && *l > 0.0))
+        || rod
+            .rest_lengths()
+            .iter()
+            .any(|l| !(l.is_finite() && *l > 0.0))
     {
         return Err(SceneError::new(
             path,

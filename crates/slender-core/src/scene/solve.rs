@@ -15,11 +15,11 @@ use super::compile::{CompiledRod, CompiledScene};
 use super::spec::{MotionStage, SupportKind};
 
 /// Largest rotation (rad) of a support per solved piece of a motion step.
-const MAX_PIECE_ROTATION: f64 = 0.2;
+pub(super) const MAX_PIECE_ROTATION: f64 = 0.2;
 /// Largest translation per solved piece, as a fraction of the moving segment's length.
-const MAX_PIECE_TRANSLATION: f64 = 0.05;
-/// Smallest piece of a motion step (fraction of the step) before giving up.
-const MIN_PIECE: f64 = 1.0 / 4096.0;
+pub(super) const MAX_PIECE_TRANSLATION: f64 = 0.05;
+/// Smallest piece of a motion step, relative to the first piece tried, before giving up.
+const MIN_PIECE: f64 = 1.0 / 1024.0;
 /// Newton iterations run past convergence to bring the residual down to round-off.
 const POLISH_ITERATIONS: usize = 3;
 
@@ -314,9 +314,10 @@ fn advance(
             }
         } else {
             piece *= 0.5;
-            if piece < MIN_PIECE {
+            if piece < MIN_PIECE / first_pieces as f64 {
                 let reason = format!(
-                    "support motion: piece fell below {MIN_PIECE} of the step at {:.4} of it; last Newton: {}",
+                    "support motion: piece fell below {:.3e} of the step at {:.4} of it; last Newton: {}",
+                    MIN_PIECE / first_pieces as f64,
                     done,
                     match &sol.report.status {
                         SolveStatus::NotConverged { reason } => reason.as_str(),
