@@ -344,7 +344,7 @@ fn u_cable_moved_in_steps_balances_at_every_step() {
         );
         // The moved clamp is where the motion put it.
         let p = v3(&rod["supports"][1]["position"]);
-        if k >= 1 && k <= 5 {
+        if (1..=5).contains(&k) {
             end = [0.3 + 0.02 * k as f64, 0.0, 0.0];
         } else if k > 5 {
             end = [0.4, 0.0, 0.02 * (k - 5) as f64];

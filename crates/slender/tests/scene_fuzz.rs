@@ -167,7 +167,8 @@ fn apply(text: &str, m: &Mutation) -> String {
 fn exercise(text: &str, syntax: Syntax) {
     // Debugging aid: keep the input under test in a file (a hang leaves it there).
     if let Ok(p) = std::env::var("SCENE_FUZZ_LAST") {
-        std::fs::write(p, text).unwrap();
+        let t = std::thread::current();
+        std::fs::write(format!("{p}.{}", t.name().unwrap_or("main")), text).unwrap();
     }
     let scene = match parse_scene(text, syntax, "fuzz") {
         Ok(s) => s,

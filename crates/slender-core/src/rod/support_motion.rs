@@ -93,8 +93,8 @@ impl Rod {
             };
         }
         let mut moved = state.clone();
-        for v in 0..=n {
-            moved.positions[v] = motion.apply(&state.positions[v], w[v]);
+        for ((p, x), &wv) in moved.positions.iter_mut().zip(&state.positions).zip(&w) {
+            *p = motion.apply(x, wv);
         }
         let r = Rotation3::new(motion.rotation);
         let rotate_ghost = |g: &Option<GhostEdge>, v: usize| {
