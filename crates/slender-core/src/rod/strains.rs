@@ -12,7 +12,8 @@ use super::state::RodState;
 pub struct HingeStrain {
     /// The hinge's vertex.
     pub vertex: usize,
-    /// Material curvatures κ₁ (about m₁… bending toward m₂) and κ₂ (1/m).
+    /// Material curvatures (κ₁, κ₂) = (κb·m₂, −κb·m₁) per unit length (1/m): κ₁ bends the
+    /// centerline along m₁ and is resisted by EI₁, κ₂ along m₂ by EI₂ (see `bending.rs`).
     pub curvature: [f64; 2],
     /// Twist rate of the material frame (rad/m).
     pub twist: f64,

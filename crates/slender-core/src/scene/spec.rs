@@ -139,9 +139,9 @@ pub enum SectionSpec {
     Stiffness {
         /// Axial stiffness EA (N).
         ea: f64,
-        /// Bending stiffness EI₁ (N m²), bending about m₂… in the m₁ direction.
+        /// Bending stiffness EI₁ (N m²): bending that moves the centerline along m₁.
         ei1: f64,
-        /// Bending stiffness EI₂ (N m²).
+        /// Bending stiffness EI₂ (N m²): bending along m₂.
         ei2: f64,
         /// Torsional stiffness GJ (N m²).
         gj: f64,

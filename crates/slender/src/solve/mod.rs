@@ -3,6 +3,7 @@
 //! Everything is written into a temporary directory next to DIR and renamed at the end, so a
 //! bad scene or an interrupted run leaves no partial output.
 
+pub mod checks;
 pub mod gltf;
 pub mod preview;
 pub mod scene_io;
