@@ -135,7 +135,7 @@ fn nan_and_non_positive_values_are_rejected_with_the_valid_range() {
         &GOOD.replace("young = 1.0e9", "young = -1.0e9"),
         &[
             "rods[0].material.young",
-            "-1e9",
+            "-1000000000.0",
             "must be finite and in [1e-30, 1e30]",
         ],
     );
