@@ -151,7 +151,7 @@ fn nan_and_non_positive_values_are_rejected_with_the_valid_range() {
     rejects(
         "zero-ei",
         &stiff,
-        &["rods[0].section", "ei1", "finite and > 0"],
+        &["rods[0].section.ei1", "0.0", "must be finite and in [1e-30"],
     );
     rejects(
         "zero-length",
