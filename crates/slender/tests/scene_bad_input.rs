@@ -328,3 +328,39 @@ fn a_foreign_output_directory_is_not_overwritten() {
         "keep"
     );
 }
+
+#[test]
+fn a_solve_that_does_not_converge_says_so() {
+    // A heavy load with one Newton iteration per step and no step refinement cannot converge:
+    // the outputs are written, report.json and solver.csv say why, and the exit code is 1.
+    let d = dir("no-convergence");
+    let scene = d.join("scene.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "{}\n[solver]\nmax_iterations = 1\nmin_load_step = 0.5\nsnap_iterations = 1\n",
+            GOOD.replace("-9.81]", "-9810.0]")
+        ),
+    )
+    .unwrap();
+    let out = d.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args(["solve", "--no-preview", "--out"])
+        .arg(&out)
+        .arg(&scene)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stderr).contains("did not converge"));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["converged"], serde_json::Value::Bool(false));
+    let solver = std::fs::read_to_string(out.join("solver.csv")).unwrap();
+    assert!(solver.lines().nth(1).unwrap().contains("false"), "{solver}");
+    assert!(solver.contains("load step fell below"), "{solver}");
+}
