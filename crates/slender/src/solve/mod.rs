@@ -174,6 +174,8 @@ struct VertexRow {
     kappa1: f64,
     kappa2: f64,
     twist: f64,
+    /// Mean axial strain of the adjacent edges.
+    strain: f64,
 }
 
 /// One row of `<rod>_edges.csv`.
@@ -268,6 +270,14 @@ fn write_step(scene: &CompiledScene, dir: &Path, step: &SceneStep) -> Result<()>
                 kappa1: r.curvature[i][0],
                 kappa2: r.curvature[i][1],
                 twist: r.twist[i],
+                strain: {
+                    let adjacent: Vec<f64> = [i.checked_sub(1), Some(i)]
+                        .into_iter()
+                        .flatten()
+                        .filter_map(|j| r.edge_strain.get(j).copied())
+                        .collect();
+                    adjacent.iter().sum::<f64>() / adjacent.len() as f64
+                },
             })
             .collect();
         write_csv(&d.join(format!("{}_vertices.csv", r.name)), &rows)?;
