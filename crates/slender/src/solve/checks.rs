@@ -132,6 +132,7 @@ mod tests {
         let checks = scene_checks().unwrap();
         assert_eq!(checks.len(), EXAMPLES.len() + 1);
         for c in &checks {
+            eprintln!("{:e}  {}", c.measured, c.description);
             assert!(
                 c.passed,
                 "{}: {} (target {})",
