@@ -34,7 +34,8 @@ pub fn write_preview(scene: &CompiledScene, steps: &[SceneStep], stem: &Path) ->
             shapes.push(Polyline3 {
                 label: format!("{} step {k}", r.name),
                 points: r.positions.clone(),
-                markers: true,
+                // Nodes are marked only where they stay readable.
+                markers: r.positions.len() <= 61,
             });
         }
     }
