@@ -572,3 +572,30 @@ fn clipped_cable_with_interior_clamp_balances() {
     }
     assert!(norm(f) < 1e-9 * f_scale, "force imbalance {f:?}");
 }
+
+#[test]
+fn a_json_scene_gives_the_same_equilibrium_as_its_toml() {
+    let text = std::fs::read_to_string(repo().join("examples/u_cable_moved.toml")).unwrap();
+    let value: toml::Value = toml::from_str(&text).unwrap();
+    let dir = fresh_dir("json-scene");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("u_cable_moved.json");
+    std::fs::write(&scene, serde_json::to_string_pretty(&value).unwrap()).unwrap();
+    let out = dir.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args(["solve", "--no-preview", "--out"])
+        .arg(&out)
+        .arg(&scene)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let toml_out = solve("u_cable_moved");
+    for k in [0, 10] {
+        let a = step(&out, k);
+        let b = step(&toml_out, k);
+        assert_eq!(
+            a["rods"][0]["positions"], b["rods"][0]["positions"],
+            "step {k}"
+        );
+    }
+}
