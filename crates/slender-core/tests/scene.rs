@@ -264,3 +264,71 @@ fn reactions_balance_gravity_on_a_pinned_and_clamped_arc() {
     let fz: f64 = r.supports.iter().map(|s| s.force[2]).sum();
     assert!((fz / (mass * 9.81) - 1.0).abs() < 1e-9);
 }
+
+#[test]
+fn moving_an_interior_clamp_moves_both_sides_rigidly_and_a_moved_clip_keeps_balance() {
+    // Rod 0: held only by a clamp at its middle vertex, unloaded: moving and rotating that
+    // clamp must carry both halves along rigidly. Rod 1: clamped at its start and led through
+    // a clip that is moved and turned: the reactions must balance each other.
+    let straight = || Centerline::Straight {
+        start: [0.0; 3],
+        direction: [1.0, 0.0, 0.0],
+        length: 1.0,
+    };
+    let a = rod_spec(straight(), vec![(SupportKind::Clamp, VertexRef::Index(12))]);
+    let mut b = rod_spec(
+        straight(),
+        vec![
+            (SupportKind::Clamp, VertexRef::Named(RodEnd::Start)),
+            (SupportKind::Clip, VertexRef::Index(16)),
+        ],
+    );
+    b.name = Some("clipped".into());
+    let mut s = scene(vec![a, b], [0.0; 3]);
+    let (rot, tr) = ([0.4, 0.0, 0.3], [0.0, 0.05, 0.1]);
+    s.motion.push(MotionStage {
+        rod: 0,
+        support: 0,
+        translate: tr,
+        rotate: rot,
+        steps: 2,
+    });
+    s.motion.push(MotionStage {
+        rod: 1,
+        support: 1,
+        translate: [-0.1, 0.1, 0.0],
+        rotate: [0.0, 0.0, 0.5],
+        steps: 2,
+    });
+    let c = s.compile().unwrap();
+    assert_eq!(c.rods[0].segments.len(), 2);
+    let (mut solver, first) = SceneSolver::new(&c);
+    let rest = first.rods[0].positions.clone();
+    for k in 1..=solver.motion_steps() {
+        let step = solver.run_motion_step(k);
+        assert!(step.converged, "step {k}");
+        let r = &step.rods[1];
+        assert!(r.relative_force_imbalance < 1e-9, "step {k}");
+        assert!(r.relative_moment_imbalance < 1e-9, "step {k}");
+        if k == 2 {
+            let pivot = Vec3::new(0.5, 0.0, 0.0);
+            let rotation = Rotation3::new(Vec3::from(rot));
+            for (p, q) in step.rods[0].positions.iter().zip(&rest) {
+                let expected = pivot + rotation * (Vec3::from(*q) - pivot) + Vec3::from(tr);
+                assert!(
+                    (Vec3::from(*p) - expected).norm() < 1e-9,
+                    "{p:?} vs {expected:?}"
+                );
+            }
+        }
+        if k == 4 {
+            // The clip's two held vertices moved rigidly about vertex 16.
+            let x = &step.rods[1].positions;
+            let r = Rotation3::new(Vec3::new(0.0, 0.0, 0.5));
+            let p16 = Vec3::new(16.0 / 24.0 - 0.1, 0.1, 0.0);
+            let p17 = p16 + r * Vec3::new(1.0 / 24.0, 0.0, 0.0);
+            assert!((Vec3::from(x[16]) - p16).norm() < 1e-12);
+            assert!((Vec3::from(x[17]) - p17).norm() < 1e-12);
+        }
+    }
+}
