@@ -273,3 +273,20 @@ fn every_example_parses_and_compiles() {
             .unwrap_or_else(|e| panic!("example {i}: {e}"));
     }
 }
+
+#[test]
+fn the_readme_scene_is_the_u_cable_example() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let start = readme
+        .find("```toml\n")
+        .expect("a TOML block in the README")
+        + 8;
+    let block = &readme[start..start + readme[start..].find("```").unwrap()];
+    let from_readme = parse_scene(block, Syntax::Toml, "README").unwrap();
+    let text = std::fs::read_to_string(root.join("examples/u_cable_moved.toml")).unwrap();
+    assert_eq!(
+        from_readme,
+        parse_scene(&text, Syntax::Toml, "example").unwrap()
+    );
+}
