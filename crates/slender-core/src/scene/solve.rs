@@ -189,6 +189,9 @@ impl<'a> SceneSolver<'a> {
 
     /// Runs step `step` (1-based over all stages) of the prescribed motion. Steps must be run
     /// in order; after a failed step the rod keeps its last equilibrium and says so.
+    ///
+    /// # Panics
+    /// If `step` is 0 or larger than [`Self::motion_steps`].
     pub fn run_motion_step(&mut self, step: usize) -> SceneStep {
         let (stage_index, k) = self.locate(step);
         let stage: &MotionStage = &self.scene.motion[stage_index];

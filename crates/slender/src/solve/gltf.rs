@@ -84,7 +84,12 @@ fn ring_frame(r: &RodResult, i: usize) -> (Vec3, Vec3) {
         m1 += Vec3::from(r.frames[j][0]);
         t += Vec3::from(r.frames[j][2]);
     }
-    let t = t.normalize();
+    // Two edges folded back onto each other have no mean tangent: use the first one's.
+    let t = if t.norm() > 1e-9 {
+        t.normalize()
+    } else {
+        Vec3::from(r.frames[edges[0]][2])
+    };
     let mut n1 = m1 - t * t.dot(&m1);
     if n1.norm() < 1e-9 {
         n1 = Vec3::from(r.frames[edges[0]][1]);
