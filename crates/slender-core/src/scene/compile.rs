@@ -8,11 +8,13 @@
 
 use crate::error::ModelError;
 use crate::geometry::Vec3;
+use crate::rod::SectionStiffness;
 use crate::rod::{CrossSection, Grading, Material, RestCurve, Rod, RodBuilder, RodProperties};
-use crate::rod::{RodState, SectionStiffness};
-use crate::solver::{EquilibriumSolver, SolverParams};
+use crate::solver::SolverParams;
 
 use super::error::SceneError;
+use super::free_motion::check_no_free_motion;
+use super::magnitudes::{check_magnitudes, MAGNITUDE_LIMIT};
 use super::spec::{
     Centerline, MaterialSpec, MotionStage, RodSpec, Scene, SectionSpec, SupportKind,
 };
@@ -237,135 +239,6 @@ fn section(path: &str, spec: &RodSpec, length: f64) -> Result<(RodProperties, f6
             Ok((props, radius))
         }
     }
-}
-
-/// Magnitudes outside this range are rejected: no cable needs them, and products of such
-/// numbers (stiffness / element length, …) would overflow the solver's arithmetic.
-const MAGNITUDE_LIMIT: f64 = 1e30;
-/// Smallest positive physical parameter accepted (1/[`MAGNITUDE_LIMIT`]).
-const MAGNITUDE_FLOOR: f64 = 1e-30;
-
-/// Checks that every number of a rod's specification is finite and within
-/// ±[`MAGNITUDE_LIMIT`] (positive physical parameters also ≥ 1/MAGNITUDE_LIMIT); the rest of
-/// the validation then works on numbers whose products stay finite.
-fn check_magnitudes(path: &str, spec: &RodSpec) -> Result<(), SceneError> {
-    let bounded = |p: String, v: f64| -> Result<(), SceneError> {
-        if v.is_finite() && v.abs() <= MAGNITUDE_LIMIT {
-            Ok(())
-        } else {
-            Err(SceneError::new(
-                p,
-                format!("{v:?}: must be finite with magnitude <= {MAGNITUDE_LIMIT:e}"),
-            ))
-        }
-    };
-    let positive = |p: String, v: f64| -> Result<(), SceneError> {
-        if v.is_finite() && (MAGNITUDE_FLOOR..=MAGNITUDE_LIMIT).contains(&v) {
-            Ok(())
-        } else {
-            Err(SceneError::new(
-                p,
-                format!("{v:?}: must be finite and in [{MAGNITUDE_FLOOR:e}, {MAGNITUDE_LIMIT:e}]"),
-            ))
-        }
-    };
-    let vec3 = |p: String, v: &[f64; 3]| -> Result<(), SceneError> {
-        for (k, c) in v.iter().enumerate() {
-            bounded(format!("{p}[{k}]"), *c)?;
-        }
-        Ok(())
-    };
-    let c = format!("{path}.centerline");
-    match &spec.centerline {
-        Centerline::Straight {
-            start,
-            direction,
-            length,
-        } => {
-            vec3(format!("{c}.start"), start)?;
-            vec3(format!("{c}.direction"), direction)?;
-            positive(format!("{c}.length"), *length)?;
-        }
-        Centerline::Arc {
-            start,
-            tangent,
-            normal,
-            radius,
-            length,
-        } => {
-            vec3(format!("{c}.start"), start)?;
-            vec3(format!("{c}.tangent"), tangent)?;
-            vec3(format!("{c}.normal"), normal)?;
-            positive(format!("{c}.radius"), *radius)?;
-            positive(format!("{c}.length"), *length)?;
-        }
-        Centerline::Helix {
-            start,
-            axis,
-            normal,
-            radius,
-            pitch,
-            length,
-        } => {
-            vec3(format!("{c}.start"), start)?;
-            vec3(format!("{c}.axis"), axis)?;
-            vec3(format!("{c}.normal"), normal)?;
-            positive(format!("{c}.radius"), *radius)?;
-            bounded(format!("{c}.pitch"), *pitch)?;
-            positive(format!("{c}.length"), *length)?;
-        }
-        Centerline::Polyline { points } => {
-            for (k, p) in points.iter().enumerate() {
-                vec3(format!("{c}.points[{k}]"), p)?;
-            }
-        }
-    }
-    let sp = format!("{path}.section");
-    match spec.section {
-        SectionSpec::Circle { diameter } => positive(format!("{sp}.diameter"), diameter)?,
-        SectionSpec::Rectangle { width, height } => {
-            positive(format!("{sp}.width"), width)?;
-            positive(format!("{sp}.height"), height)?;
-        }
-        SectionSpec::Stiffness {
-            ea,
-            ei1,
-            ei2,
-            gj,
-            linear_density,
-            display_radius,
-        } => {
-            positive(format!("{sp}.ea"), ea)?;
-            positive(format!("{sp}.ei1"), ei1)?;
-            positive(format!("{sp}.ei2"), ei2)?;
-            positive(format!("{sp}.gj"), gj)?;
-            positive(format!("{sp}.linear_density"), linear_density)?;
-            if let Some(r) = display_radius {
-                positive(format!("{sp}.display_radius"), r)?;
-            }
-        }
-    }
-    if let Some(m) = &spec.material {
-        let mp = format!("{path}.material");
-        positive(format!("{mp}.young"), m.young)?;
-        positive(format!("{mp}.density"), m.density)?;
-        if let Some(g) = m.shear_modulus {
-            positive(format!("{mp}.shear_modulus"), g)?;
-        }
-        if let Some(nu) = m.poisson {
-            bounded(format!("{mp}.poisson"), nu)?;
-        }
-    }
-    if let Some(d) = &spec.first_director {
-        vec3(format!("{path}.first_director"), d)?;
-    }
-    for (k, f) in spec.forces.iter().enumerate() {
-        vec3(format!("{path}.forces[{k}].force"), &f.force)?;
-    }
-    for (k, m) in spec.moments.iter().enumerate() {
-        vec3(format!("{path}.moments[{k}].moment"), &m.moment)?;
-    }
-    Ok(())
 }
 
 /// Name check: safe as a file-name stem.
@@ -726,49 +599,4 @@ fn compile_rod(
         display_radius,
         properties,
     })
-}
-
-/// Rejects a rod whose stiffness matrix at rest is singular: some motion (a rigid rotation
-/// about the line through its pins, a spin about its own axis between clips…) costs no energy.
-fn check_no_free_motion(
-    path: &str,
-    seg_path: &str,
-    rod: &Rod,
-    params: &SolverParams,
-) -> Result<(), SceneError> {
-    let rest: RodState = rod.rest_state().clone();
-    // Overflowing inputs (e.g. a length of 1e308) can leave a finite scene with a non-finite
-    // mesh; nothing can be solved on it.
-    if rest.positions().iter().flatten().any(|c| !c.is_finite())
-        || rod
-            .rest_lengths()
-            .iter()
-            .any(|l| !(l.is_finite() && *l > 0.0))
-    {
-        return Err(SceneError::new(
-            path,
-            format!("{seg_path}: the mesh has non-finite coordinates; check lengths, radii and points for overflow"),
-        ));
-    }
-    let p = SolverParams {
-        compute_lambda_min: true,
-        ..params.clone()
-    };
-    let mut solver = EquilibriumSolver::new(rod, &rest, p);
-    let sol = solver.solve(rod, &rest, 0.0, 0.0);
-    let singular = match (sol.report.inertia, sol.report.lambda_min_normalized) {
-        (Some(i), _) if i.zero > 0 || i.negative > 0 => true,
-        (_, Some(l)) => !(l > 1e-9),
-        _ => false,
-    };
-    if singular {
-        return Err(SceneError::new(
-            format!("{path}.supports"),
-            format!(
-                "{seg_path} has a free rigid-body motion (its stiffness at rest is singular, λ_min/(EI/ρAL⁴) = {:.3e}): hold it so that it can neither translate, rotate nor spin about its own axis, e.g. with a clamp",
-                sol.report.lambda_min_normalized.unwrap_or(0.0)
-            ),
-        ));
-    }
-    Ok(())
 }

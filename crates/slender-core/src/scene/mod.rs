@@ -6,6 +6,8 @@
 
 pub mod compile;
 pub mod error;
+pub mod free_motion;
+pub mod magnitudes;
 pub mod solve;
 pub mod spec;
 
