@@ -332,3 +332,84 @@ fn moving_an_interior_clamp_moves_both_sides_rigidly_and_a_moved_clip_keeps_bala
         }
     }
 }
+
+#[test]
+fn reactions_are_the_energy_derivatives_with_respect_to_the_support_motion() {
+    // Envelope theorem: at an equilibrium, d(min E)/d(support position) = ∂E/∂(support) = the
+    // reaction. Moving the end clamp by ±ε (and turning it by ±δ), re-solving and differencing
+    // the energy checks the reaction force and the ghost-edge moment formula independently.
+    let rod = RodBuilder::new(
+        RestCurve::Circle {
+            start: [0.0; 3],
+            tangent: [1.0, 0.0, 0.0],
+            normal: [0.0, 1.0, 0.2],
+            radius: 0.5,
+            length: 1.0,
+        },
+        props(),
+    )
+    .elements(30)
+    .clamp_start()
+    .clamp_end()
+    .gravity(Vec3::new(0.0, -2.0, -9.81))
+    .point_force(9, Vec3::new(0.01, 0.0, 0.02))
+    .build()
+    .unwrap();
+    let tight = SolverParams {
+        force_tolerance: 1e-14,
+        energy_tolerance: 1e-30,
+        ..SolverParams::default()
+    };
+    let rest = rod.rest_state().clone();
+    let mut solver = EquilibriumSolver::new(&rod, &rest, tight);
+    let s0 = solver.solve(&rod, &rest, 0.0, 1.0).state;
+    let n = rod.n_edges();
+    let reaction = rod
+        .reactions(&s0, 1.0)
+        .into_iter()
+        .find(|r| r.vertex == n)
+        .unwrap();
+    let pivot = s0.positions()[n];
+    let energy_after = |rotation: Vec3, translation: Vec3, solver: &mut EquilibriumSolver<_>| {
+        let moved = rod
+            .with_support_moved(
+                &s0,
+                &SupportMotion {
+                    vertices: vec![n],
+                    pivot,
+                    rotation,
+                    translation,
+                },
+            )
+            .unwrap();
+        let sol = solver.solve(&rod, &moved, 1.0, 1.0);
+        assert!(sol.report.converged());
+        rod.energy_terms(&sol.state, 1.0, slender_core::rod::Terms::ALL)
+    };
+    let eps = 1e-5;
+    for k in 0..3 {
+        let e = Vec3::ith(k, eps);
+        let df = (energy_after(Vec3::zeros(), e, &mut solver)
+            - energy_after(Vec3::zeros(), -e, &mut solver))
+            / (2.0 * eps);
+        let dm = (energy_after(e, Vec3::zeros(), &mut solver)
+            - energy_after(-e, Vec3::zeros(), &mut solver))
+            / (2.0 * eps);
+        eprintln!(
+            "k {k}: dE/dx {df:e} vs {:e}; dE/dphi {dm:e} vs {:e}",
+            reaction.force[k], reaction.moment[k]
+        );
+        let f_scale = reaction.force.norm();
+        let m_scale = reaction.moment.norm();
+        assert!(
+            (df - reaction.force[k]).abs() < 1e-6 * f_scale,
+            "force {k}: dE/dx = {df}, reaction {}",
+            reaction.force[k]
+        );
+        assert!(
+            (dm - reaction.moment[k]).abs() < 1e-6 * m_scale,
+            "moment {k}: dE/dφ = {dm}, reaction {}",
+            reaction.moment[k]
+        );
+    }
+}
