@@ -188,7 +188,36 @@ fn gltf_reads_back_with_matching_accessors() {
     );
     let meshes = doc["meshes"].as_array().unwrap();
     assert_eq!(meshes.len(), 4, "a tube and a centerline per rod");
-    assert_eq!(doc["nodes"].as_array().unwrap().len(), 4);
+    let nodes = doc["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), 5, "a node per mesh and a root");
+    assert_eq!(doc["scenes"][0]["nodes"], serde_json::json!([4]));
+    assert_eq!(nodes[4]["children"], serde_json::json!([0, 1, 2, 3]));
+    // The root turns the scene's up (against gravity −z: +z) onto glTF's +y.
+    let q: Vec<f64> = nodes[4]["rotation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let (v, w) = ([q[0], q[1], q[2]], q[3]);
+    let rotate = |p: [f64; 3]| {
+        // p + 2w (v × p) + 2 v × (v × p)
+        let c = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let vp = c(v, p);
+        let vvp = c(v, vp);
+        [0, 1, 2].map(|i| p[i] + 2.0 * w * vp[i] + 2.0 * vvp[i])
+    };
+    let up = rotate([0.0, 0.0, 1.0]);
+    assert!(
+        (up[1] - 1.0).abs() < 1e-12 && up[0].abs() < 1e-12 && up[2].abs() < 1e-12,
+        "{up:?}"
+    );
     for (k, n_vertices) in [(0usize, 13usize), (1, 31)] {
         let positions = rod_positions(&result, k);
         // Centerline: a line strip through the vertices.

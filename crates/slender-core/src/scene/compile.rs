@@ -83,6 +83,8 @@ pub struct CompiledScene {
     pub motion: Vec<MotionStage>,
     /// Solver parameters (validated).
     pub solver: SolverParams,
+    /// Gravitational acceleration (m/s²).
+    pub gravity: [f64; 3],
 }
 
 fn finite3(path: &str, v: [f64; 3]) -> Result<Vec3, SceneError> {
@@ -362,6 +364,7 @@ impl Scene {
             rods,
             motion: self.motion.clone(),
             solver: self.solver.clone(),
+            gravity: self.gravity,
         })
     }
 }

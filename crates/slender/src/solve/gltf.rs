@@ -1,6 +1,8 @@
 //! Rod shapes as glTF 2.0 (a `.gltf` JSON file with its binary buffer embedded as a base64
 //! data URI) for Blender and the web: per rod a tube mesh (triangles, ring frames from the
-//! material frames) and its centerline as a line strip.
+//! material frames) and its centerline as a line strip. Vertex data are in the scene's
+//! coordinates; a root node rotates the scene's "up" (against gravity, +z without gravity)
+//! onto glTF's +y, so that viewers show cables hanging down.
 
 use base64::Engine;
 use serde_json::{json, Value};
@@ -98,8 +100,32 @@ fn ring_frame(r: &RodResult, i: usize) -> (Vec3, Vec3) {
     (n1, t.cross(&n1))
 }
 
-/// The glTF JSON of one step.
-pub fn rods_to_gltf(rods: &[CompiledRod], results: &[RodResult]) -> Value {
+/// Unit quaternion [x, y, z, w] of the rotation that takes `up` (unit) onto +y.
+fn up_to_y(up: Vec3) -> [f64; 4] {
+    let y = Vec3::y();
+    let c = up.dot(&y);
+    if c < -1.0 + 1e-12 {
+        return [1.0, 0.0, 0.0, 0.0]; // half turn about x
+    }
+    let axis = up.cross(&y);
+    // q = (axis, 1 + c) normalized: the half-angle formula.
+    let q = [axis.x, axis.y, axis.z, 1.0 + c];
+    let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+    q.map(|v| v / n)
+}
+
+/// The scene's up direction: against gravity, +z without it.
+pub fn scene_up(gravity: [f64; 3]) -> Vec3 {
+    let g = Vec3::from(gravity);
+    if g.norm() > 0.0 {
+        -g.normalize()
+    } else {
+        Vec3::z()
+    }
+}
+
+/// The glTF JSON of one step; `up` is the scene direction shown upward.
+pub fn rods_to_gltf(rods: &[CompiledRod], results: &[RodResult], up: Vec3) -> Value {
     let mut b = Builder {
         bin: Vec::new(),
         views: Vec::new(),
@@ -157,8 +183,12 @@ pub fn rods_to_gltf(rods: &[CompiledRod], results: &[RodResult]) -> Value {
     json!({
         "asset": {"version": "2.0", "generator": "slender solve"},
         "scene": 0,
-        "scenes": [{"nodes": (0..nodes.len()).collect::<Vec<_>>()}],
-        "nodes": nodes,
+        "scenes": [{"nodes": [nodes.len()]}],
+        "nodes": nodes.iter().cloned().chain(std::iter::once(json!({
+            "name": "slender scene (up = against gravity)",
+            "rotation": up_to_y(up),
+            "children": (0..nodes.len()).collect::<Vec<_>>()
+        }))).collect::<Vec<_>>(),
         "meshes": meshes,
         "buffers": [{"byteLength": b.bin.len(), "uri": uri}],
         "bufferViews": b.views,

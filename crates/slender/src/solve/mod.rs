@@ -309,7 +309,11 @@ fn write_step(scene: &CompiledScene, dir: &Path, step: &SceneStep) -> Result<()>
     )?;
     write_atomic(
         &d.join("shape.gltf"),
-        &serde_json::to_vec(&gltf::rods_to_gltf(&scene.rods, &step.rods))?,
+        &serde_json::to_vec(&gltf::rods_to_gltf(
+            &scene.rods,
+            &step.rods,
+            gltf::scene_up(scene.gravity),
+        ))?,
     )?;
     Ok(())
 }
