@@ -10,6 +10,7 @@ mod output;
 mod plot;
 mod progress;
 mod report_html;
+mod solve;
 mod store;
 mod validate;
 
@@ -45,6 +46,11 @@ enum Command {
     Validate(ValidateArgs),
     /// Combine result stores (e.g. of `--shard` runs) into one.
     Merge(MergeArgs),
+    /// Equilibria of a scene file (TOML or JSON): shapes (VTK, glTF, PNG), frames, strains,
+    /// reactions and solver reports (JSON, CSV); prescribed support motion in steps.
+    Solve(solve::SolveArgs),
+    /// Print (or write with --out) the JSON Schema of the scene format.
+    SceneSchema(SceneSchemaArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -67,6 +73,13 @@ fn store_options(
         root: store.clone().unwrap_or_else(|| out.join("store")),
         shard,
     }
+}
+
+#[derive(clap::Args, Debug)]
+struct SceneSchemaArgs {
+    /// Write the schema to this file instead of printing it.
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -287,6 +300,19 @@ fn run(cli: Cli) -> Result<bool> {
                 }
                 None => print_shard_done(&store),
             }
+            Ok(true)
+        }
+        Command::Solve(a) => {
+            let ok = solve::run(&a)?;
+            solve::print_summary(&a.out)?;
+            println!("wrote {}", a.out.display());
+            if !ok {
+                eprintln!("error: some step did not converge; see solver.csv and report.json");
+            }
+            Ok(ok)
+        }
+        Command::SceneSchema(a) => {
+            solve::write_schema(a.out.as_deref())?;
             Ok(true)
         }
         Command::Validate(a) => {

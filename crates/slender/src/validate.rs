@@ -41,6 +41,9 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     let mut checks = cantilever_checks(&cantilever.records, &SolverParams::default())?;
     checks.extend(bend_twist_checks(&bend_twist.summary));
     checks.extend(lateral_checks);
+    let scene_clock = Instant::now();
+    checks.extend(crate::solve::checks::scene_checks()?);
+    let scene_seconds = scene_clock.elapsed().as_secs_f64();
     write_csv(&out.join("checks.csv"), &checks)?;
     write_atomic(&out.join("checks.md"), markdown(&checks).as_bytes())?;
     println!();
@@ -95,6 +98,16 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                          and its lateral-buckling sweep are not in this version yet.",
                         crate::lateral_buckling_curves_report::NU
                     ),
+                },
+                Section {
+                    title: "Scene files: the examples".into(),
+                    dir: "scenes".into(),
+                    wall_seconds: scene_seconds,
+                    stats: Default::default(),
+                    about: "Every scene in examples/ solved from its file: the reactions at the \
+                            supports must balance the applied loads (forces and moments), and the \
+                            cantilever written as a scene must reproduce the benchmark's Δy/Δx."
+                        .into(),
                 },
             ],
             preset: if full { "full" } else { "quick" },

@@ -64,6 +64,7 @@ pub struct RodBuilder {
     first_director: Option<Vec3>,
     natural_twist: f64,
     preload_gravity: Vec3,
+    node_arclengths: Option<Vec<f64>>,
 }
 
 impl RodBuilder {
@@ -81,7 +82,16 @@ impl RodBuilder {
             first_director: None,
             natural_twist: 0.0,
             preload_gravity: Vec3::zeros(),
+            node_arclengths: None,
         }
+    }
+
+    /// Places the nodes at these arc lengths (m) along the rest curve instead of using
+    /// [`Self::elements`] and [`Self::grading`]: strictly increasing, from 0 to the curve's
+    /// length (e.g. the vertices of a polyline, so that the mesh is the polyline itself).
+    pub fn nodes_at(mut self, arclengths: Vec<f64>) -> Self {
+        self.node_arclengths = Some(arclengths);
+        self
     }
 
     /// Number of elements (edges), ≥ 1.
@@ -171,10 +181,28 @@ impl RodBuilder {
         {
             require_finite(k, *c)?;
         }
-        let arclengths = self
-            .grading
-            .node_arclengths(self.n_elements, self.curve.length())?;
-        let n = self.n_elements;
+        let arclengths = match &self.node_arclengths {
+            None => self
+                .grading
+                .node_arclengths(self.n_elements, self.curve.length())?,
+            Some(s) => {
+                let total = self.curve.length();
+                let ok = s.len() >= 2
+                    && s[0] == 0.0
+                    && (s[s.len() - 1] - total).abs() <= 1e-12 * total
+                    && s.windows(2).all(|w| w[1] > w[0]);
+                if !ok {
+                    return Err(ModelError::structure(
+                        "node_arclengths",
+                        format!(
+                            "need at least 2 strictly increasing values from 0 to the curve length {total}"
+                        ),
+                    ));
+                }
+                s.clone()
+            }
+        };
+        let n = arclengths.len() - 1;
         let points: Vec<(Vec3, Vec3)> =
             arclengths.iter().map(|&s| self.curve.evaluate(s)).collect();
         let positions: Vec<Vec3> = points.iter().map(|p| p.0).collect();
@@ -254,8 +282,21 @@ impl RodBuilder {
         let t0 = tangents[0];
         let d = match self.first_director {
             Some(m) => {
+                // Rescale a finite director whose norm would overflow or underflow (only then,
+                // so that ordinary inputs keep their exact bits).
+                let big = m.amax();
+                let m = if big.is_finite() && big > 0.0 && !(m.norm() > 1e-150 && m.norm() < 1e150)
+                {
+                    m / big
+                } else {
+                    m
+                };
+                let scale = m.norm();
                 let m = m - t0 * t0.dot(&m);
-                if !(m.norm() > 1e-12) || m.iter().any(|c| !c.is_finite()) {
+                if !(m.norm() > 1e-12 * scale.min(1.0))
+                    || !scale.is_finite()
+                    || m.iter().any(|c| !c.is_finite())
+                {
                     return Err(ModelError::structure(
                         "first_director",
                         "must be finite and not parallel to the rod's first tangent",

@@ -10,6 +10,7 @@ use crate::error::{require_positive, ModelError};
 
 /// How nodes are distributed along the arc length; the clamp is at s = 0.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Grading {
     /// Equal element lengths.

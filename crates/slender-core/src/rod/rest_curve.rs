@@ -53,6 +53,12 @@ pub enum RestCurve {
         /// Arc length (m).
         length: f64,
     },
+    /// Polygonal line through `points` (m), parametrized by arc length along its segments.
+    /// Its tangent is that of the segment at `s` (the first at s = 0, the last at the end).
+    Polyline {
+        /// At least two points, consecutive points distinct.
+        points: Vec<[f64; 3]>,
+    },
 }
 
 fn unit(field: &str, v: [f64; 3]) -> Result<Vec3, ModelError> {
@@ -95,11 +101,18 @@ impl RestCurve {
             Self::Straight { length, .. }
             | Self::Circle { length, .. }
             | Self::Helix { length, .. } => length,
+            Self::Polyline { ref points } => points
+                .windows(2)
+                .map(|w| (Vector3::from(w[1]) - Vector3::from(w[0])).norm())
+                .sum(),
         }
     }
 
     /// Checks the parameters; errors name the field.
     pub fn validate(&self) -> Result<(), ModelError> {
+        if let Self::Polyline { points } = self {
+            return validate_polyline(points);
+        }
         require_positive("length", self.length())?;
         match *self {
             Self::Straight {
@@ -134,6 +147,7 @@ impl RestCurve {
                 let a = unit("axis", axis)?;
                 plane_frame(a, unit("normal", normal)?, "normal")?;
             }
+            Self::Polyline { .. } => {}
         }
         Ok(())
     }
@@ -184,8 +198,61 @@ impl RestCurve {
                 let t = (n0 * (radius * sin) + b0 * (radius * cos) + a * rise) / speed;
                 (p, t)
             }
+            Self::Polyline { ref points } => polyline_at(points, s),
         }
     }
+}
+
+/// Checks a polyline: ≥ 2 finite points, no two consecutive ones coincident (relative to the
+/// total length), so that every segment has a tangent.
+fn validate_polyline(points: &[[f64; 3]]) -> Result<(), ModelError> {
+    if points.len() < 2 {
+        return Err(ModelError::structure(
+            "points",
+            format!("got {} point(s); need at least 2", points.len()),
+        ));
+    }
+    for (k, p) in points.iter().enumerate() {
+        finite_point(&format!("points[{k}]"), *p)?;
+    }
+    let lengths: Vec<f64> = points
+        .windows(2)
+        .map(|w| (Vector3::from(w[1]) - Vector3::from(w[0])).norm())
+        .collect();
+    let total: f64 = lengths.iter().sum();
+    if let Some(k) = lengths.iter().position(|&l| !(l > 1e-9 * total)) {
+        return Err(ModelError::structure(
+            format!("points[{}]", k + 1),
+            format!(
+                "coincides with points[{k}]; consecutive points must be distinct (segment length > 1e-9 × total length)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Position and unit tangent at arc length `s` along a validated polyline.
+fn polyline_at(points: &[[f64; 3]], s: f64) -> (Vec3, Vec3) {
+    let n_seg = points.len() - 1;
+    let mut start = 0.0;
+    for k in 0..n_seg {
+        let a = Vector3::from(points[k]);
+        let b = Vector3::from(points[k + 1]);
+        let len = (b - a).norm();
+        let t = (b - a) / len;
+        if s < start + len || k + 1 == n_seg {
+            // The segment's exact end point when s reaches it, so that nodes placed at the
+            // cumulative lengths reproduce the points bit for bit.
+            let p = if s - start >= len {
+                b
+            } else {
+                a + t * (s - start)
+            };
+            return (p, t);
+        }
+        start += len;
+    }
+    unreachable!("a validated polyline has at least one segment")
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use crate::error::ModelError;
 /// The convergence tests are scale-invariant: nothing here has units, so the same defaults
 /// work for a 1 mm wire and a 10 m hose, for Γ = 10⁻³ and for Γ = 10⁴.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(default, deny_unknown_fields)]
 pub struct SolverParams {
     /// Newton decrement test: converged when gᵀH⁻¹g ≤ `energy_tolerance`·|work of the loads|.

@@ -8,18 +8,18 @@
 //!   in-plane self-weight, by a two-stage Legendre Ritz method;
 //! * [`master_curve`]: the public API (`critical_gamma`, samplers) the sweep and plots use.
 
-pub mod master_curve_checks;
 pub mod error;
 pub mod generalized_eigen;
 pub mod legendre;
 pub mod master_curve;
+pub mod master_curve_checks;
 pub mod plate_buckling;
 pub mod vlasov;
 
-pub use master_curve_checks::master_curve_checks;
 pub use error::LateralBucklingError;
 pub use master_curve::{
     critical_gamma, linear_samples, master_curves, narrow_strip_limit, sample_master_curve,
     MasterCurve, MasterCurves,
 };
+pub use master_curve_checks::master_curve_checks;
 pub use vlasov::WeakAxisStiffness;

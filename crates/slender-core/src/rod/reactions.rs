@@ -1,0 +1,175 @@
+//! Support reactions and the resultant of the applied loads, for force and moment balance.
+//!
+//! The reaction at a support is the generalized force the support must supply to hold its
+//! DOFs: the gradient of the total energy with respect to the support's rigid motion. A
+//! support translates its fixed vertex (and a clamp's ghost edge with it), so its force is
+//! ∂E/∂x_v summed over every term, fixed DOFs included. A clamp also rotates its ghost edge
+//! about the vertex: its moment is Σ (x_ghost − x_v) × ∂E/∂x_ghost + t_ghost ∂E/∂θ_ghost
+//! (a rotation about the tangent turns the ghost's material angle; one about a normal turns
+//! its tangent, and parallel transport agrees with the rotation to first order).
+//!
+//! Because the discrete internal energy is invariant under rigid motions, at an equilibrium
+//! Σ reactions + Σ applied loads = 0 in force and in moment; checking that balance tests the
+//! solve and this bookkeeping without any reference to a closed form.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::geometry::Vec3;
+
+use super::frames::EdgeId;
+use super::hinge::{EdgeHessian, HingeFrame, HingeVector};
+use super::model::Rod;
+use super::state::RodState;
+use super::stretching::stretching_energy;
+
+/// What a support exerts on the rod at one fixed vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SupportReaction {
+    /// The fixed vertex.
+    pub vertex: usize,
+    /// Force (N) the support applies to the rod.
+    pub force: Vec3,
+    /// Moment (N m) about the vertex the support applies to the rod (zero for a pin).
+    pub moment: Vec3,
+}
+
+/// Resultant of the applied loads (gravity, point forces, point moments) in a state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoadResultant {
+    /// Total applied force (N).
+    pub force: Vec3,
+    /// Total applied moment about the origin (N m).
+    pub moment: Vec3,
+}
+
+impl Rod {
+    /// ∂E/∂x_v (N) of the total energy at load factor `load` for every vertex, fixed or not,
+    /// and the ghost-edge moments (N m) of the start and end clamps.
+    fn full_position_gradient(&self, s: &RodState, load: f64) -> (Vec<Vec3>, [Vec3; 2]) {
+        let n = self.n_edges();
+        let mut g = vec![Vec3::zeros(); n + 1];
+        let mut ghost_moment = [Vec3::zeros(); 2];
+        let ea = self.properties.stiffness.ea;
+        let mut g6 = SVector::<f64, 6>::zeros();
+        for (j, &rest_length) in self.rest_lengths.iter().enumerate() {
+            g6.fill(0.0);
+            stretching_energy(
+                &s.positions[j],
+                &s.positions[j + 1],
+                rest_length,
+                ea,
+                Some(&mut g6),
+                None,
+            );
+            g[j] += g6.fixed_rows::<3>(0);
+            g[j + 1] += g6.fixed_rows::<3>(3);
+        }
+        let mut gh = HingeVector::zeros();
+        for (k, hinge) in self.hinges.iter().enumerate() {
+            let hs = self.hinge_state(s, hinge, k);
+            let frame = HingeFrame::new(&hs);
+            gh.fill(0.0);
+            hinge
+                .bending
+                .energy(&frame, Some(&mut gh), None::<(&mut _, &mut EdgeHessian)>);
+            hinge.twisting.energy(
+                &frame,
+                hs.twist(),
+                Some(&mut gh),
+                None::<(&mut _, &mut EdgeHessian)>,
+            );
+            let slot = |a: usize| Vec3::new(gh[a], gh[a + 1], gh[a + 2]);
+            let v = hinge.vertex;
+            g[v] += slot(4);
+            match hinge.edges.0 {
+                EdgeId::Real(j) => g[j] += slot(0),
+                _ => {
+                    // The ghost vertex moves with the clamp.
+                    g[v] += slot(0);
+                    ghost_moment[0] += (hs.x[0] - hs.x[1]).cross(&slot(0))
+                        + s.frames.edge(hinge.edges.0).tangent * gh[3];
+                }
+            }
+            match hinge.edges.1 {
+                EdgeId::Real(j) => g[j + 1] += slot(8),
+                _ => {
+                    g[v] += slot(8);
+                    ghost_moment[1] += (hs.x[2] - hs.x[1]).cross(&slot(8))
+                        + s.frames.edge(hinge.edges.1).tangent * gh[7];
+                }
+            }
+        }
+        for (v, (f, f0)) in self
+            .nodal_forces
+            .iter()
+            .zip(&self.preload_forces)
+            .enumerate()
+        {
+            g[v] -= f * load + f0;
+        }
+        let mut h6 = SMatrix::<f64, 6, 6>::zeros();
+        for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
+            let j = m.edge;
+            let e = s.positions[j + 1] - s.positions[j];
+            m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
+            g[j] += g6.fixed_rows::<3>(0);
+            g[j + 1] += g6.fixed_rows::<3>(3);
+        }
+        (g, ghost_moment)
+    }
+
+    /// Reactions of every support at load factor `load`, one per fixed vertex in increasing
+    /// vertex order. Meaningful at an equilibrium (the free DOFs' residual is not included).
+    pub fn reactions(&self, s: &RodState, load: f64) -> Vec<SupportReaction> {
+        let (g, ghost) = self.full_position_gradient(s, load);
+        let n = self.n_edges();
+        self.fixed_vertices
+            .iter()
+            .map(|&v| {
+                let mut moment = Vec3::zeros();
+                if v == 0 && s.frames.ghost_start.is_some() {
+                    moment += ghost[0];
+                }
+                if v == n && s.frames.ghost_end.is_some() {
+                    moment += ghost[1];
+                }
+                SupportReaction {
+                    vertex: v,
+                    force: g[v],
+                    moment,
+                }
+            })
+            .collect()
+    }
+
+    /// Resultant of the applied loads at load factor `load` in state `s`: dead nodal forces
+    /// (gravity, point forces) at their vertices, and point moments as they act in `s` (the
+    /// couple of their bending part on the edge's end vertices plus their axial torque about
+    /// the current tangent).
+    pub fn applied_loads(&self, s: &RodState, load: f64) -> LoadResultant {
+        let mut force = Vec3::zeros();
+        let mut moment = Vec3::zeros();
+        for (v, (f, f0)) in self
+            .nodal_forces
+            .iter()
+            .zip(&self.preload_forces)
+            .enumerate()
+        {
+            let f = f * load + f0;
+            force += f;
+            moment += s.positions[v].cross(&f);
+        }
+        let mut g6 = SVector::<f64, 6>::zeros();
+        let mut h6 = SMatrix::<f64, 6, 6>::zeros();
+        for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
+            let j = m.edge;
+            let e = s.positions[j + 1] - s.positions[j];
+            m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
+            // Forces −∂V/∂x on the two vertices: equal and opposite, a pure couple.
+            let f1: Vec3 = -g6.fixed_rows::<3>(3).into_owned();
+            moment += e.cross(&f1);
+            moment += s.frames.edges[j].tangent * (load * m.axial);
+        }
+        LoadResultant { force, moment }
+    }
+}

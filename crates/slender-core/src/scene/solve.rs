@@ -1,0 +1,462 @@
+//! Solving a scene: the loaded equilibrium, then each prescribed-motion step warm-started from
+//! the previous equilibrium, with reactions, strains and the force/moment balance.
+
+use serde::Serialize;
+
+use crate::geometry::Vec3;
+use crate::linalg::{BandLdlt, SymmetricBandMatrix};
+use crate::rod::Terms;
+use crate::rod::{Rod, RodState, SupportMotion};
+use crate::solver::{
+    EquilibriumProblem, EquilibriumSolver, SolveReport, SolveStatus, SolverParams,
+};
+
+use super::compile::{CompiledRod, CompiledScene};
+use super::spec::{MotionStage, SupportKind};
+
+/// Largest rotation (rad) of a support per solved piece of a motion step.
+pub(super) const MAX_PIECE_ROTATION: f64 = 0.2;
+/// Largest translation per solved piece, as a fraction of the moving segment's length.
+pub(super) const MAX_PIECE_TRANSLATION: f64 = 0.05;
+/// Smallest piece of a motion step, relative to the first piece tried, before giving up.
+const MIN_PIECE: f64 = 1.0 / 1024.0;
+/// Newton iterations run past convergence to bring the residual down to round-off.
+const POLISH_ITERATIONS: usize = 3;
+
+/// Largest residual force (N; generalized forces of angles divided by the rod length).
+fn max_residual(rod: &Rod, s: &RodState) -> f64 {
+    let mut g = vec![0.0; rod.n_free()];
+    rod.assemble_terms(s, 1.0, Terms::ALL, Some(&mut g), None, None);
+    (0..g.len())
+        .map(|i| g[i].abs() / rod.force_length(i))
+        .fold(0.0, f64::max)
+}
+
+/// A few full Newton steps past convergence, each kept only if it lowers the residual. The
+/// reactions balance the loads up to the sum of the free DOFs' residuals, so the balance is
+/// only as good as the residual; the solver's own test stops at a conservative round-off
+/// floor, and its line search cannot see energy changes below round-off.
+fn polish(rod: &Rod, state: &mut RodState, report: &mut SolveReport) {
+    if !report.converged() {
+        return;
+    }
+    let n = rod.n_free();
+    let mut g = vec![0.0; n];
+    let mut h = SymmetricBandMatrix::new(n, rod.half_bandwidth());
+    let mut ldlt = BandLdlt::new();
+    let mut trial = state.clone();
+    let before = max_residual(rod, state);
+    let mut best = before;
+    for _ in 0..POLISH_ITERATIONS {
+        rod.assemble_terms(state, 1.0, Terms::ALL, Some(&mut g), Some(&mut h), None);
+        if ldlt.factorize(&h, 0.0).is_err() {
+            break;
+        }
+        let mut dx: Vec<f64> = g.iter().map(|x| -x).collect();
+        ldlt.solve_in_place(&mut dx);
+        rod.displace(state, &dx, 1.0, &mut trial);
+        let r = max_residual(rod, &trial);
+        if !(r < best) {
+            break;
+        }
+        best = r;
+        std::mem::swap(state, &mut trial);
+    }
+    if best < before {
+        report.residual = best;
+        if report.relative_residual > 0.0 {
+            report.relative_residual *= best / before;
+        }
+    }
+}
+
+/// The reaction of one support.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SupportResult {
+    /// Index in the rod's `supports`.
+    pub support: usize,
+    /// Clamp, pin or clip.
+    pub kind: SupportKind,
+    /// The support's vertex.
+    pub vertex: usize,
+    /// Its position (m).
+    pub position: [f64; 3],
+    /// Force the support applies to the rod (N).
+    pub force: [f64; 3],
+    /// Moment the support applies to the rod, about its vertex (N m).
+    pub moment: [f64; 3],
+}
+
+/// Equilibrium of one rod.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RodResult {
+    /// Rod name.
+    pub name: String,
+    /// Vertex positions (m).
+    pub positions: Vec<[f64; 3]>,
+    /// Material frame (m₁, m₂, t) of every edge.
+    pub frames: Vec<[[f64; 3]; 3]>,
+    /// Material curvatures (κ₁, κ₂) at every vertex (1/m; 0 at a free end).
+    pub curvature: Vec<[f64; 2]>,
+    /// Twist rate at every vertex (rad/m; 0 at a free end).
+    pub twist: Vec<f64>,
+    /// Axial strain of every edge.
+    pub edge_strain: Vec<f64>,
+    /// Reactions, in the order of the rod's supports.
+    pub supports: Vec<SupportResult>,
+    /// Resultant applied force (N): gravity, point forces.
+    pub applied_force: [f64; 3],
+    /// Resultant applied moment about the rod's centroid (N m).
+    pub applied_moment: [f64; 3],
+    /// |Σ reactions + Σ applied forces| (N).
+    pub force_imbalance: f64,
+    /// |Σ moments of reactions and applied loads| about the centroid (N m).
+    pub moment_imbalance: f64,
+    /// `force_imbalance` over Σ|forces| involved.
+    pub relative_force_imbalance: f64,
+    /// `moment_imbalance` over Σ|moments| involved.
+    pub relative_moment_imbalance: f64,
+    /// Solver report of every part of the rod between interior clamps.
+    pub reports: Vec<SolveReport>,
+    /// True if every part converged.
+    pub converged: bool,
+}
+
+/// One equilibrium of the sequence: step 0 is the loaded scene, then one per motion step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SceneStep {
+    /// Step number (0 = initial equilibrium).
+    pub step: usize,
+    /// Motion stage of this step (None for step 0).
+    pub stage: Option<usize>,
+    /// Progress through the stage (1 at its end).
+    pub stage_fraction: f64,
+    /// Wall time of the solve (s); filled by the caller that has a clock (0 otherwise).
+    pub seconds: f64,
+    /// Pieces the motion step was split into to converge (1 for step 0).
+    pub pieces: usize,
+    /// Every rod.
+    pub rods: Vec<RodResult>,
+    /// True if every rod converged.
+    pub converged: bool,
+}
+
+/// The solving state of a scene: one equilibrium state per rod segment.
+pub struct SceneSolver<'a> {
+    scene: &'a CompiledScene,
+    states: Vec<Vec<RodState>>,
+    reports: Vec<Vec<SolveReport>>,
+    solvers: Vec<Vec<EquilibriumSolver<RodState>>>,
+}
+
+impl<'a> SceneSolver<'a> {
+    /// Solves the loaded scene (step 0) from the rest state, ramping the loads.
+    pub fn new(scene: &'a CompiledScene) -> (Self, SceneStep) {
+        let mut states = Vec::new();
+        let mut reports = Vec::new();
+        let mut solvers = Vec::new();
+        for rod in &scene.rods {
+            let mut st = Vec::new();
+            let mut rep = Vec::new();
+            let mut sol = Vec::new();
+            for seg in &rod.segments {
+                let rest = seg.rod.rest_state().clone();
+                let mut solver = EquilibriumSolver::new(&seg.rod, &rest, scene.solver.clone());
+                let mut s = solver.solve(&seg.rod, &rest, 0.0, 1.0);
+                polish(&seg.rod, &mut s.state, &mut s.report);
+                st.push(s.state);
+                rep.push(s.report);
+                sol.push(solver);
+            }
+            states.push(st);
+            reports.push(rep);
+            solvers.push(sol);
+        }
+        let me = Self {
+            scene,
+            states,
+            reports,
+            solvers,
+        };
+        let step = me.snapshot(0, None, 1.0, 1);
+        (me, step)
+    }
+
+    /// Number of motion steps over all stages.
+    pub fn motion_steps(&self) -> usize {
+        self.scene.motion.iter().map(|m| m.steps).sum()
+    }
+
+    /// Runs step `step` (1-based over all stages) of the prescribed motion. Steps must be run
+    /// in order; after a failed step the rod keeps its last equilibrium and says so.
+    ///
+    /// # Panics
+    /// If `step` is 0 or larger than [`Self::motion_steps`].
+    pub fn run_motion_step(&mut self, step: usize) -> SceneStep {
+        let (stage_index, k) = self.locate(step);
+        let stage: &MotionStage = &self.scene.motion[stage_index];
+        let rod: &CompiledRod = &self.scene.rods[stage.rod];
+        let support = &rod.supports[stage.support];
+        let inv = 1.0 / stage.steps as f64;
+        let rotation = Vec3::from(stage.rotate) * inv;
+        let translation = Vec3::from(stage.translate) * inv;
+        let mut pieces = 0;
+        for (si, seg) in rod.segments.iter().enumerate() {
+            let held: Vec<usize> = support
+                .held
+                .iter()
+                .filter(|&&h| seg.contains(h))
+                .map(|&h| h - seg.first_vertex)
+                .collect();
+            if held.is_empty() {
+                continue;
+            }
+            // The pivot is the support's vertex; for a clip it is on this segment.
+            let pivot_local = support.vertex - seg.first_vertex;
+            let length = seg.rod.length();
+            let first = ((rotation.norm() / MAX_PIECE_ROTATION)
+                .max(translation.norm() / (MAX_PIECE_TRANSLATION * length))
+                .ceil() as usize)
+                .max(1);
+            let (state, report, n) = advance(
+                &seg.rod,
+                &mut self.solvers[stage.rod][si],
+                &self.states[stage.rod][si],
+                &held,
+                pivot_local,
+                rotation,
+                translation,
+                first,
+            );
+            pieces += n;
+            let (mut state, mut report) = (state, report);
+            polish(&seg.rod, &mut state, &mut report);
+            self.states[stage.rod][si] = state;
+            self.reports[stage.rod][si] = report;
+        }
+        self.snapshot(step, Some(stage_index), (k + 1) as f64 * inv, pieces)
+    }
+
+    /// (stage, step within the stage) of global motion step `step` ≥ 1.
+    fn locate(&self, step: usize) -> (usize, usize) {
+        let mut left = step - 1;
+        for (i, m) in self.scene.motion.iter().enumerate() {
+            if left < m.steps {
+                return (i, left);
+            }
+            left -= m.steps;
+        }
+        panic!("motion step {step} is past the last stage");
+    }
+
+    fn snapshot(&self, step: usize, stage: Option<usize>, frac: f64, pieces: usize) -> SceneStep {
+        let rods: Vec<RodResult> = self
+            .scene
+            .rods
+            .iter()
+            .enumerate()
+            .map(|(i, r)| rod_result(r, &self.states[i], &self.reports[i]))
+            .collect();
+        let converged = rods.iter().all(|r| r.converged);
+        SceneStep {
+            step,
+            stage,
+            stage_fraction: frac,
+            seconds: 0.0,
+            pieces,
+            rods,
+            converged,
+        }
+    }
+}
+
+/// Moves a support of `rod` by (rotation, translation) in pieces, solving after each; halves
+/// a piece that does not converge. Returns the final state, the last report and the pieces.
+#[allow(clippy::too_many_arguments)]
+fn advance(
+    rod: &Rod,
+    solver: &mut EquilibriumSolver<RodState>,
+    start: &RodState,
+    held: &[usize],
+    pivot_vertex: usize,
+    rotation: Vec3,
+    translation: Vec3,
+    first_pieces: usize,
+) -> (RodState, SolveReport, usize) {
+    let mut current = start.clone();
+    let mut done = 0.0;
+    let mut piece = 1.0 / first_pieces as f64;
+    let mut pieces = 0;
+    let mut iterations = 0;
+    loop {
+        let f = piece.min(1.0 - done);
+        let motion = SupportMotion {
+            vertices: held.to_vec(),
+            pivot: current.positions()[pivot_vertex],
+            rotation: rotation * f,
+            translation: translation * f,
+        };
+        let guess = match rod.with_support_moved(&current, &motion) {
+            Ok(g) => g,
+            Err(e) => return (current, failed(rod, solver, start, e.to_string()), pieces),
+        };
+        let sol = solver.solve(rod, &guess, 1.0, 1.0);
+        iterations += sol.report.iterations;
+        if sol.report.converged() {
+            current = sol.state;
+            done += f;
+            pieces += 1;
+            if done >= 1.0 - 1e-12 {
+                let mut report = sol.report;
+                report.iterations = iterations;
+                report.load_steps = pieces;
+                return (current, report, pieces);
+            }
+            if sol.report.iterations <= solver.params.fast_iterations {
+                piece = (piece * 2.0).min(1.0 / first_pieces as f64);
+            }
+        } else {
+            piece *= 0.5;
+            if piece < MIN_PIECE / first_pieces as f64 {
+                let reason = format!(
+                    "support motion: piece fell below {:.3e} of the step at {:.4} of it; last Newton: {}",
+                    MIN_PIECE / first_pieces as f64,
+                    done,
+                    match &sol.report.status {
+                        SolveStatus::NotConverged { reason } => reason.as_str(),
+                        SolveStatus::Converged => "",
+                    }
+                );
+                let mut report = sol.report;
+                report.status = SolveStatus::NotConverged { reason };
+                report.iterations = iterations;
+                return (current, report, pieces);
+            }
+        }
+    }
+}
+
+fn failed(
+    rod: &Rod,
+    solver: &mut EquilibriumSolver<RodState>,
+    state: &RodState,
+    reason: String,
+) -> SolveReport {
+    let p = SolverParams {
+        max_iterations: 1,
+        ..solver.params.clone()
+    };
+    let saved = std::mem::replace(&mut solver.params, p);
+    let mut r = solver.solve(rod, state, 1.0, 1.0).report;
+    solver.params = saved;
+    r.status = SolveStatus::NotConverged { reason };
+    r
+}
+
+fn arr(v: Vec3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+/// Assembles the whole rod's result from its segments' states.
+fn rod_result(rod: &CompiledRod, states: &[RodState], reports: &[SolveReport]) -> RodResult {
+    let nv = rod.n_edges + 1;
+    let mut positions = vec![Vec3::zeros(); nv];
+    let mut frames = Vec::with_capacity(rod.n_edges);
+    let mut curvature = vec![[0.0; 2]; nv];
+    let mut twist = vec![0.0; nv];
+    let mut hits = vec![0usize; nv];
+    let mut edge_strain = Vec::with_capacity(rod.n_edges);
+    let mut reactions: Vec<Vec<(Vec3, Vec3)>> = vec![Vec::new(); nv];
+    let mut applied_force = Vec3::zeros();
+    let mut applied_moment_origin = Vec3::zeros();
+    for (seg, s) in rod.segments.iter().zip(states) {
+        let a = seg.first_vertex;
+        for (k, p) in s.positions().iter().enumerate() {
+            positions[a + k] = *p;
+        }
+        for j in 0..seg.rod.n_edges() {
+            let f = s.material_frame(j);
+            frames.push([arr(f[0]), arr(f[1]), arr(f[2])]);
+        }
+        for h in seg.rod.hinge_strains(s) {
+            let v = a + h.vertex;
+            curvature[v][0] += h.curvature[0];
+            curvature[v][1] += h.curvature[1];
+            twist[v] += h.twist;
+            hits[v] += 1;
+        }
+        edge_strain.extend(seg.rod.edge_strains(s));
+        for r in seg.rod.reactions(s, 1.0) {
+            reactions[a + r.vertex].push((r.force, r.moment));
+        }
+        let l = seg.rod.applied_loads(s, 1.0);
+        applied_force += l.force;
+        applied_moment_origin += l.moment;
+    }
+    // A vertex shared by two segments (interior clamp) has a half hinge on each side.
+    for v in 0..nv {
+        if hits[v] > 1 {
+            let w = 1.0 / hits[v] as f64;
+            curvature[v][0] *= w;
+            curvature[v][1] *= w;
+            twist[v] *= w;
+        }
+    }
+    let centroid = positions.iter().sum::<Vec3>() / nv as f64;
+    let applied_moment = applied_moment_origin - centroid.cross(&applied_force);
+    let mut supports = Vec::with_capacity(rod.supports.len());
+    let mut total_f = applied_force;
+    let mut total_m = applied_moment;
+    let mut f_scale = applied_force.norm();
+    let mut m_scale = applied_moment.norm();
+    for (k, sup) in rod.supports.iter().enumerate() {
+        let xv = positions[sup.vertex];
+        let mut force = Vec3::zeros();
+        let mut moment = Vec3::zeros();
+        for &h in &sup.held {
+            for (f, m) in &reactions[h] {
+                force += f;
+                moment += (positions[h] - xv).cross(f) + m;
+            }
+        }
+        total_f += force;
+        let m_c = (xv - centroid).cross(&force) + moment;
+        total_m += m_c;
+        f_scale += force.norm();
+        m_scale += (xv - centroid).norm() * force.norm() + moment.norm();
+        supports.push(SupportResult {
+            support: k,
+            kind: sup.kind,
+            vertex: sup.vertex,
+            position: arr(xv),
+            force: arr(force),
+            moment: arr(moment),
+        });
+    }
+    // A moment M at a support is carried by forces of order M/L inside the rod: count it
+    // in the force scale, so that a rod bent by its clamps alone has a meaningful one.
+    let length: f64 = rod.segments.iter().map(|s| s.rod.length()).sum();
+    f_scale += supports
+        .iter()
+        .map(|s| Vec3::from(s.moment).norm())
+        .sum::<f64>()
+        / length;
+    let rel = |x: f64, s: f64| if s > 0.0 { x / s } else { x };
+    RodResult {
+        name: rod.name.clone(),
+        positions: positions.iter().map(|p| arr(*p)).collect(),
+        frames,
+        curvature,
+        twist,
+        edge_strain,
+        supports,
+        applied_force: arr(applied_force),
+        applied_moment: arr(applied_moment),
+        force_imbalance: total_f.norm(),
+        moment_imbalance: total_m.norm(),
+        relative_force_imbalance: rel(total_f.norm(), f_scale),
+        relative_moment_imbalance: rel(total_m.norm(), m_scale),
+        reports: reports.to_vec(),
+        converged: reports.iter().all(|r| r.converged()),
+    }
+}

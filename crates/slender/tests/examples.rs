@@ -1,0 +1,601 @@
+//! Every scene in `examples/` solved by the binary and checked against something independent
+//! of the solver: a closed form, a reference solved here by another method, a symmetry, and
+//! the balance of the reported reactions against loads computed here from the scene's data.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+use slender_core::solver::SolverParams;
+use slender_validation::cantilever::{end_point_ratio, CantileverCase, MeshKind};
+use slender_validation::materials::OMEGA_ROD;
+
+type V3 = [f64; 3];
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn fresh_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("slender-examples-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// Runs `slender solve examples/<name>.toml` and returns the output directory.
+fn solve(name: &str) -> PathBuf {
+    let out = fresh_dir(name);
+    let scene = repo().join("examples").join(format!("{name}.toml"));
+    let o = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .arg("solve")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .arg("--no-preview")
+        .output()
+        .expect("run slender");
+    assert!(
+        o.status.success(),
+        "{name}: exit {:?}\n{}\n{}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
+}
+
+fn step(out: &Path, k: usize) -> Value {
+    let p = out.join(format!("step_{k:03}/result.json"));
+    serde_json::from_str(&std::fs::read_to_string(&p).expect("result.json")).unwrap()
+}
+
+fn n_steps(out: &Path) -> usize {
+    let r: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(r["converged"], Value::Bool(true), "{}", out.display());
+    r["steps"].as_u64().unwrap() as usize
+}
+
+fn v3(v: &Value) -> V3 {
+    let a = v.as_array().unwrap();
+    [0, 1, 2].map(|k| a[k].as_f64().unwrap())
+}
+
+fn positions(rod: &Value) -> Vec<V3> {
+    rod["positions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(v3)
+        .collect()
+}
+
+fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn scale(a: V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn norm(a: V3) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+/// Lumped vertex masses of a rod with rest vertices `rest` and mass per length `rho_a`: half
+/// of each adjacent edge (computed here, not taken from the solver).
+fn lumped_masses(rest: &[V3], rho_a: f64) -> Vec<f64> {
+    let mut m = vec![0.0; rest.len()];
+    for j in 0..rest.len() - 1 {
+        let h = 0.5 * rho_a * norm(sub(rest[j + 1], rest[j]));
+        m[j] += h;
+        m[j + 1] += h;
+    }
+    m
+}
+
+/// Checks Σ reactions + gravity + point forces = 0 in force and in moment about the origin,
+/// to `tol` relative to the largest term, with the loads computed here.
+fn check_balance(
+    what: &str,
+    rod: &Value,
+    rest: &[V3],
+    rho_a: f64,
+    gravity: V3,
+    forces: &[(usize, V3)],
+    tol: f64,
+) {
+    let x = positions(rod);
+    let masses = lumped_masses(rest, rho_a);
+    // (force, moment about the origin) of every load and reaction.
+    let mut terms: Vec<(V3, V3)> = Vec::new();
+    for (v, &mv) in masses.iter().enumerate() {
+        let force = scale(gravity, mv);
+        terms.push((force, cross(x[v], force)));
+    }
+    for &(v, force) in forces {
+        terms.push((force, cross(x[v], force)));
+    }
+    for s in rod["supports"].as_array().unwrap() {
+        let (p, rf) = (v3(&s["position"]), v3(&s["force"]));
+        terms.push((rf, cross(p, rf)));
+        terms.push(([0.0; 3], v3(&s["moment"])));
+    }
+    let f = terms.iter().fold([0.0; 3], |a, t| add(a, t.0));
+    let m = terms.iter().fold([0.0; 3], |a, t| add(a, t.1));
+    let f_scale: f64 = terms.iter().map(|t| norm(t.0)).sum();
+    let m_scale: f64 = terms.iter().map(|t| norm(t.1)).sum();
+    let length: f64 = rest.windows(2).map(|w| norm(sub(w[1], w[0]))).sum();
+    let f_scale = f_scale.max(m_scale / length);
+    assert!(
+        norm(f) <= tol * f_scale,
+        "{what}: force imbalance {:e} of {:e}",
+        norm(f),
+        f_scale
+    );
+    assert!(
+        norm(m) <= tol * m_scale,
+        "{what}: moment imbalance {:e} of {:e}",
+        norm(m),
+        m_scale
+    );
+    // The solver's own bookkeeping agrees.
+    assert!(
+        rod["relative_force_imbalance"].as_f64().unwrap() <= tol,
+        "{what}"
+    );
+    assert!(
+        rod["relative_moment_imbalance"].as_f64().unwrap() <= tol,
+        "{what}"
+    );
+}
+
+fn straight(start: V3, dir: V3, length: f64, n: usize) -> Vec<V3> {
+    (0..=n)
+        .map(|i| add(start, scale(dir, length * i as f64 / n as f64)))
+        .collect()
+}
+
+fn circle_area(d: f64) -> f64 {
+    std::f64::consts::PI * d * d / 4.0
+}
+
+/// Inextensible elastica of a cantilever with a dead tip force P (downward): EI θ'' = P cos θ,
+/// θ(0) = 0, θ'(L) = 0, by RK4 shooting on θ'(0) with bisection. Returns the tip (x, z).
+fn elastica_tip(p_over_ei: f64, length: f64) -> (f64, f64) {
+    let steps = 4000;
+    let h = length / steps as f64;
+    // State (θ, θ', x, z); z up, force down: θ' decreasing to 0 at the tip means θ'(0) < 0.
+    let rhs = |s: [f64; 4]| [s[1], p_over_ei * s[0].cos(), s[0].cos(), s[0].sin()];
+    let shoot = |k0: f64| {
+        let mut s = [0.0, k0, 0.0, 0.0];
+        for _ in 0..steps {
+            let k1 = rhs(s);
+            let a = |s: [f64; 4], k: [f64; 4], c: f64| [0, 1, 2, 3].map(|i| s[i] + c * k[i]);
+            let k2 = rhs(a(s, k1, 0.5 * h));
+            let k3 = rhs(a(s, k2, 0.5 * h));
+            let k4 = rhs(a(s, k3, h));
+            s = [0, 1, 2, 3].map(|i| s[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+        }
+        s
+    };
+    // θ'(L) grows monotonically with θ'(0); bracket the root in [−P L/EI, 0].
+    let (mut lo, mut hi) = (-p_over_ei * length * 1.01, 0.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if shoot(mid)[1] < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let s = shoot(0.5 * (lo + hi));
+    (s[2], s[3])
+}
+
+#[test]
+fn elastica_reference_has_the_small_load_limit() {
+    // δ = P L³/(3 EI) when P L²/EI → 0: the shooting reference itself is checked.
+    let (_, z) = elastica_tip(1e-4, 1.0);
+    assert!((-z / (1e-4 / 3.0) - 1.0).abs() < 1e-4, "{z}");
+}
+
+#[test]
+fn cantilever_tip_force_matches_the_elastica() {
+    let out = solve("cantilever_tip_force");
+    assert_eq!(n_steps(&out), 1);
+    let rod = &step(&out, 0)["rods"][0];
+    let (e, d, p, l): (f64, f64, f64, f64) = (3.0e9, 0.004, 0.02, 1.0);
+    let ei = e * std::f64::consts::PI * d.powi(4) / 64.0;
+    let x = positions(rod);
+    let tip = x[x.len() - 1];
+    let (xr, zr) = elastica_tip(p / ei, l);
+    // 40 elements: O(h²) discretization error of the discrete rod.
+    assert!((tip[2] / zr - 1.0).abs() < 2e-3, "tip z {} vs {zr}", tip[2]);
+    assert!((tip[0] - xr).abs() < 2e-3 * l, "tip x {} vs {xr}", tip[0]);
+    let s = &rod["supports"][0];
+    let rf = v3(&s["force"]);
+    assert!(norm(sub(rf, [0.0, 0.0, p])) <= 1e-9 * p, "reaction {rf:?}");
+    let rm = v3(&s["moment"]);
+    let expected = scale(cross(tip, [0.0, 0.0, -p]), -1.0);
+    assert!(
+        norm(sub(rm, expected)) <= 1e-9 * p * l,
+        "moment {rm:?} vs {expected:?}"
+    );
+    check_balance(
+        "tip force",
+        rod,
+        &straight([0.0; 3], [1.0, 0.0, 0.0], l, 40),
+        1140.0 * circle_area(d),
+        [0.0; 3],
+        &[(40, [0.0, 0.0, -p])],
+        1e-9,
+    );
+}
+
+#[test]
+fn hanging_cable_is_symmetric_and_each_clamp_carries_half_the_weight() {
+    let out = solve("hanging_cable");
+    let rod = &step(&out, 0)["rods"][0];
+    let x = positions(rod);
+    let n = x.len() - 1;
+    let l = 2.0;
+    for i in 0..=n {
+        let (a, b) = (x[i], x[n - i]);
+        assert!((a[0] + b[0] - l).abs() < 1e-9 * l, "x symmetry at {i}");
+        assert!((a[2] - b[2]).abs() < 1e-9 * l, "z symmetry at {i}");
+        assert!(a[1].abs() < 1e-12);
+    }
+    assert!(x[n / 2][2] < 1.0, "it sags");
+    let rho_a = 1600.0 * circle_area(0.008);
+    let weight = rho_a * 9.81 * l;
+    assert!(
+        (weight
+            / (9.81
+                * lumped_masses(&straight([0.0; 3], [1.0, 0.0, 0.0], l, 40), rho_a)
+                    .iter()
+                    .sum::<f64>())
+            - 1.0)
+            .abs()
+            < 1e-14
+    );
+    let s = rod["supports"].as_array().unwrap();
+    let (f0, f1) = (v3(&s[0]["force"]), v3(&s[1]["force"]));
+    assert!((f0[2] / (0.5 * weight) - 1.0).abs() < 1e-9, "{f0:?}");
+    assert!((f1[2] / (0.5 * weight) - 1.0).abs() < 1e-9, "{f1:?}");
+    assert!(
+        (f0[0] + f1[0]).abs() < 1e-9 * weight,
+        "horizontal forces mirror"
+    );
+    let (m0, m1) = (v3(&s[0]["moment"]), v3(&s[1]["moment"]));
+    assert!((m0[1] + m1[1]).abs() < 1e-9 * weight * l, "moments mirror");
+    check_balance(
+        "hanging cable",
+        rod,
+        &straight([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], l, 40),
+        rho_a,
+        [0.0, 0.0, -9.81],
+        &[],
+        1e-9,
+    );
+}
+
+/// Rest vertices of an arc with the scene's parameters (uniform in arc length).
+fn arc(start: V3, t: V3, nrm: V3, r: f64, length: f64, n: usize) -> Vec<V3> {
+    (0..=n)
+        .map(|i| {
+            let phi = length * i as f64 / n as f64 / r;
+            add(
+                start,
+                add(scale(t, r * phi.sin()), scale(nrm, r * (1.0 - phi.cos()))),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn u_cable_moved_in_steps_balances_at_every_step() {
+    let out = solve("u_cable_moved");
+    let steps = n_steps(&out);
+    assert_eq!(steps, 11);
+    let rest = arc(
+        [0.0; 3],
+        [0.0, 0.0, -1.0],
+        [1.0, 0.0, 0.0],
+        0.15,
+        0.471_238_898_038_468_97,
+        40,
+    );
+    let rho_a = 1500.0 * circle_area(0.006);
+    // The discrete rod's mass is that of its rest chords.
+    let weight = lumped_masses(&rest, rho_a).iter().sum::<f64>() * 9.81;
+    // Step 0: symmetric about x = 0.15, half the weight on each clamp.
+    let rod0 = &step(&out, 0)["rods"][0];
+    let x = positions(rod0);
+    for i in 0..=40 {
+        assert!(
+            (x[i][0] + x[40 - i][0] - 0.3).abs() < 1e-9,
+            "symmetry at {i}"
+        );
+        assert!((x[i][2] - x[40 - i][2]).abs() < 1e-9, "symmetry at {i}");
+    }
+    for s in rod0["supports"].as_array().unwrap() {
+        assert!((v3(&s["force"])[2] / (0.5 * weight) - 1.0).abs() < 1e-9);
+    }
+    let mut end = [0.3, 0.0, 0.0];
+    for k in 0..steps {
+        let rod = &step(&out, k)["rods"][0];
+        check_balance(
+            &format!("u cable step {k}"),
+            rod,
+            &rest,
+            rho_a,
+            [0.0, 0.0, -9.81],
+            &[],
+            1e-9,
+        );
+        // The moved clamp is where the motion put it.
+        let p = v3(&rod["supports"][1]["position"]);
+        if (1..=5).contains(&k) {
+            end = [0.3 + 0.02 * k as f64, 0.0, 0.0];
+        } else if k > 5 {
+            end = [0.4, 0.0, 0.02 * (k - 5) as f64];
+        }
+        assert!(
+            norm(sub(p, end)) < 1e-12,
+            "step {k}: clamp at {p:?}, expected {end:?}"
+        );
+    }
+    let csv = std::fs::read_to_string(out.join("steps.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 12, "a summary row per step");
+    assert!(csv.lines().next().unwrap().contains("seconds"));
+    for k in 0..steps {
+        assert!(out.join(format!("step_{k:03}/shape.vtk")).exists());
+        assert!(out.join(format!("step_{k:03}/shape.gltf")).exists());
+    }
+}
+
+#[test]
+fn coiled_cable_lifted_stretches_like_a_spring() {
+    let out = solve("coiled_cable_lifted");
+    let steps = n_steps(&out);
+    assert_eq!(steps, 5);
+    let (e, nu, d, coil_d, turns): (f64, f64, f64, f64, f64) = (1.0e9, 0.4, 0.002, 0.02, 8.0);
+    let g = e / (2.0 * (1.0 + nu));
+    let k_spring = g * d.powi(4) / (8.0 * coil_d.powi(3) * turns);
+    let (r, pitch, length) = (0.01, 0.005, 0.504_243_862_300_660_7);
+    let rise = pitch / (2.0 * std::f64::consts::PI);
+    let speed = (r * r + rise * rise).sqrt();
+    let rest: Vec<V3> = (0..=400)
+        .map(|i| {
+            let phi = length * i as f64 / 400.0 / speed;
+            [r - r * phi.cos(), r * phi.sin(), rise * phi]
+        })
+        .collect();
+    let rho_a = 1300.0 * circle_area(d);
+    for k in 0..steps {
+        let rod = &step(&out, k)["rods"][0];
+        check_balance(
+            &format!("coil step {k}"),
+            rod,
+            &rest,
+            rho_a,
+            [0.0; 3],
+            &[],
+            1e-9,
+        );
+        let delta = 0.005 * k as f64;
+        let fz = v3(&rod["supports"][1]["force"])[2];
+        if k > 0 {
+            assert!(
+                (fz / (k_spring * delta) - 1.0).abs() < 0.1,
+                "step {k}: axial force {fz} vs spring law {}",
+                k_spring * delta
+            );
+        }
+    }
+}
+
+/// Errors of the final flat-cable step against the quarter circle: (largest distance from
+/// the arc / R, largest reaction force / (M/R), largest |moment/M − 1|).
+fn quarter_circle_errors(out: &Path, n: usize) -> [f64; 3] {
+    let steps = n_steps(out);
+    assert_eq!(steps, 9);
+    let (e, w, h, l): (f64, f64, f64, f64) = (2.0e9, 0.01, 0.002, 0.25);
+    let rho_a = 2000.0 * w * h;
+    let rest = straight([0.0; 3], [1.0, 0.0, 0.0], l, n);
+    for k in 0..steps {
+        check_balance(
+            &format!("flat cable ({n} elements) step {k}"),
+            &step(out, k)["rods"][0],
+            &rest,
+            rho_a,
+            [0.0; 3],
+            &[],
+            1e-9,
+        );
+    }
+    let rod = &step(out, steps - 1)["rods"][0];
+    let radius = 2.0 * l / std::f64::consts::PI;
+    let mut dev: f64 = 0.0;
+    for p in positions(rod) {
+        let dist = (p[0].powi(2) + (p[1] - radius).powi(2)).sqrt();
+        dev = dev.max((dist / radius - 1.0).abs());
+        assert!(p[2].abs() < 1e-9 * l, "the ribbon left its plane");
+    }
+    let m = e * w * h.powi(3) / 12.0 / radius;
+    let s = rod["supports"].as_array().unwrap();
+    let mut force: f64 = 0.0;
+    let mut moment: f64 = 0.0;
+    for (k, sign) in [(0, -1.0), (1, 1.0)] {
+        let rm = v3(&s[k]["moment"]);
+        assert!(rm[0].abs() + rm[1].abs() < 1e-9 * m, "moment about z only");
+        moment = moment.max((rm[2] / (sign * m) - 1.0).abs());
+        force = force.max(norm(v3(&s[k]["force"])) / (m / radius));
+    }
+    [dev, force, moment]
+}
+
+#[test]
+fn flat_cable_bent_by_its_clamps_converges_to_a_quarter_circle() {
+    // The example (20 elements) and the same scene refined to 40: the closed-form quarter
+    // circle is approached at the rate O(h²) of the discrete rod.
+    let coarse = quarter_circle_errors(&solve("flat_cable_corner"), 20);
+    let text = std::fs::read_to_string(repo().join("examples/flat_cable_corner.toml")).unwrap();
+    assert!(text.contains("elements = 20"));
+    let fine_scene = fresh_dir("flat_cable_40.toml");
+    std::fs::write(&fine_scene, text.replace("elements = 20", "elements = 40")).unwrap();
+    let out = fresh_dir("flat_cable_40");
+    let o = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args(["solve", "--no-preview", "--out"])
+        .arg(&out)
+        .arg(&fine_scene)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let fine = quarter_circle_errors(&out, 40);
+    assert!(
+        coarse[0] < 1e-3 && coarse[1] < 5e-2 && coarse[2] < 1e-2,
+        "{coarse:?}"
+    );
+    for k in 0..3 {
+        assert!(
+            coarse[k] / fine[k] > 3.5,
+            "error {k} does not converge like h²: {coarse:?} → {fine:?}"
+        );
+    }
+}
+
+#[test]
+fn cantilever_scene_reproduces_the_benchmark() {
+    let out = solve("cantilever_benchmark");
+    let rod = &step(&out, 0)["rods"][0];
+    let x = positions(rod);
+    let (a, b) = (x[0], x[x.len() - 1]);
+    let ratio = (a[1] - b[1]) / (b[0] - a[0]);
+    let case = CantileverCase {
+        material: OMEGA_ROD,
+        mesh: MeshKind::Graded,
+        n_elements: 20,
+        gamma: 10.0,
+    };
+    // Both solves are run to round-off (the scene solver polishes past the default tolerance),
+    // so that they agree on the discrete equilibrium itself.
+    let tight = SolverParams {
+        force_tolerance: 1e-14,
+        energy_tolerance: 1e-30,
+        ..SolverParams::default()
+    };
+    let run = case.run(&tight).unwrap();
+    assert!(run.report.converged());
+    assert_eq!(end_point_ratio(&run.positions), run.ratio);
+    assert!(
+        (ratio - run.ratio).abs() <= 1e-10 * run.ratio.abs(),
+        "scene Δy/Δx = {ratio}, benchmark {}",
+        run.ratio
+    );
+    let g = OMEGA_ROD.gravity_for_gamma(10.0);
+    let rest: Vec<V3> = case
+        .build()
+        .unwrap()
+        .rest_state()
+        .positions()
+        .iter()
+        .map(|p| [p.x, p.y, p.z])
+        .collect();
+    check_balance(
+        "cantilever benchmark",
+        rod,
+        &rest,
+        OMEGA_ROD.properties.linear_density,
+        [0.0, -g, 0.0],
+        &[],
+        1e-9,
+    );
+}
+
+#[test]
+fn clipped_cable_with_interior_clamp_balances() {
+    let out = solve("clipped_cable");
+    let rod = &step(&out, 0)["rods"][0];
+    let r = &rod["supports"];
+    assert_eq!(r.as_array().unwrap().len(), 4);
+    // The solver's balance includes the point moment; check its figures and that the clip and
+    // the clamps carry moments while the pin does not.
+    assert!(rod["relative_force_imbalance"].as_f64().unwrap() <= 1e-9);
+    assert!(rod["relative_moment_imbalance"].as_f64().unwrap() <= 1e-9);
+    assert_eq!(norm(v3(&r[3]["moment"])), 0.0, "a pin carries no moment");
+    assert!(norm(v3(&r[1]["moment"])) > 0.0, "a clip holds the tangent");
+    // Force balance with loads computed here: weight + point force.
+    let rest_points = [
+        [0.0, 0.0, 0.0],
+        [0.5, 0.0, 0.0],
+        [0.8, 0.3, 0.0],
+        [1.0, 0.3, 0.1],
+    ];
+    // Rest vertices: 40 uniform steps of arc length along the polyline.
+    let seg: Vec<f64> = rest_points
+        .windows(2)
+        .map(|w| norm(sub(w[1], w[0])))
+        .collect();
+    let length: f64 = seg.iter().sum();
+    let rest: Vec<V3> = (0..=40)
+        .map(|i| {
+            let mut s = length * i as f64 / 40.0;
+            for (k, &l) in seg.iter().enumerate() {
+                if s <= l || k == seg.len() - 1 {
+                    let t = scale(sub(rest_points[k + 1], rest_points[k]), 1.0 / l);
+                    return add(rest_points[k], scale(t, s.min(l)));
+                }
+                s -= l;
+            }
+            unreachable!()
+        })
+        .collect();
+    let weight: f64 = lumped_masses(&rest, 1400.0 * circle_area(0.006))
+        .iter()
+        .sum::<f64>()
+        * 9.81;
+    let mut f = [0.0, 0.5, -weight];
+    let mut f_scale = weight + 0.5;
+    for s in r.as_array().unwrap() {
+        f = add(f, v3(&s["force"]));
+        f_scale += norm(v3(&s["force"]));
+    }
+    assert!(norm(f) < 1e-9 * f_scale, "force imbalance {f:?}");
+}
+
+#[test]
+fn a_json_scene_gives_the_same_equilibrium_as_its_toml() {
+    let text = std::fs::read_to_string(repo().join("examples/u_cable_moved.toml")).unwrap();
+    let value: toml::Value = toml::from_str(&text).unwrap();
+    let dir = fresh_dir("json-scene");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("u_cable_moved.json");
+    std::fs::write(&scene, serde_json::to_string_pretty(&value).unwrap()).unwrap();
+    let out = dir.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args(["solve", "--no-preview", "--out"])
+        .arg(&out)
+        .arg(&scene)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let toml_out = solve("u_cable_moved");
+    for k in [0, 10] {
+        let a = step(&out, k);
+        let b = step(&toml_out, k);
+        assert_eq!(
+            a["rods"][0]["positions"], b["rods"][0]["positions"],
+            "step {k}"
+        );
+    }
+}
