@@ -14,6 +14,7 @@ pub mod error;
 pub mod geometry;
 pub mod linalg;
 pub mod rod;
+pub mod shell;
 pub mod solver;
 
 pub use error::ModelError;
