@@ -90,6 +90,28 @@ pub fn edge_curvature(q: [&Vec3; 3], i: usize, director: &EdgeDirector) -> Dual2
     (altitude * alpha.tan()).scale(2.0)
 }
 
+/// Value of II_i = 2 h_i tan α_i alone (no derivatives): the same formula as
+/// [`edge_curvature`] in plain f64, for energy evaluations in line searches.
+pub fn edge_curvature_value(q: [&Vec3; 3], i: usize, director: &EdgeDirector) -> f64 {
+    let n_f = (q[1] - q[0]).cross(&(q[2] - q[0]));
+    let (a, b) = (q[(i + 1) % 3], q[(i + 2) % 3]);
+    let edge = b - a;
+    let edge_len = edge.norm();
+    let altitude = n_f.norm() / edge_len;
+    let alpha = match director {
+        EdgeDirector::Interior { p, phi, sigma } => {
+            let n_g = (a - b).cross(&(p - b));
+            let theta = (n_f.cross(&n_g).dot(&edge) / edge_len).atan2(n_f.dot(&n_g));
+            0.5 * theta + sigma * phi
+        }
+        EdgeDirector::Free { phi, sigma } => sigma * phi,
+        EdgeDirector::Clamped { normal } => {
+            (n_f.cross(normal).dot(&edge) / edge_len).atan2(n_f.dot(normal))
+        }
+    };
+    2.0 * altitude * alpha.tan()
+}
+
 /// ∂b/∂II: rows b₁₁, b₁₂, b₂₂; columns II₀, II₁, II₂.
 fn sff_jacobian() -> Matrix3<f64> {
     Matrix3::new(1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0)
@@ -124,9 +146,14 @@ pub fn bending_energy(
     grad: Option<&mut SVector<f64, FACE_VARS>>,
     hess: Option<&mut SMatrix<f64, FACE_VARS, FACE_VARS>>,
 ) -> f64 {
+    let k = quadratic_form(&rest.abar_inv, lambda, mu, rest.area * h * h * h / 12.0);
+    if grad.is_none() && hess.is_none() {
+        let ii_v = Vector3::from_fn(|i, _| edge_curvature_value(q, i, &directors[i]));
+        let db = second_fundamental_form(&ii_v) - bbar;
+        return 0.5 * db.dot(&(k * db));
+    }
     let ii: [Dual2<EDGE_VARS>; 3] = std::array::from_fn(|i| edge_curvature(q, i, &directors[i]));
     let ii_v = Vector3::new(ii[0].v, ii[1].v, ii[2].v);
-    let k = quadratic_form(&rest.abar_inv, lambda, mu, rest.area * h * h * h / 12.0);
     let j = sff_jacobian();
     let db = second_fundamental_form(&ii_v) - bbar;
     let energy = 0.5 * db.dot(&(k * db));
