@@ -150,6 +150,7 @@ impl<const N: usize> std::ops::Mul for Dual2<N> {
 
 impl<const N: usize> std::ops::Div for Dual2<N> {
     type Output = Self;
+    #[allow(clippy::suspicious_arithmetic_impl)] // a / b = a · (1/b)
     fn div(self, o: Self) -> Self {
         self * o.recip()
     }

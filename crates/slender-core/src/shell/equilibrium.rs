@@ -1,6 +1,6 @@
 //! The shell as an [`EquilibriumProblem`]: step caps, scales and the mass metric.
 
-use crate::linalg::SymmetricBandMatrix;
+use crate::linalg::SparseSymmetricMatrix;
 use crate::solver::problem::{AssemblyInfo, EquilibriumProblem};
 
 use super::dofs::DofKind;
@@ -20,8 +20,10 @@ impl EquilibriumProblem for Shell {
         self.dofs.n_free()
     }
 
-    fn half_bandwidth(&self) -> usize {
-        self.half_bandwidth
+    type Hessian = SparseSymmetricMatrix;
+
+    fn new_hessian(&self) -> SparseSymmetricMatrix {
+        self.sparse_hessian()
     }
 
     fn energy(&self, state: &ShellState, load: f64) -> f64 {
@@ -33,7 +35,7 @@ impl EquilibriumProblem for Shell {
         state: &ShellState,
         load: f64,
         grad: &mut [f64],
-        hess: &mut SymmetricBandMatrix,
+        hess: &mut SparseSymmetricMatrix,
         abs_grad: &mut [f64],
     ) -> AssemblyInfo {
         self.assemble_terms(

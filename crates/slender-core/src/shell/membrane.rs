@@ -89,10 +89,10 @@ pub fn membrane_energy(
     // ∇a_k: block m is 2 Σ_n S_k[m][n] q_n.
     let mut da = SMatrix::<f64, 9, 3>::zeros();
     for (kk, s) in FFF_COEFFS.iter().enumerate() {
-        for m in 0..3 {
+        for (m, row) in s.iter().enumerate() {
             let mut v = Vec3::zeros();
-            for n in 0..3 {
-                v += q[n] * (2.0 * s[m][n]);
+            for (qn, c) in q.iter().zip(row) {
+                v += *qn * (2.0 * c);
             }
             da.fixed_view_mut::<3, 1>(3 * m, kk).copy_from(&v);
         }

@@ -4,7 +4,7 @@
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use crate::geometry::Vec3;
-use crate::linalg::SymmetricBandMatrix;
+use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
 use crate::solver::AssemblyInfo;
 
 use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
@@ -168,9 +168,25 @@ impl Shell {
         &self.vertex_masses
     }
 
-    /// Half-bandwidth of the Hessian in the free ordering.
+    /// Half-bandwidth of the Hessian in the free ordering (the free DOFs are numbered along
+    /// the length, so a banded matrix can hold the Hessian too).
     pub fn half_bandwidth(&self) -> usize {
         self.half_bandwidth
+    }
+
+    /// A zero sparse Hessian whose pattern holds every pair of free DOFs sharing a face
+    /// stencil (the bending stencil contains the membrane one).
+    pub fn sparse_hessian(&self) -> SparseSymmetricMatrix {
+        let mut pairs = Vec::new();
+        for f in 0..self.mesh.faces.len() {
+            let idx: Vec<usize> = self.face_stencil(f).iter().flatten().copied().collect();
+            for (a, &i) in idx.iter().enumerate() {
+                for &j in &idx[..a] {
+                    pairs.push((i, j));
+                }
+            }
+        }
+        SparseSymmetricMatrix::from_pattern(self.dofs.n_free(), pairs)
     }
 
     /// Free DOF indices of face `f`'s 21-variable bending stencil (None: fixed or absent).
@@ -216,18 +232,19 @@ impl Shell {
 
     /// Energy (J) of the selected terms at load factor `load`.
     pub fn energy_terms(&self, s: &ShellState, load: f64, terms: ShellTerms) -> f64 {
-        self.assemble_terms(s, load, terms, None, None, None).energy
+        self.assemble_terms::<SparseSymmetricMatrix>(s, load, terms, None, None, None)
+            .energy
     }
 
     /// Energy, gradient (free DOFs) and Hessian of the selected terms at load factor `load`.
     /// `grad` and `abs_grad` are overwritten; `hess` is zeroed first.
-    pub fn assemble_terms(
+    pub fn assemble_terms<M: SymmetricMatrix>(
         &self,
         s: &ShellState,
         load: f64,
         terms: ShellTerms,
         mut grad: Option<&mut [f64]>,
-        mut hess: Option<&mut SymmetricBandMatrix>,
+        mut hess: Option<&mut M>,
         mut abs_grad: Option<&mut [f64]>,
     ) -> AssemblyInfo {
         if let Some(g) = grad.as_deref_mut() {
@@ -328,13 +345,13 @@ impl Shell {
 }
 
 /// Adds a local gradient and Hessian (over `idx`, None = fixed) to the global ones.
-fn scatter(
+fn scatter<M: SymmetricMatrix>(
     idx: &[Option<usize>],
     g: &[f64],
     h: impl Fn(usize, usize) -> f64,
     grad: &mut Option<&mut [f64]>,
     abs_grad: &mut Option<&mut [f64]>,
-    hess: &mut Option<&mut SymmetricBandMatrix>,
+    hess: &mut Option<&mut M>,
 ) {
     for (a, ia) in idx.iter().enumerate() {
         let Some(i) = *ia else { continue };

@@ -162,11 +162,11 @@ impl ShellCantileverCase {
         let centre = solution.state.positions();
         let mesh = shell.mesh();
         let mut state = shell.rest_state();
-        for i in 1..=mesh.n_length {
+        for (i, c) in centre.iter().enumerate().skip(1) {
             for j in 0..=mesh.n_width {
                 let v = mesh.vertex(i, j);
                 let z = mesh.rest_positions[v].z;
-                state.positions[v] = centre[i] + Vec3::new(0.0, 0.0, z);
+                state.positions[v] = c + Vec3::new(0.0, 0.0, z);
             }
         }
         Ok(Some(state))
