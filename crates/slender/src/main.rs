@@ -8,6 +8,7 @@ mod output;
 #[allow(dead_code)]
 mod plot;
 mod progress;
+mod shell_cantilever_report;
 mod validate;
 
 use std::path::PathBuf;
@@ -16,8 +17,9 @@ use std::process::ExitCode;
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use slender_validation::bend_twist::sweep::BendTwistSweep;
+use slender_validation::cantilever::ShellCantileverSweep;
 use slender_validation::cantilever::{log_space, CantileverSweep, MeshKind};
-use slender_validation::materials::ROD_SETS;
+use slender_validation::materials::{ROD_SETS, SHELL_SETS};
 
 /// Large deformations of cables, hoses and flat cables, with the validation to prove them.
 #[derive(Parser, Debug)]
@@ -131,6 +133,46 @@ struct CantileverArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
+    /// Shell sets (seed Table 2), comma-separated: shell, ips, combined; `none` skips shells.
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["shell".to_string(), "ips".to_string(), "combined".to_string()])]
+    shell_materials: Vec<String>,
+    /// Shell elements along the length n_L, comma-separated (n_W follows from w/L).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![8usize, 15, 30])]
+    shell_elements: Vec<usize>,
+    /// Shell aspect ratio w/L (> 0).
+    #[arg(long, default_value_t = 0.1)]
+    shell_width_ratio: f64,
+}
+
+/// The shell sweep of `slender cantilever`, or `None` if shells are skipped.
+fn shell_sweep_from_args(a: &CantileverArgs) -> Result<Option<ShellCantileverSweep>> {
+    if a.shell_materials.iter().any(|m| m == "none") {
+        return Ok(None);
+    }
+    if !(a.shell_width_ratio.is_finite() && a.shell_width_ratio > 0.0) {
+        bail!(
+            "--shell-width-ratio = {}: must be finite and > 0",
+            a.shell_width_ratio
+        );
+    }
+    if let Some(n) = a.shell_elements.iter().find(|&&n| n == 0) {
+        bail!("--shell-elements contains {n}: element counts must be >= 1");
+    }
+    let materials =
+        a.shell_materials
+            .iter()
+            .map(|m| {
+                SHELL_SETS.iter().copied().find(|s| s.name == m).with_context(|| {
+                format!("--shell-materials: unknown set `{m}`; valid: shell, ips, combined, none")
+            })
+            })
+            .collect::<Result<Vec<_>>>()?;
+    Ok(Some(ShellCantileverSweep {
+        gammas: log_space(a.gamma_min, a.gamma_max, a.gamma_count),
+        element_counts: a.shell_elements.clone(),
+        width_ratio: a.shell_width_ratio,
+        materials,
+    }))
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -214,9 +256,19 @@ fn run(cli: Cli) -> Result<bool> {
     match cli.command {
         Command::Cantilever(a) => {
             let sweep = sweep_from_args(&a)?;
+            let shells = shell_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
             let out = pool.install(|| cantilever_report::run(&sweep, &a.out))?;
             cantilever_report::print_summary(&out.summary);
+            if let Some(shells) = shells {
+                // Fig. 2 of the seed pairs the measured bundle with the Ω_combined shells.
+                let rod = ["bundle", "rod"]
+                    .into_iter()
+                    .find(|m| sweep.materials.iter().any(|s| s.name == *m));
+                let records = pool
+                    .install(|| shell_cantilever_report::run(&shells, &out.records, rod, &a.out))?;
+                shell_cantilever_report::print_summary(&records);
+            }
             println!("wrote {}", a.out.display());
             Ok(true)
         }
