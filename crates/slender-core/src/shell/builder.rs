@@ -171,6 +171,7 @@ impl ShellBuilder {
             edge_inertia,
             gravity: self.gravity,
             clamp,
+            grading: self.grading,
         };
         let mut bw = 0;
         for f in 0..shell.mesh.faces.len() {

@@ -4,6 +4,7 @@
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use crate::geometry::Vec3;
+use crate::rod::Grading;
 use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
 use crate::solver::AssemblyInfo;
 
@@ -107,6 +108,7 @@ pub struct Shell {
     pub(crate) edge_inertia: Vec<f64>,
     pub(crate) gravity: Vec3,
     pub(crate) clamp: Clamp,
+    pub(crate) grading: Grading,
 }
 
 impl Shell {
@@ -128,6 +130,11 @@ impl Shell {
     /// Sets gravity (m/s²) at load factor 1.
     pub fn set_gravity(&mut self, g: Vec3) {
         self.gravity = g;
+    }
+
+    /// Distribution of the stations along the length.
+    pub fn grading(&self) -> Grading {
+        self.grading
     }
 
     /// The clamp.

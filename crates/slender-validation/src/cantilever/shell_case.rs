@@ -6,8 +6,8 @@
 use std::time::Instant;
 
 use slender_core::geometry::Vec3;
-use slender_core::rod::{Grading, RestCurve, RodBuilder, RodProperties, SectionStiffness};
-use slender_core::shell::{Shell, ShellBuilder, ShellState};
+use slender_core::rod::Grading;
+use slender_core::shell::{rod_predictor, Shell, ShellBuilder};
 use slender_core::solver::{EquilibriumSolver, SolveReport, SolverParams};
 use slender_core::ModelError;
 
@@ -68,14 +68,15 @@ impl ShellCantileverCase {
             .build()
     }
 
-    /// Solves for the equilibrium under full gravity. With `rod_predictor`, Newton starts
-    /// from the equivalent rod's equilibrium mapped onto the strip (see [`rod_predictor`]),
+    /// Solves for the equilibrium under full gravity. With `use_rod_predictor`, Newton starts
+    /// from the equivalent rod's equilibrium mapped onto the strip
+    /// ([`slender_core::shell::rod_predictor`]),
     /// falling back to load stepping from the flat state if that fails; without it, the
     /// solver ramps gravity from the flat state with its own adaptive load steps.
     pub fn run_with(
         &self,
         params: &SolverParams,
-        rod_predictor: bool,
+        use_rod_predictor: bool,
     ) -> Result<ShellCantileverRun, ModelError> {
         params.validate()?;
         let shell = self.build()?;
@@ -83,8 +84,8 @@ impl ShellCantileverCase {
         let clock = Instant::now();
         let mut solver = EquilibriumSolver::new(&shell, &start, params.clone());
         let mut solution = None;
-        if rod_predictor {
-            if let Some(guess) = self.rod_predictor(&shell, params)? {
+        if use_rod_predictor {
+            if let Some(guess) = rod_predictor(&shell, 1.0, params)? {
                 let s = solver.solve(&shell, &guess, 1.0, 1.0);
                 if s.report.converged() {
                     solution = Some(s);
@@ -113,63 +114,6 @@ impl ShellCantileverCase {
     /// Solves with the rod predictor (the default, see [`Self::run_with`]).
     pub fn run(&self, params: &SolverParams) -> Result<ShellCantileverRun, ModelError> {
         self.run_with(params, true)
-    }
-
-    /// Start for Newton: the equilibrium of the equivalent rod (bending stiffness D·w,
-    /// stretching E·h·w, mass ρ·h·w per length, nodes at the shell's stations), with every
-    /// vertex column placed across the rod's vertex along z (the strip bends in the xy-plane).
-    ///
-    /// Why: from the flat state, Newton steps move the shell's vertices normal to the
-    /// surface and stretch the stiff membrane at second order, so each step is valid only
-    /// over about a thickness and a solve takes hundreds of iterations (design.md §3.3). The
-    /// rod's edge-preserving update has no such limit; from its shape the shell converges in
-    /// a few iterations to its own equilibrium. `None` if the rod does not converge.
-    pub fn rod_predictor(
-        &self,
-        shell: &Shell,
-        params: &SolverParams,
-    ) -> Result<Option<ShellState>, ModelError> {
-        let p = shell.properties();
-        let dw = p.bending_stiffness() * p.width;
-        let rod = RodBuilder::new(
-            RestCurve::Straight {
-                start: [0.0; 3],
-                direction: [1.0, 0.0, 0.0],
-                length: p.length,
-            },
-            RodProperties {
-                stiffness: SectionStiffness {
-                    ea: p.young * p.thickness * p.width,
-                    ei1: dw,
-                    ei2: dw,
-                    gj: p.young / (2.0 * (1.0 + p.poisson)) * p.width * p.thickness.powi(3) / 3.0,
-                },
-                linear_density: p.density * p.thickness * p.width,
-            },
-        )
-        .elements(self.n_length)
-        .grading(self.grading)
-        .first_director(Vec3::z())
-        .clamp_start()
-        .gravity(shell.gravity())
-        .build()?;
-        let start = rod.rest_state().clone();
-        let mut solver = EquilibriumSolver::new(&rod, &start, params.clone());
-        let solution = solver.solve(&rod, &start, 0.0, 1.0);
-        if !solution.report.converged() {
-            return Ok(None);
-        }
-        let centre = solution.state.positions();
-        let mesh = shell.mesh();
-        let mut state = shell.rest_state();
-        for (i, c) in centre.iter().enumerate().skip(1) {
-            for j in 0..=mesh.n_width {
-                let v = mesh.vertex(i, j);
-                let z = mesh.rest_positions[v].z;
-                state.positions[v] = c + Vec3::new(0.0, 0.0, z);
-            }
-        }
-        Ok(Some(state))
     }
 }
 
