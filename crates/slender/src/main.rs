@@ -4,6 +4,7 @@
 
 mod bend_twist_report;
 mod cantilever_report;
+mod lateral_buckling_report;
 mod output;
 #[allow(dead_code)]
 mod plot;
@@ -39,6 +40,9 @@ enum Command {
     BendTwist(BendTwistArgs),
     /// Run the validation suite and print a pass/fail table (exit code 1 if a target fails).
     Validate(ValidateArgs),
+    /// The lateral-buckling benchmark (seed §5): a heavy strip with its width along gravity,
+    /// 2-D or 3-D over (w/L, Γ_shell) by the seed's protocol and by stability.
+    LateralBuckling(LateralBucklingArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -175,6 +179,94 @@ fn shell_sweep_from_args(a: &CantileverArgs) -> Result<Option<ShellCantileverSwe
     }))
 }
 
+#[derive(clap::Args, Debug)]
+struct LateralBucklingArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out/lateral-buckling")]
+    out: PathBuf,
+    /// Shell set (seed Table 2): shell, ips, combined.
+    #[arg(long, default_value = "shell")]
+    material: String,
+    /// Elements along the length n_L (square elements across).
+    #[arg(long, default_value_t = 8)]
+    elements: usize,
+    /// Aspect ratios w/L, comma-separated (each in (0, 1]).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![0.05, 0.1, 0.2, 0.5, 1.0])]
+    width_ratios: Vec<f64>,
+    /// Smallest Γ_shell of the log-spaced sweep.
+    #[arg(long, default_value_t = 8.0)]
+    gamma_min: f64,
+    /// Largest Γ_shell.
+    #[arg(long, default_value_t = 40.0)]
+    gamma_max: f64,
+    /// Number of Γ_shell values.
+    #[arg(long, default_value_t = 8)]
+    gamma_count: usize,
+    /// Clamp rotation σ of the protocol (rad).
+    #[arg(long, default_value_t = 0.2)]
+    sigma: f64,
+    /// Load steps m_ls of the protocol.
+    #[arg(long, default_value_t = 5)]
+    load_steps: usize,
+    /// Decision threshold ε on |y_tip|/L.
+    #[arg(long, default_value_t = 1e-4)]
+    threshold: f64,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+fn lateral_sweep_from_args(
+    a: &LateralBucklingArgs,
+) -> Result<slender_validation::lateral_buckling::LateralBucklingSweep> {
+    let material = SHELL_SETS
+        .iter()
+        .copied()
+        .find(|s| s.name == a.material)
+        .with_context(|| {
+            format!(
+                "--material: unknown set `{}`; valid: shell, ips, combined",
+                a.material
+            )
+        })?;
+    if a.elements == 0 {
+        bail!("--elements = 0: must be >= 1");
+    }
+    if let Some(w) = a
+        .width_ratios
+        .iter()
+        .find(|w| !(w.is_finite() && **w > 0.0 && **w <= 1.0))
+    {
+        bail!("--width-ratios contains {w}: each must be in (0, 1]");
+    }
+    if !(a.gamma_min.is_finite()
+        && a.gamma_min > 0.0
+        && a.gamma_max.is_finite()
+        && a.gamma_max >= a.gamma_min)
+    {
+        bail!(
+            "--gamma-min/--gamma-max = {}/{}: need 0 < min <= max, finite",
+            a.gamma_min,
+            a.gamma_max
+        );
+    }
+    if a.gamma_count == 0 || a.load_steps == 0 {
+        bail!("--gamma-count and --load-steps must be >= 1");
+    }
+    if !(a.sigma.is_finite() && a.threshold.is_finite() && a.threshold > 0.0) {
+        bail!("--sigma must be finite and --threshold finite and > 0");
+    }
+    Ok(slender_validation::lateral_buckling::LateralBucklingSweep {
+        material,
+        n_length: a.elements,
+        width_ratios: a.width_ratios.clone(),
+        gammas: log_space(a.gamma_min, a.gamma_max, a.gamma_count),
+        sigma: a.sigma,
+        load_steps: a.load_steps,
+        threshold: a.threshold,
+    })
+}
+
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 enum Preset {
     /// What CI runs.
@@ -277,6 +369,14 @@ fn run(cli: Cli) -> Result<bool> {
             let pool = thread_pool(a.jobs)?;
             let out = pool.install(|| bend_twist_report::run(&sweep, &a.out))?;
             bend_twist_report::print_summary(&out.summary);
+            println!("wrote {}", a.out.display());
+            Ok(true)
+        }
+        Command::LateralBuckling(a) => {
+            let sweep = lateral_sweep_from_args(&a)?;
+            let pool = thread_pool(a.jobs)?;
+            let out = pool.install(|| lateral_buckling_report::run(&sweep, &a.out))?;
+            lateral_buckling_report::print_summary(&out);
             println!("wrote {}", a.out.display());
             Ok(true)
         }

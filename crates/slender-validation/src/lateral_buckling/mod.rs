@@ -3,5 +3,7 @@
 //! route, Γ_c by bisection), and by the seed's perturbation protocol.
 
 pub mod case;
+pub mod sweep;
 
 pub use case::{LateralBucklingCase, ProtocolOutcome};
+pub use sweep::{CriticalRecord, LateralBucklingRecord, LateralBucklingSweep};
