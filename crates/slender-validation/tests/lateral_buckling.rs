@@ -79,3 +79,20 @@ fn seed_protocol_agrees_with_the_inertia_on_both_sides_of_the_critical_gamma() {
         "the buckled state must be stable"
     );
 }
+
+#[test]
+fn acceptance_checks_pass() {
+    let checks =
+        slender_validation::lateral_buckling::lateral_buckling_checks(&SolverParams::default())
+            .expect("valid");
+    for c in &checks {
+        eprintln!(
+            "{} {}: {:.4} (target {})",
+            if c.passed { "PASS" } else { "FAIL" },
+            c.description,
+            c.measured,
+            c.target
+        );
+    }
+    assert!(checks.iter().all(|c| c.passed));
+}
