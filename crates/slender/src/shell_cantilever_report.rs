@@ -57,6 +57,22 @@ pub fn run(
             .collect()
     };
     for set in &sweep.materials {
+        // The narrow-strip limit: lateral stiffness E·w·h³/12 = D·w·(1 − ν²), i.e. the master
+        // curve at Γ/(1 − ν²) (anticlastic curvature free, design.md §1.1).
+        let nu2 = 1.0 - set.poisson * set.poisson;
+        let mut curves = vec![Curve {
+            label: format!(
+                "heavy elastica with E·w·h³/12 (narrow strip, ν = {})",
+                set.poisson
+            ),
+            points: log_space(lo, hi, 100)
+                .into_iter()
+                .filter_map(|g| heavy_elastica(g / nu2).ok().map(|h| (g, h.ratio())))
+                .collect(),
+            dashed: true,
+            markers: false,
+        }];
+        curves.extend(shell_curves(set, false));
         let stem = out.join(format!("ratio_shell_{}", set.name));
         plot_cantilever_ratio(
             &stem,
@@ -65,7 +81,7 @@ pub fn run(
                 set.label, set.poisson, sweep.width_ratio
             ),
             &master,
-            &shell_curves(set, false),
+            &curves,
             Some(CABLE_RANGE),
         )
         .with_context(|| format!("plotting {}", stem.display()))?;
