@@ -96,3 +96,20 @@ fn acceptance_checks_pass() {
     }
     assert!(checks.iter().all(|c| c.passed));
 }
+
+#[test]
+fn vlasov_master_curve_reproduces_classical_and_tabulated_values() {
+    use slender_validation::lateral_buckling::vlasov::{critical_gamma_band, critical_lambda};
+    // Timoshenko & Gere: λ_c = 12.85 without warping; design.md §1.3 table for K > 0
+    // (computed there by a Rayleigh quotient cross-checked by shooting).
+    for (k, expected) in [(0.0, 12.8538), (0.1, 17.673), (0.5, 39.834), (1.0, 66.868)] {
+        let l = critical_lambda(k, 200).expect("converges");
+        eprintln!("K = {k}: λ_c = {l:.4} (reference {expected})");
+        assert!(
+            (l / expected - 1.0).abs() < 2e-3,
+            "K = {k}: {l} vs {expected}"
+        );
+    }
+    let (beam, plate) = critical_gamma_band(0.35, 0.1).expect("band");
+    assert!((beam / 14.79 - 1.0).abs() < 5e-3 && (plate / 15.79 - 1.0).abs() < 5e-3);
+}

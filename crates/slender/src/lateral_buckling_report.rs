@@ -5,6 +5,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use slender_core::solver::SolverParams;
+use slender_validation::cantilever::log_space;
+use slender_validation::lateral_buckling::vlasov::critical_gamma_band;
 use slender_validation::lateral_buckling::{
     CriticalRecord, LateralBucklingRecord, LateralBucklingSweep,
 };
@@ -12,19 +14,6 @@ use slender_validation::lateral_buckling::{
 use crate::output::write_csv;
 use crate::plot::{plot_phase_diagram, Overlay, Phase, PhasePoint};
 use crate::progress::Progress;
-
-/// Vlasov-beam Γ_c for ν = 0.35 (design.md §1.3, computed there by a finite-difference
-/// Rayleigh quotient, not by slender): (w/L, Γ_c with B = E w h³/12, Γ_c with B = D w).
-const VLASOV_NU035: [(f64, f64, f64); 8] = [
-    (0.02, 13.93, 14.87),
-    (0.05, 14.24, 15.20),
-    (0.1, 14.79, 15.79),
-    (0.2, 15.98, 17.06),
-    (0.3, 17.25, 18.42),
-    (0.5, 19.95, 21.30),
-    (0.75, 23.49, 25.07),
-    (1.0, 27.08, 28.90),
-];
 
 /// What the benchmark produced.
 pub struct LateralBucklingOutput {
@@ -75,6 +64,13 @@ pub fn run(sweep: &LateralBucklingSweep, out: &Path) -> Result<LateralBucklingOu
             disagrees: r.stability_3d.is_some_and(|s| s != r.protocol_3d),
         })
         .collect();
+    // The Vlasov-beam master curve (computed in slender-validation by finite differences,
+    // independently of the shell), with the beam and the plate lateral stiffness.
+    let nu = sweep.material.poisson;
+    let band: Vec<(f64, (f64, f64))> = log_space(0.01, 1.0, 40)
+        .into_iter()
+        .filter_map(|w| critical_gamma_band(nu, w).map(|b| (w, b)))
+        .collect();
     let overlays = vec![
         Overlay {
             label: format!("Γ_c from the Hessian inertia (n_L = {})", sweep.n_length),
@@ -83,14 +79,14 @@ pub fn run(sweep: &LateralBucklingSweep, out: &Path) -> Result<LateralBucklingOu
             color: None,
         },
         Overlay {
-            label: "Vlasov beam, B = E w h³/12 (design §1.3, ν = 0.35)".into(),
-            points: VLASOV_NU035.iter().map(|v| (v.0, v.1)).collect(),
+            label: format!("Vlasov beam, B = E w h³/12 (ν = {nu})"),
+            points: band.iter().map(|(w, b)| (*w, b.0)).collect(),
             dashed: true,
             color: None,
         },
         Overlay {
             label: "Vlasov beam, B = D w".into(),
-            points: VLASOV_NU035.iter().map(|v| (v.0, v.2)).collect(),
+            points: band.iter().map(|(w, b)| (*w, b.1)).collect(),
             dashed: true,
             color: None,
         },

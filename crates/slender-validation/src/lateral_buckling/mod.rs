@@ -5,6 +5,7 @@
 pub mod acceptance;
 pub mod case;
 pub mod sweep;
+pub mod vlasov;
 
 pub use acceptance::lateral_buckling_checks;
 pub use case::{LateralBucklingCase, ProtocolOutcome};
