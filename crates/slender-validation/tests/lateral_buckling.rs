@@ -113,3 +113,13 @@ fn vlasov_master_curve_reproduces_classical_and_tabulated_values() {
     let (beam, plate) = critical_gamma_band(0.35, 0.1).expect("band");
     assert!((beam / 14.79 - 1.0).abs() < 5e-3 && (plate / 15.79 - 1.0).abs() < 5e-3);
 }
+
+#[test]
+fn vlasov_band_exists_over_the_aspect_ratios() {
+    use slender_validation::lateral_buckling::vlasov::critical_gamma_band;
+    for w in [0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0] {
+        let band = critical_gamma_band(0.35, w);
+        eprintln!("w/L = {w}: {band:?}");
+        assert!(band.is_some(), "w/L = {w}");
+    }
+}

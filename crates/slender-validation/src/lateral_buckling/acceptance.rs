@@ -6,6 +6,7 @@ use slender_core::ModelError;
 
 use super::case::LateralBucklingCase;
 use super::sweep::GAMMA_C_BRACKET;
+use super::vlasov::critical_gamma_band;
 use crate::cantilever::Check;
 use crate::materials::OMEGA_SHELL;
 
@@ -31,7 +32,7 @@ fn gamma_c(width_ratio: f64, n_length: usize, params: &SolverParams) -> Result<f
 }
 
 /// For w/L = 0.1 and 0.5: |Γ_c(n_L = 15) / Γ_c(n_L = 30) − 1| ≤ 5 % (the finer mesh stands
-/// for the converged value), and the seed's protocol (σ = 0.2, m_ls = 5, ε = 1e-4) deciding
+/// for the converged value) and Γ_c(n_L = 30) within 5 % of the Vlasov band, and the seed's protocol (σ = 0.2, m_ls = 5, ε = 1e-4) deciding
 /// 2-D at 0.8 Γ_c and 3-D at 1.25 Γ_c (n_L = 8, w/L = 0.1).
 pub fn lateral_buckling_checks(params: &SolverParams) -> Result<Vec<Check>, ModelError> {
     let mut checks = Vec::new();
@@ -47,6 +48,26 @@ pub fn lateral_buckling_checks(params: &SolverParams) -> Result<Vec<Check>, Mode
             "≤ 5 %",
             e <= 5.0,
         ));
+        // The Vlasov beam is a 1-D approximation (design.md §1.3): the converged shell should
+        // fall in its band [B = E w h³/12, B = D w] up to a few %.
+        if let Some((beam, plate)) = critical_gamma_band(OMEGA_SHELL.poisson, w) {
+            let outside = 100.0
+                * if fine < beam {
+                    beam / fine - 1.0
+                } else if fine > plate {
+                    fine / plate - 1.0
+                } else {
+                    0.0
+                };
+            checks.push(check(
+                format!(
+                    "Ω_shell, w/L = {w}, n_L = 30: distance (%) of Γ_c = {fine:.3} outside the Vlasov band [{beam:.3}, {plate:.3}]"
+                ),
+                outside,
+                "≤ 5 %",
+                outside <= 5.0,
+            ));
+        }
     }
     let case = LateralBucklingCase {
         material: OMEGA_SHELL,

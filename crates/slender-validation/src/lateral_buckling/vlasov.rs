@@ -67,19 +67,23 @@ pub fn critical_lambda_fd(k: f64, n: usize) -> Option<f64> {
     // Inverse iteration on A x = μ M x: x ← A⁻¹ M x, μ = xᵀAx / xᵀMx.
     let mut x = DVector::from_fn(m, |r, _| (r + 1) as f64 * h);
     let mut mu_old = f64::INFINITY;
-    for _ in 0..500 {
+    let mut change = f64::INFINITY;
+    for _ in 0..2000 {
         let rhs = mass.component_mul(&x);
         let y = chol.solve(&rhs);
-        let ay = &a * &y;
-        let mu = y.dot(&ay) / y.dot(&mass.component_mul(&y));
+        // yᵀAy = yᵀMx exactly (A y = M x), without the cancellation of forming A y, whose
+        // entries reach K²/h³.
+        let mu = y.dot(&rhs) / y.dot(&mass.component_mul(&y));
         x = &y / y.amax();
-        // Round-off in A (entries up to K²/h³) makes the quotient jitter at ~1e-11.
-        if (mu - mu_old).abs() <= 1e-9 * mu {
+        change = (mu - mu_old).abs() / mu;
+        if change <= 1e-10 {
             return Some(2.0 * mu.sqrt());
         }
         mu_old = mu;
     }
-    None
+    // Slow convergence (close second eigenvalue) or jitter above 1e-10: accept a quotient that
+    // has settled to 1e-8 (λ to 5e-9), which is far below the discretization error.
+    (change <= 1e-8).then(|| 2.0 * mu_old.sqrt())
 }
 
 /// Warping parameter K = √((1+ν)/24)·(w/L) of a thin strip.
