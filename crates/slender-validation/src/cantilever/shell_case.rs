@@ -48,8 +48,9 @@ pub struct ShellCantileverRun {
 }
 
 impl ShellCantileverCase {
-    /// The seed's default for an aspect ratio: n_W = 2 elements across for w/L ≤ 0.2 (the
-    /// design's validated 15 × 2, 30 × 2 meshes), else about square elements at mid-length.
+    /// Elements across the width for a sweep: about square elements on the uniform mesh,
+    /// n_W = round(n_L·w/L), and at least 2 (the 8 × 2 and 15 × 2 meshes validated in
+    /// design.md §3.3), so that the centre line is a mesh line when n_W is even.
     pub fn default_width_elements(width_ratio: f64, n_length: usize) -> usize {
         ((width_ratio * n_length as f64).round() as usize).max(2)
     }
