@@ -39,10 +39,18 @@ impl<const N: usize> Dual2<N> {
     /// f(self) from f, f′, f″ at the value.
     #[inline]
     fn chain(&self, f: f64, df: f64, d2f: f64) -> Self {
+        // Entry loops instead of matrix expressions: no N×N temporaries.
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            let gj = self.g[j] * d2f;
+            for i in 0..N {
+                h[(i, j)] = self.h[(i, j)] * df + self.g[i] * gj;
+            }
+        }
         Self {
             v: f,
             g: self.g * df,
-            h: self.h * df + (self.g * self.g.transpose()) * d2f,
+            h,
         }
     }
 
@@ -50,15 +58,22 @@ impl<const N: usize> Dual2<N> {
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn chain2(&self, o: &Self, f: f64, fa: f64, fb: f64, faa: f64, fab: f64, fbb: f64) -> Self {
-        let cross = self.g * o.g.transpose();
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            let (aj, bj) = (self.g[j], o.g[j]);
+            for i in 0..N {
+                let (ai, bi) = (self.g[i], o.g[i]);
+                h[(i, j)] = self.h[(i, j)] * fa
+                    + o.h[(i, j)] * fb
+                    + ai * aj * faa
+                    + bi * bj * fbb
+                    + (ai * bj + bi * aj) * fab;
+            }
+        }
         Self {
             v: f,
             g: self.g * fa + o.g * fb,
-            h: self.h * fa
-                + o.h * fb
-                + (self.g * self.g.transpose()) * faa
-                + (o.g * o.g.transpose()) * fbb
-                + (cross + cross.transpose()) * fab,
+            h,
         }
     }
 
@@ -139,11 +154,18 @@ impl<const N: usize> std::ops::Sub for Dual2<N> {
 impl<const N: usize> std::ops::Mul for Dual2<N> {
     type Output = Self;
     fn mul(self, o: Self) -> Self {
-        let cross = self.g * o.g.transpose();
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            let (aj, bj) = (self.g[j], o.g[j]);
+            for i in 0..N {
+                h[(i, j)] =
+                    self.h[(i, j)] * o.v + o.h[(i, j)] * self.v + self.g[i] * bj + o.g[i] * aj;
+            }
+        }
         Self {
             v: self.v * o.v,
             g: self.g * o.v + o.g * self.v,
-            h: self.h * o.v + o.h * self.v + cross + cross.transpose(),
+            h,
         }
     }
 }
