@@ -89,7 +89,10 @@ fn kernels(c: &mut Criterion) {
     let n = shell.n_free();
     let mut g = vec![0.0; n];
     let mut h = shell.new_hessian();
-    println!("shell n30: {n} free DOFs, {} stored Hessian entries", h.nnz());
+    println!(
+        "shell n30: {n} free DOFs, {} stored Hessian entries",
+        h.nnz()
+    );
     c.bench_function("shell_assembly_n30", |b| {
         b.iter(|| {
             shell.assemble_terms(

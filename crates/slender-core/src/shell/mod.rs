@@ -12,13 +12,13 @@ pub mod equilibrium;
 pub mod gravity;
 pub mod membrane;
 pub mod mesh;
-pub mod rod_predictor;
 pub mod model;
+pub mod rod_predictor;
 pub mod state;
 
 pub use builder::ShellBuilder;
 pub use clamp::Clamp;
 pub use mesh::StripMesh;
-pub use rod_predictor::rod_predictor;
 pub use model::{Shell, ShellProperties, ShellTerms};
+pub use rod_predictor::rod_predictor;
 pub use state::ShellState;

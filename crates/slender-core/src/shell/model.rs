@@ -4,8 +4,8 @@
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use crate::geometry::Vec3;
-use crate::rod::Grading;
 use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
+use crate::rod::Grading;
 use crate::solver::AssemblyInfo;
 
 use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
