@@ -4,7 +4,7 @@
 
 mod bend_twist_report;
 mod cantilever_report;
-mod lateral_buckling_report;
+mod lateral_sweep_report;
 mod output;
 #[allow(dead_code)]
 mod plot;
@@ -218,7 +218,7 @@ struct LateralBucklingArgs {
 
 fn lateral_sweep_from_args(
     a: &LateralBucklingArgs,
-) -> Result<slender_validation::lateral_buckling::LateralBucklingSweep> {
+) -> Result<slender_validation::lateral_sweep::LateralBucklingSweep> {
     let material = SHELL_SETS
         .iter()
         .copied()
@@ -256,7 +256,7 @@ fn lateral_sweep_from_args(
     if !(a.sigma.is_finite() && a.threshold.is_finite() && a.threshold > 0.0) {
         bail!("--sigma must be finite and --threshold finite and > 0");
     }
-    Ok(slender_validation::lateral_buckling::LateralBucklingSweep {
+    Ok(slender_validation::lateral_sweep::LateralBucklingSweep {
         material,
         n_length: a.elements,
         width_ratios: a.width_ratios.clone(),
@@ -375,8 +375,8 @@ fn run(cli: Cli) -> Result<bool> {
         Command::LateralBuckling(a) => {
             let sweep = lateral_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
-            let out = pool.install(|| lateral_buckling_report::run(&sweep, &a.out))?;
-            lateral_buckling_report::print_summary(&out);
+            let out = pool.install(|| lateral_sweep_report::run(&sweep, &a.out))?;
+            lateral_sweep_report::print_summary(&out);
             println!("wrote {}", a.out.display());
             Ok(true)
         }

@@ -6,8 +6,8 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::log_space;
-use slender_validation::lateral_buckling::vlasov::critical_gamma_band;
-use slender_validation::lateral_buckling::{
+use slender_validation::lateral_sweep::vlasov_fd::critical_gamma_band;
+use slender_validation::lateral_sweep::{
     CriticalRecord, LateralBucklingRecord, LateralBucklingSweep,
 };
 

@@ -6,7 +6,7 @@ use slender_core::ModelError;
 
 use super::case::LateralBucklingCase;
 use super::sweep::GAMMA_C_BRACKET;
-use super::vlasov::critical_gamma_band;
+use super::vlasov_fd::critical_gamma_band;
 use crate::cantilever::Check;
 use crate::materials::OMEGA_SHELL;
 

@@ -4,7 +4,7 @@
 //! seed's protocol on both sides of Γ_c. Run in release.
 
 use slender_core::solver::SolverParams;
-use slender_validation::lateral_buckling::LateralBucklingCase;
+use slender_validation::lateral_sweep::LateralBucklingCase;
 use slender_validation::materials::OMEGA_SHELL;
 
 fn case(width_ratio: f64, n_length: usize) -> LateralBucklingCase {
@@ -83,7 +83,7 @@ fn seed_protocol_agrees_with_the_inertia_on_both_sides_of_the_critical_gamma() {
 #[test]
 fn acceptance_checks_pass() {
     let checks =
-        slender_validation::lateral_buckling::lateral_buckling_checks(&SolverParams::default())
+        slender_validation::lateral_sweep::lateral_buckling_checks(&SolverParams::default())
             .expect("valid");
     for c in &checks {
         eprintln!(
@@ -99,7 +99,7 @@ fn acceptance_checks_pass() {
 
 #[test]
 fn vlasov_master_curve_reproduces_classical_and_tabulated_values() {
-    use slender_validation::lateral_buckling::vlasov::{critical_gamma_band, critical_lambda};
+    use slender_validation::lateral_sweep::vlasov_fd::{critical_gamma_band, critical_lambda};
     // Timoshenko & Gere: λ_c = 12.85 without warping; design.md §1.3 table for K > 0
     // (computed there by a Rayleigh quotient cross-checked by shooting).
     for (k, expected) in [(0.0, 12.8538), (0.1, 17.673), (0.5, 39.834), (1.0, 66.868)] {
@@ -116,7 +116,7 @@ fn vlasov_master_curve_reproduces_classical_and_tabulated_values() {
 
 #[test]
 fn vlasov_band_exists_over_the_aspect_ratios() {
-    use slender_validation::lateral_buckling::vlasov::critical_gamma_band;
+    use slender_validation::lateral_sweep::vlasov_fd::critical_gamma_band;
     for w in [0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0] {
         let band = critical_gamma_band(0.35, w);
         eprintln!("w/L = {w}: {band:?}");
