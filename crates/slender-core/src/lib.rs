@@ -15,6 +15,7 @@ pub mod geometry;
 pub mod linalg;
 pub mod rod;
 pub mod scene;
+pub mod shell;
 pub mod solver;
 
 pub use error::ModelError;

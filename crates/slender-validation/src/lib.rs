@@ -7,5 +7,6 @@
 pub mod bend_twist;
 pub mod cantilever;
 pub mod lateral_buckling;
+pub mod lateral_sweep;
 pub mod materials;
 pub mod ode;

@@ -8,6 +8,7 @@
 //!   Γ = ρ A g L³/EI ≈ 61.3 at earth gravity, as the seed states.
 
 use slender_core::rod::{RodProperties, SectionStiffness};
+use slender_core::shell::ShellProperties;
 
 /// A named rod parameter set.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -74,6 +75,85 @@ pub const OMEGA_BUNDLE: RodMaterialSet = RodMaterialSet {
 
 /// Both rod sets, in the order the seed lists them.
 pub const ROD_SETS: [RodMaterialSet; 2] = [OMEGA_ROD, OMEGA_BUNDLE];
+
+/// A named shell parameter set (seed Table 2); the width follows from the aspect ratio w/L.
+///
+/// The densities are printed in "kg/dm³" with values (1000, 1210) that only make sense as
+/// kg/m³; Γ_shell = ρhgL³/D is varied through g, so the reading does not matter for Δy/Δx.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShellMaterialSet {
+    /// Identifier used in files and plots (`shell`, `ips`, `combined`).
+    pub name: &'static str,
+    /// Label with the seed's notation.
+    pub label: &'static str,
+    /// Length L (m).
+    pub length: f64,
+    /// Thickness h (m).
+    pub thickness: f64,
+    /// Young's modulus E (Pa).
+    pub young: f64,
+    /// Poisson ratio ν.
+    pub poisson: f64,
+    /// Density ρ (kg/m³).
+    pub density: f64,
+}
+
+impl ShellMaterialSet {
+    /// Shell properties at aspect ratio `width_ratio` = w/L.
+    pub fn properties(&self, width_ratio: f64) -> ShellProperties {
+        ShellProperties {
+            length: self.length,
+            width: width_ratio * self.length,
+            thickness: self.thickness,
+            young: self.young,
+            poisson: self.poisson,
+            density: self.density,
+        }
+    }
+
+    /// The same set with another Poisson ratio (ν = 0 makes D·w = EI, so that the 1-D
+    /// master curve is exact for the shell).
+    pub fn with_poisson(self, poisson: f64) -> Self {
+        Self { poisson, ..self }
+    }
+}
+
+/// Ω_shell, Romero et al.'s proposal (seed Table 2): L = 1 m, h = 1 mm, E = 10530 MPa, ν = 0.35.
+pub const OMEGA_SHELL: ShellMaterialSet = ShellMaterialSet {
+    name: "shell",
+    label: "Ω_shell",
+    length: 1.0,
+    thickness: 1e-3,
+    young: 10530e6,
+    poisson: 0.35,
+    density: 1000.0,
+};
+
+/// Ω_IPS, the IPS defaults (seed Table 2): L = 0.1 m, h = 0.2 mm, E = 2380 MPa, ν = 0.36.
+pub const OMEGA_IPS: ShellMaterialSet = ShellMaterialSet {
+    name: "ips",
+    label: "Ω_IPS",
+    length: 0.1,
+    thickness: 0.2e-3,
+    young: 2380e6,
+    poisson: 0.36,
+    density: 1210.0,
+};
+
+/// Ω_combined (seed Table 2): L = 0.1 m, h = 0.2 mm, E = 10530 MPa, ν = 0.35 — the set of the
+/// seed's Fig. 2 shell curves.
+pub const OMEGA_COMBINED: ShellMaterialSet = ShellMaterialSet {
+    name: "combined",
+    label: "Ω_combined",
+    length: 0.1,
+    thickness: 0.2e-3,
+    young: 10530e6,
+    poisson: 0.35,
+    density: 1000.0,
+};
+
+/// The three shell sets, in the order the seed lists them.
+pub const SHELL_SETS: [ShellMaterialSet; 3] = [OMEGA_SHELL, OMEGA_IPS, OMEGA_COMBINED];
 
 #[cfg(test)]
 mod tests {

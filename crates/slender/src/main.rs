@@ -5,11 +5,13 @@
 mod bend_twist_report;
 mod cantilever_report;
 mod lateral_buckling_curves_report;
+mod lateral_sweep_report;
 mod output;
 #[allow(dead_code)]
 mod plot;
 mod progress;
 mod report_html;
+mod shell_cantilever_report;
 mod solve;
 mod store;
 mod validate;
@@ -20,8 +22,9 @@ use std::process::ExitCode;
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use slender_validation::bend_twist::sweep::BendTwistSweep;
+use slender_validation::cantilever::ShellCantileverSweep;
 use slender_validation::cantilever::{log_space, CantileverSweep, MeshKind};
-use slender_validation::materials::ROD_SETS;
+use slender_validation::materials::{ROD_SETS, SHELL_SETS};
 use store::runner::StoreOptions;
 use store::shard::Shard;
 
@@ -51,6 +54,9 @@ enum Command {
     Solve(solve::SolveArgs),
     /// Print (or write with --out) the JSON Schema of the scene format.
     SceneSchema(SceneSchemaArgs),
+    /// The lateral-buckling benchmark (seed §5): a heavy strip with its width along gravity,
+    /// 2-D or 3-D over (w/L, Γ_shell) by the seed's protocol and by stability.
+    LateralBuckling(LateralBucklingArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -188,6 +194,134 @@ struct CantileverArgs {
     /// shards with `slender merge`, then rerun without --shard to write the report.
     #[arg(long)]
     shard: Option<Shard>,
+    /// Shell sets (seed Table 2), comma-separated: shell, ips, combined; `none` skips shells.
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["shell".to_string(), "ips".to_string(), "combined".to_string()])]
+    shell_materials: Vec<String>,
+    /// Shell elements along the length n_L, comma-separated (n_W follows from w/L).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![8usize, 15, 30])]
+    shell_elements: Vec<usize>,
+    /// Shell aspect ratio w/L (> 0).
+    #[arg(long, default_value_t = 0.1)]
+    shell_width_ratio: f64,
+}
+
+/// The shell sweep of `slender cantilever`, or `None` if shells are skipped.
+fn shell_sweep_from_args(a: &CantileverArgs) -> Result<Option<ShellCantileverSweep>> {
+    if a.shell_materials.iter().any(|m| m == "none") {
+        return Ok(None);
+    }
+    if !(a.shell_width_ratio.is_finite() && a.shell_width_ratio > 0.0) {
+        bail!(
+            "--shell-width-ratio = {}: must be finite and > 0",
+            a.shell_width_ratio
+        );
+    }
+    if let Some(n) = a.shell_elements.iter().find(|&&n| n == 0) {
+        bail!("--shell-elements contains {n}: element counts must be >= 1");
+    }
+    let materials =
+        a.shell_materials
+            .iter()
+            .map(|m| {
+                SHELL_SETS.iter().copied().find(|s| s.name == m).with_context(|| {
+                format!("--shell-materials: unknown set `{m}`; valid: shell, ips, combined, none")
+            })
+            })
+            .collect::<Result<Vec<_>>>()?;
+    Ok(Some(ShellCantileverSweep {
+        gammas: log_space(a.gamma_min, a.gamma_max, a.gamma_count),
+        element_counts: a.shell_elements.clone(),
+        width_ratio: a.shell_width_ratio,
+        materials,
+    }))
+}
+
+#[derive(clap::Args, Debug)]
+struct LateralBucklingArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out/lateral-buckling")]
+    out: PathBuf,
+    /// Shell set (seed Table 2): shell, ips, combined.
+    #[arg(long, default_value = "shell")]
+    material: String,
+    /// Elements along the length n_L (square elements across).
+    #[arg(long, default_value_t = 8)]
+    elements: usize,
+    /// Aspect ratios w/L, comma-separated (each in (0, 1]).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![0.05, 0.1, 0.2, 0.5, 1.0])]
+    width_ratios: Vec<f64>,
+    /// Smallest Γ_shell of the log-spaced sweep.
+    #[arg(long, default_value_t = 8.0)]
+    gamma_min: f64,
+    /// Largest Γ_shell.
+    #[arg(long, default_value_t = 40.0)]
+    gamma_max: f64,
+    /// Number of Γ_shell values.
+    #[arg(long, default_value_t = 8)]
+    gamma_count: usize,
+    /// Clamp rotation σ of the protocol (rad).
+    #[arg(long, default_value_t = 0.2)]
+    sigma: f64,
+    /// Load steps m_ls of the protocol.
+    #[arg(long, default_value_t = 5)]
+    load_steps: usize,
+    /// Decision threshold ε on |y_tip|/L.
+    #[arg(long, default_value_t = 1e-4)]
+    threshold: f64,
+    /// Worker threads (default: all cores). Results do not depend on it.
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+fn lateral_sweep_from_args(
+    a: &LateralBucklingArgs,
+) -> Result<slender_validation::lateral_sweep::LateralBucklingSweep> {
+    let material = SHELL_SETS
+        .iter()
+        .copied()
+        .find(|s| s.name == a.material)
+        .with_context(|| {
+            format!(
+                "--material: unknown set `{}`; valid: shell, ips, combined",
+                a.material
+            )
+        })?;
+    if a.elements == 0 {
+        bail!("--elements = 0: must be >= 1");
+    }
+    if let Some(w) = a
+        .width_ratios
+        .iter()
+        .find(|w| !(w.is_finite() && **w > 0.0 && **w <= 1.0))
+    {
+        bail!("--width-ratios contains {w}: each must be in (0, 1]");
+    }
+    if !(a.gamma_min.is_finite()
+        && a.gamma_min > 0.0
+        && a.gamma_max.is_finite()
+        && a.gamma_max >= a.gamma_min)
+    {
+        bail!(
+            "--gamma-min/--gamma-max = {}/{}: need 0 < min <= max, finite",
+            a.gamma_min,
+            a.gamma_max
+        );
+    }
+    if a.gamma_count == 0 || a.load_steps == 0 {
+        bail!("--gamma-count and --load-steps must be >= 1");
+    }
+    if !(a.sigma.is_finite() && a.threshold.is_finite() && a.threshold > 0.0) {
+        bail!("--sigma must be finite and --threshold finite and > 0");
+    }
+    Ok(slender_validation::lateral_sweep::LateralBucklingSweep {
+        material,
+        n_length: a.elements,
+        width_ratios: a.width_ratios.clone(),
+        gammas: log_space(a.gamma_min, a.gamma_max, a.gamma_count),
+        sigma: a.sigma,
+        load_steps: a.load_steps,
+        threshold: a.threshold,
+    })
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -278,11 +412,22 @@ fn run(cli: Cli) -> Result<bool> {
     match cli.command {
         Command::Cantilever(a) => {
             let sweep = sweep_from_args(&a)?;
+            let shells = shell_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
             let store = store_options(&a.out, &a.store, a.shard);
             match pool.install(|| cantilever_report::run(&sweep, &a.out, &store))? {
                 Some(out) => {
                     cantilever_report::print_summary(&out.summary);
+                    if let Some(shells) = shells {
+                        // Fig. 2 of the seed pairs the measured bundle with the Ω_combined shells.
+                        let rod = ["bundle", "rod"]
+                            .into_iter()
+                            .find(|m| sweep.materials.iter().any(|s| s.name == *m));
+                        let records = pool.install(|| {
+                            shell_cantilever_report::run(&shells, &out.records, rod, &a.out)
+                        })?;
+                        shell_cantilever_report::print_summary(&records);
+                    }
                     println!("wrote {}", a.out.display());
                 }
                 None => print_shard_done(&store),
@@ -313,6 +458,14 @@ fn run(cli: Cli) -> Result<bool> {
         }
         Command::SceneSchema(a) => {
             solve::write_schema(a.out.as_deref())?;
+            Ok(true)
+        }
+        Command::LateralBuckling(a) => {
+            let sweep = lateral_sweep_from_args(&a)?;
+            let pool = thread_pool(a.jobs)?;
+            let out = pool.install(|| lateral_sweep_report::run(&sweep, &a.out))?;
+            lateral_sweep_report::print_summary(&out);
+            println!("wrote {}", a.out.display());
             Ok(true)
         }
         Command::Validate(a) => {

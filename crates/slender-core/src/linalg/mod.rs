@@ -1,7 +1,13 @@
-//! Linear algebra the solver needs beyond what faer and nalgebra offer directly.
+//! Linear algebra the solver needs beyond what faer and nalgebra offer directly: the storage
+//! trait the Newton solver is generic over, the banded LDLᵀ (rods), the sparse LDLᵀ through
+//! faer (shells), and the smallest eigenpair by spectrum slicing.
 
 pub mod banded;
+pub mod eigen;
+pub mod sparse;
+pub mod symmetric;
 
-pub use banded::{
-    smallest_eigenpair, BandLdlt, EigenEstimate, FactorError, Inertia, SymmetricBandMatrix,
-};
+pub use banded::{BandLdlt, SymmetricBandMatrix};
+pub use eigen::{smallest_eigenpair, EigenEstimate};
+pub use sparse::{SparseLdlt, SparseSymmetricMatrix};
+pub use symmetric::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};

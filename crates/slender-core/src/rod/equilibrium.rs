@@ -15,6 +15,13 @@ const MAX_THETA_STEP: f64 = std::f64::consts::FRAC_PI_2;
 /// Largest relative change of an edge vector allowed in one Newton step.
 const MAX_EDGE_CHANGE: f64 = 0.5;
 
+impl Rod {
+    /// Half-bandwidth of the Hessian in the free ordering.
+    pub fn half_bandwidth(&self) -> usize {
+        ROD_HALF_BANDWIDTH
+    }
+}
+
 impl EquilibriumProblem for Rod {
     type State = RodState;
 
@@ -22,8 +29,10 @@ impl EquilibriumProblem for Rod {
         self.dofs.n_free()
     }
 
-    fn half_bandwidth(&self) -> usize {
-        ROD_HALF_BANDWIDTH
+    type Hessian = SymmetricBandMatrix;
+
+    fn new_hessian(&self) -> SymmetricBandMatrix {
+        SymmetricBandMatrix::new(self.n_free(), ROD_HALF_BANDWIDTH)
     }
 
     fn energy(&self, state: &RodState, load: f64) -> f64 {

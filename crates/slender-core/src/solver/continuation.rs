@@ -4,7 +4,7 @@
 //! step, halves the increment when Newton fails, doubles it after fast steps, and predicts
 //! each step's start by extrapolating the last two converged states.
 
-use crate::linalg::SymmetricBandMatrix;
+use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
 
 use super::newton::{newton, IterateMeasures, NewtonWorkspace};
 use super::params::SolverParams;
@@ -32,18 +32,18 @@ const EIGEN_TOLERANCE: f64 = 1e-6;
 
 /// An equilibrium solver with reusable buffers for one problem size.
 #[derive(Clone, Debug)]
-pub struct EquilibriumSolver<S> {
+pub struct EquilibriumSolver<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     /// Parameters.
     pub params: SolverParams,
-    ws: NewtonWorkspace<S>,
+    ws: NewtonWorkspace<S, M>,
     predictor: Vec<f64>,
     values: [Vec<f64>; 2],
-    scaled: SymmetricBandMatrix,
+    scaled: M,
 }
 
-impl<S: Clone> EquilibriumSolver<S> {
+impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
     /// A solver for `problem`; `template` is any state of it.
-    pub fn new<P: EquilibriumProblem<State = S>>(
+    pub fn new<P: EquilibriumProblem<State = S, Hessian = M>>(
         problem: &P,
         template: &S,
         params: SolverParams,
@@ -54,13 +54,13 @@ impl<S: Clone> EquilibriumSolver<S> {
             ws: NewtonWorkspace::new(problem, template),
             predictor: vec![0.0; n],
             values: [vec![0.0; n], vec![0.0; n]],
-            scaled: SymmetricBandMatrix::new(0, 0),
+            scaled: problem.new_hessian(),
         }
     }
 
     /// Ramps the load factor from `from` (where `start` is assumed to be an equilibrium, or
     /// close to one) to `to`, and returns the final state with its report.
-    pub fn solve<P: EquilibriumProblem<State = S>>(
+    pub fn solve<P: EquilibriumProblem<State = S, Hessian = M>>(
         &mut self,
         problem: &P,
         start: &S,

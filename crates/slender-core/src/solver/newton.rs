@@ -1,7 +1,7 @@
 //! The Newton loop at a fixed load: exact Hessian, inertia from the LDLᵀ pivots, diagonal
 //! shift when the Hessian is indefinite, step caps and Armijo backtracking (design.md §4.2).
 
-use crate::linalg::{BandLdlt, Inertia, SymmetricBandMatrix};
+use crate::linalg::{Inertia, SymmetricBandMatrix, SymmetricFactor, SymmetricMatrix};
 
 use super::line_search::{armijo_backtracking, LineSearch};
 use super::params::SolverParams;
@@ -10,36 +10,42 @@ use super::stability::lowest_mode;
 
 /// Buffers reused across Newton iterations and solves: nothing is allocated per iteration.
 #[derive(Clone, Debug)]
-pub struct NewtonWorkspace<S> {
+pub struct NewtonWorkspace<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     pub(crate) grad: Vec<f64>,
     pub(crate) abs_grad: Vec<f64>,
     pub(crate) dx: Vec<f64>,
     pub(crate) diag: Vec<f64>,
-    pub(crate) hess: SymmetricBandMatrix,
-    pub(crate) ldlt: BandLdlt,
+    pub(crate) hess: M,
+    pub(crate) ldlt: M::Factor,
     pub(crate) trial: S,
-    pub(crate) scaled: SymmetricBandMatrix,
+    pub(crate) scaled: M,
 }
 
-impl<S: Clone> NewtonWorkspace<S> {
+impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
     /// Buffers for `problem`; `template` is any state of it (used as line-search scratch).
-    pub fn new<P: EquilibriumProblem<State = S>>(problem: &P, template: &S) -> Self {
+    pub fn new<P: EquilibriumProblem<State = S, Hessian = M>>(problem: &P, template: &S) -> Self {
         let n = problem.n_free();
+        let hess = problem.new_hessian();
         Self {
             grad: vec![0.0; n],
             abs_grad: vec![0.0; n],
             dx: vec![0.0; n],
             diag: vec![0.0; n],
-            hess: SymmetricBandMatrix::new(n, problem.half_bandwidth()),
-            ldlt: BandLdlt::new(),
+            scaled: hess.clone(),
+            hess,
+            ldlt: M::Factor::default(),
             trial: template.clone(),
-            scaled: SymmetricBandMatrix::new(0, 0),
         }
     }
 
     /// The Hessian assembled at the last iterate.
-    pub fn hessian(&self) -> &SymmetricBandMatrix {
+    pub fn hessian(&self) -> &M {
         &self.hess
+    }
+
+    /// The factorization workspace (holds the last factorization).
+    pub fn factor(&self) -> &M::Factor {
+        &self.ldlt
     }
 }
 
@@ -91,7 +97,7 @@ pub fn newton<P: EquilibriumProblem>(
     state: &mut P::State,
     load: f64,
     params: &SolverParams,
-    ws: &mut NewtonWorkspace<P::State>,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
 ) -> NewtonOutcome {
     let n = problem.n_free();
     let eps = f64::EPSILON;
@@ -104,7 +110,8 @@ pub fn newton<P: EquilibriumProblem>(
         for i in 0..n {
             let len = problem.force_length(i);
             residual = residual.max(ws.grad[i].abs() / len);
-            let noise = ws.abs_grad[i] + ws.hess.get(i, i).abs() * problem.dof_magnitude(state, i);
+            let noise =
+                ws.abs_grad[i] + ws.hess.diagonal(i).abs() * problem.dof_magnitude(state, i);
             floor = floor.max(params.roundoff_factor * eps * noise / len);
         }
         // The unshifted factorization gives the inertia and, if it exists, the Newton step.
@@ -232,7 +239,11 @@ fn min_entry(v: &[f64]) -> f64 {
 
 /// Factors H + shift·M with M = `ws.diag` (in place, H restored afterwards); true if positive
 /// definite.
-fn factor_shifted<S>(ws: &mut NewtonWorkspace<S>, n: usize, shift: f64) -> bool {
+fn factor_shifted<S, M: SymmetricMatrix>(
+    ws: &mut NewtonWorkspace<S, M>,
+    n: usize,
+    shift: f64,
+) -> bool {
     for i in 0..n {
         ws.hess.add(i, i, shift * ws.diag[i]);
     }
@@ -245,7 +256,7 @@ fn factor_shifted<S>(ws: &mut NewtonWorkspace<S>, n: usize, shift: f64) -> bool 
 
 /// True if the gradient is orthogonal (to round-off) to the lowest eigenvector of `hess`,
 /// which is negative: line search cannot leave such a saddle, so Newton should converge to it.
-fn saddle_is_symmetric(hess: &SymmetricBandMatrix, grad: &[f64], ldlt: &mut BandLdlt) -> bool {
+fn saddle_is_symmetric<M: SymmetricMatrix>(hess: &M, grad: &[f64], ldlt: &mut M::Factor) -> bool {
     let Ok(mode) = crate::linalg::smallest_eigenpair(hess, ldlt, 1e-6) else {
         return false;
     };

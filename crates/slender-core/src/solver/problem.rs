@@ -1,6 +1,6 @@
 //! What the Newton solver needs from a model.
 
-use crate::linalg::SymmetricBandMatrix;
+use crate::linalg::SymmetricMatrix;
 
 /// Per-assembly quantities the convergence tests use.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -16,7 +16,8 @@ pub struct AssemblyInfo {
 }
 
 /// A discretized structure whose equilibria the solver finds: an energy over a state with
-/// exact gradient and banded Hessian in the free DOFs.
+/// exact gradient and Hessian in the free DOFs. The Hessian storage (banded for rods, sparse
+/// for shells) is the problem's choice; the solver only assembles, factors and solves.
 ///
 /// States may carry more than the DOF vector (a rod carries reference frames). Every state a
 /// problem hands out is consistent: [`displace`](Self::displace) produces a new state with
@@ -28,8 +29,11 @@ pub trait EquilibriumProblem {
     /// Number of free DOFs.
     fn n_free(&self) -> usize;
 
-    /// Half-bandwidth of the Hessian in the free ordering.
-    fn half_bandwidth(&self) -> usize;
+    /// Hessian storage and factorization.
+    type Hessian: SymmetricMatrix;
+
+    /// A zero Hessian with the problem's pattern (n_free × n_free).
+    fn new_hessian(&self) -> Self::Hessian;
 
     /// Energy (J) at load factor `load` (external loads scaled by it).
     fn energy(&self, state: &Self::State, load: f64) -> f64;
@@ -41,7 +45,7 @@ pub trait EquilibriumProblem {
         state: &Self::State,
         load: f64,
         grad: &mut [f64],
-        hess: &mut SymmetricBandMatrix,
+        hess: &mut Self::Hessian,
         abs_grad: &mut [f64],
     ) -> AssemblyInfo;
 

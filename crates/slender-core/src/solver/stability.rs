@@ -6,7 +6,7 @@
 //! the mesh, so we solve H v = λ M v with the lumped mass matrix M: λ is the square of the
 //! lowest natural frequency (1/s²), a physical and mesh-independent quantity.
 
-use crate::linalg::{smallest_eigenpair, BandLdlt, FactorError, SymmetricBandMatrix};
+use crate::linalg::{smallest_eigenpair, FactorError, SymmetricFactor, SymmetricMatrix};
 
 use super::problem::EquilibriumProblem;
 
@@ -31,10 +31,10 @@ pub struct LowestMode {
 /// sliced by Sylvester's law.
 pub fn lowest_mode<P: EquilibriumProblem>(
     problem: &P,
-    hess: &SymmetricBandMatrix,
+    hess: &P::Hessian,
     positive_definite_factor: bool,
-    scaled: &mut SymmetricBandMatrix,
-    ldlt: &mut BandLdlt,
+    scaled: &mut P::Hessian,
+    ldlt: &mut <P::Hessian as SymmetricMatrix>::Factor,
     rel_tol: f64,
 ) -> Result<LowestMode, FactorError> {
     if positive_definite_factor {
@@ -43,20 +43,11 @@ pub fn lowest_mode<P: EquilibriumProblem>(
         }
     }
     let n = hess.dim();
-    let bw = hess.half_bandwidth();
-    if scaled.dim() != n || scaled.half_bandwidth() != bw {
-        *scaled = SymmetricBandMatrix::new(n, bw);
-    }
-    scaled.set_zero();
     let inv_sqrt_m: Vec<f64> = (0..n)
         .map(|i| 1.0 / problem.inertia_metric(i).sqrt())
         .collect();
-    for j in 0..n {
-        for i in j..(j + bw + 1).min(n) {
-            scaled.add(i, j, hess.get(i, j) * inv_sqrt_m[i] * inv_sqrt_m[j]);
-        }
-    }
-    let est = smallest_eigenpair(scaled, ldlt, rel_tol)?;
+    hess.congruence_scaled(&inv_sqrt_m, scaled);
+    let est = smallest_eigenpair::<P::Hessian>(scaled, ldlt, rel_tol)?;
     let shape = est
         .vector
         .iter()
@@ -80,7 +71,7 @@ const BLOCK: usize = 3;
 fn inverse_iteration<P: EquilibriumProblem>(
     problem: &P,
     n: usize,
-    ldlt: &BandLdlt,
+    ldlt: &<P::Hessian as SymmetricMatrix>::Factor,
     rel_tol: f64,
 ) -> Option<LowestMode> {
     use nalgebra::{Matrix3, SymmetricEigen};

@@ -1,0 +1,328 @@
+//! Sparse symmetric matrices with a fixed pattern, and their LDLᵀ factorization by faer with
+//! one symbolic analysis (AMD ordering, elimination tree) reused for every numeric
+//! factorization (design.md §4.1).
+//!
+//! Why sparse: a shell's Hessian couples each face with its three neighbours; ordered along a
+//! strip it is banded, but its band grows with the elements across the width (and a general
+//! mesh has no band at all), while a fill-reducing ordering keeps the factor nearly as sparse
+//! as the matrix. The simplicial LDLᵀ (no pivoting) keeps D explicit, so the inertia is read
+//! off its pivots exactly as for the banded factorization.
+
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
+    SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+use super::symmetric::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
+
+/// Pivots with |dᵢ| ≤ ε·(largest column count)·max|A + σI| count as numerically zero.
+const ZERO_PIVOT_RTOL: f64 = f64::EPSILON;
+
+/// The upper triangle of a symmetric pattern in compressed-column form (rows sorted).
+#[derive(Debug, PartialEq, Eq)]
+pub struct SparsityPattern {
+    n: usize,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Position of the diagonal entry of each column.
+    diag: Vec<usize>,
+    max_col_count: usize,
+}
+
+/// A symmetric n×n matrix storing the upper triangle of a fixed pattern (which always
+/// includes the diagonal). Cloning shares the pattern.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SparseSymmetricMatrix {
+    pattern: Arc<SparsityPattern>,
+    values: Vec<f64>,
+}
+
+impl SparseSymmetricMatrix {
+    /// The zero matrix whose pattern holds the diagonal and every pair (i, j) listed (either
+    /// order; duplicates are merged). Indices must be < n.
+    pub fn from_pattern(n: usize, entries: impl IntoIterator<Item = (usize, usize)>) -> Self {
+        let mut columns: Vec<Vec<usize>> = (0..n).map(|j| vec![j]).collect();
+        for (i, j) in entries {
+            let (r, c) = if i <= j { (i, j) } else { (j, i) };
+            assert!(c < n, "entry ({i}, {j}) outside a {n}×{n} pattern");
+            columns[c].push(r);
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        let mut diag = Vec::with_capacity(n);
+        let mut max_col_count = 0;
+        col_ptr.push(0);
+        for (j, rows) in columns.iter_mut().enumerate() {
+            rows.sort_unstable();
+            rows.dedup();
+            row_idx.extend_from_slice(rows);
+            diag.push(row_idx.len() - 1);
+            debug_assert_eq!(row_idx[row_idx.len() - 1], j);
+            max_col_count = max_col_count.max(rows.len());
+            col_ptr.push(row_idx.len());
+        }
+        let nnz = row_idx.len();
+        Self {
+            pattern: Arc::new(SparsityPattern {
+                n,
+                col_ptr,
+                row_idx,
+                diag,
+                max_col_count,
+            }),
+            values: vec![0.0; nnz],
+        }
+    }
+
+    /// Stored entries (upper triangle including the diagonal).
+    pub fn nnz(&self) -> usize {
+        self.values.len()
+    }
+
+    /// Entry (i, j); 0 outside the pattern.
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        self.position(i, j).map_or(0.0, |k| self.values[k])
+    }
+
+    fn position(&self, i: usize, j: usize) -> Option<usize> {
+        let (r, c) = if i <= j { (i, j) } else { (j, i) };
+        let p = &self.pattern;
+        if c >= p.n {
+            return None;
+        }
+        let (lo, hi) = (p.col_ptr[c], p.col_ptr[c + 1]);
+        p.row_idx[lo..hi].binary_search(&r).ok().map(|k| lo + k)
+    }
+
+    fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
+        let p = &self.pattern;
+        SymbolicSparseColMatRef::new_checked(p.n, p.n, &p.col_ptr, None, &p.row_idx)
+    }
+
+    /// Iterates over stored entries (i ≤ j, value) column by column.
+    fn entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        let p = &self.pattern;
+        (0..p.n).flat_map(move |j| {
+            (p.col_ptr[j]..p.col_ptr[j + 1]).map(move |k| (p.row_idx[k], j, self.values[k]))
+        })
+    }
+}
+
+impl SymmetricMatrix for SparseSymmetricMatrix {
+    type Factor = SparseLdlt;
+
+    fn dim(&self) -> usize {
+        self.pattern.n
+    }
+
+    fn set_zero(&mut self) {
+        self.values.fill(0.0);
+    }
+
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        match self.position(i, j) {
+            Some(k) => self.values[k] += v,
+            None => {
+                debug_assert!(false, "entry ({i}, {j}) outside the sparsity pattern");
+                if let Some(d) = self.pattern.diag.get(i.min(j)) {
+                    self.values[*d] = f64::NAN;
+                }
+            }
+        }
+    }
+
+    fn diagonal(&self, i: usize) -> f64 {
+        self.values[self.pattern.diag[i]]
+    }
+
+    fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        y.fill(0.0);
+        for (i, j, v) in self.entries() {
+            y[i] += v * x[j];
+            if i != j {
+                y[j] += v * x[i];
+            }
+        }
+    }
+
+    fn gershgorin_bounds(&self) -> (f64, f64) {
+        let n = self.pattern.n;
+        if n == 0 {
+            return (0.0, 0.0);
+        }
+        let mut radius = vec![0.0; n];
+        for (i, j, v) in self.entries() {
+            if i != j {
+                radius[i] += v.abs();
+                radius[j] += v.abs();
+            }
+        }
+        (0..n).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), i| {
+            let d = self.diagonal(i);
+            (l.min(d - radius[i]), u.max(d + radius[i]))
+        })
+    }
+
+    fn first_non_finite(&self) -> Option<usize> {
+        self.entries().find(|e| !e.2.is_finite()).map(|e| e.1)
+    }
+
+    fn congruence_scaled(&self, s: &[f64], out: &mut Self) {
+        if !Arc::ptr_eq(&self.pattern, &out.pattern) {
+            *out = self.clone();
+        }
+        let p = &self.pattern;
+        for j in 0..p.n {
+            for k in p.col_ptr[j]..p.col_ptr[j + 1] {
+                out.values[k] = self.values[k] * s[p.row_idx[k]] * s[j];
+            }
+        }
+    }
+}
+
+/// LDLᵀ of A + σI for a [`SparseSymmetricMatrix`] A, by faer's simplicial factorization
+/// without pivoting (so that D gives the inertia), after a fill-reducing AMD ordering. The
+/// symbolic analysis is done on the first factorization of a pattern and reused for every
+/// later one with the same pattern (e.g. across Newton iterations).
+#[derive(Clone, Debug, Default)]
+pub struct SparseLdlt {
+    pattern: Option<Arc<SparsityPattern>>,
+    symbolic: Option<Arc<SymbolicCholesky<usize>>>,
+    l_values: Vec<f64>,
+    shifted: Vec<f64>,
+    inertia: Inertia,
+    factored: bool,
+    symbolic_analyses: usize,
+}
+
+impl SparseLdlt {
+    /// An empty workspace.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// How many symbolic analyses this workspace has done (1 for a fixed pattern).
+    pub fn symbolic_analyses(&self) -> usize {
+        self.symbolic_analyses
+    }
+
+    /// Inertia of the last successful factorization.
+    pub fn inertia(&self) -> Inertia {
+        self.inertia
+    }
+
+    fn pivots(&self, symbolic: &SymbolicCholesky<usize>) -> Vec<f64> {
+        match symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                let col_ptr = s.col_ptr();
+                (0..s.nrows()).map(|k| self.l_values[col_ptr[k]]).collect()
+            }
+            // Not reached: the analysis forces the simplicial variant.
+            SymbolicCholeskyRaw::Supernodal(_) => vec![f64::NAN; symbolic.nrows()],
+        }
+    }
+}
+
+impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
+    fn factorize(&mut self, a: &SparseSymmetricMatrix, shift: f64) -> Result<Inertia, FactorError> {
+        self.factored = false;
+        self.inertia = Inertia::default();
+        let n = a.dim();
+        if n > 0 && !shift.is_finite() {
+            return Err(FactorError::NonFinite { index: 0 });
+        }
+        if let Some(index) = a.first_non_finite() {
+            return Err(FactorError::NonFinite { index });
+        }
+        let same_pattern = self
+            .pattern
+            .as_ref()
+            .is_some_and(|p| Arc::ptr_eq(p, &a.pattern));
+        if !same_pattern || self.symbolic.is_none() {
+            let params = CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
+                ..Default::default()
+            };
+            let symbolic = factorize_symbolic_cholesky(
+                a.symbolic(),
+                Side::Upper,
+                SymmetricOrdering::Amd,
+                params,
+            )
+            .map_err(|e| FactorError::Analysis {
+                reason: format!("{e:?}"),
+            })?;
+            self.l_values = vec![0.0; symbolic.len_val()];
+            self.symbolic = Some(Arc::new(symbolic));
+            self.pattern = Some(a.pattern.clone());
+            self.symbolic_analyses += 1;
+        }
+        let symbolic = self.symbolic.clone().ok_or(FactorError::NotFactored)?;
+        self.shifted.clone_from(&a.values);
+        for &d in &a.pattern.diag {
+            self.shifted[d] += shift;
+        }
+        let scale = self.shifted.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let matrix = SparseColMatRef::new(a.symbolic(), &self.shifted);
+        let req = symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
+        let mut mem = MemBuffer::new(req);
+        let result = symbolic.factorize_numeric_ldlt(
+            &mut self.l_values,
+            matrix,
+            Side::Upper,
+            LdltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        if let Err(LdltError::ZeroPivot { index }) = result {
+            // faer reports the (permuted) step one-based; the position is informative only.
+            return Err(FactorError::ZeroPivot {
+                index: index.saturating_sub(1),
+            });
+        }
+        let zero_tol = ZERO_PIVOT_RTOL * a.pattern.max_col_count as f64 * scale;
+        let mut inertia = Inertia::default();
+        for (k, d) in self.pivots(&symbolic).into_iter().enumerate() {
+            if !d.is_finite() {
+                return Err(FactorError::NonFinite { index: k });
+            }
+            if d.abs() <= zero_tol {
+                inertia.zero += 1;
+            } else if d < 0.0 {
+                inertia.negative += 1;
+            } else {
+                inertia.positive += 1;
+            }
+        }
+        self.inertia = inertia;
+        self.factored = true;
+        Ok(inertia)
+    }
+
+    fn try_solve_in_place(&self, b: &mut [f64]) -> Result<(), FactorError> {
+        let symbolic = match (&self.symbolic, self.factored) {
+            (Some(s), true) => s,
+            _ => return Err(FactorError::NotFactored),
+        };
+        let n = symbolic.nrows();
+        if b.len() != n {
+            return Err(FactorError::DimensionMismatch {
+                expected: n,
+                found: b.len(),
+            });
+        }
+        let ldlt = LdltRef::<usize, f64>::new(symbolic, &self.l_values);
+        let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+        ldlt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+        Ok(())
+    }
+}

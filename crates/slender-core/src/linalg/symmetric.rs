@@ -1,0 +1,121 @@
+//! What the Newton solver needs from a Hessian and its factorization, whatever the storage:
+//! assemble entries, factor H + σI as LDLᵀ without pivoting (whose pivot signs are the
+//! inertia, by Sylvester's law), and solve. Rods use the banded storage, shells the sparse one.
+
+use thiserror::Error;
+
+/// A symmetric matrix with a fixed storage pattern that can be assembled and factored.
+pub trait SymmetricMatrix: Clone + std::fmt::Debug {
+    /// Its LDLᵀ factorization workspace.
+    type Factor: SymmetricFactor<Self> + Clone + std::fmt::Debug + Default;
+
+    /// Dimension n.
+    fn dim(&self) -> usize;
+
+    /// Sets every stored entry to zero, keeping the pattern.
+    fn set_zero(&mut self);
+
+    /// Adds `v` to entry (i, j) and, by symmetry, to (j, i) (once on the diagonal). Entries
+    /// outside the pattern are a programmer error (debug builds panic; release builds poison
+    /// the matrix with NaN so that the next factorization fails).
+    fn add(&mut self, i: usize, j: usize, v: f64);
+
+    /// Diagonal entry a_ii.
+    fn diagonal(&self, i: usize) -> f64;
+
+    /// max |a_ii| (0 for the empty matrix).
+    fn max_abs_diagonal(&self) -> f64 {
+        (0..self.dim()).fold(0.0, |m, i| m.max(self.diagonal(i).abs()))
+    }
+
+    /// y = A x.
+    fn mul_vec(&self, x: &[f64], y: &mut [f64]);
+
+    /// Gershgorin bounds (lower, upper) on the eigenvalues; (0, 0) for the empty matrix.
+    fn gershgorin_bounds(&self) -> (f64, f64);
+
+    /// Index of a row (or column) holding a NaN or infinite stored entry, if any.
+    fn first_non_finite(&self) -> Option<usize>;
+
+    /// `out` = S A S with S = diag(`s`) (same pattern; `out` is reshaped if needed).
+    fn congruence_scaled(&self, s: &[f64], out: &mut Self);
+}
+
+/// An LDLᵀ factorization (no pivoting) of A + σI for a matrix type `M`.
+pub trait SymmetricFactor<M> {
+    /// Factors A + shift·I and returns its inertia. Errors: an exactly zero pivot
+    /// ([`FactorError::ZeroPivot`]) or a non-finite value ([`FactorError::NonFinite`]).
+    fn factorize(&mut self, a: &M, shift: f64) -> Result<Inertia, FactorError>;
+
+    /// b ← (A + σI)⁻¹ b with the last successful factorization.
+    fn try_solve_in_place(&self, b: &mut [f64]) -> Result<(), FactorError>;
+
+    /// As [`try_solve_in_place`](Self::try_solve_in_place); a missing factorization or a
+    /// length mismatch is a programmer error (debug builds panic, release builds return NaN).
+    fn solve_in_place(&self, b: &mut [f64]) {
+        if let Err(e) = self.try_solve_in_place(b) {
+            debug_assert!(false, "solve_in_place: {e}");
+            b.fill(f64::NAN);
+        }
+    }
+}
+
+/// Counts of negative, (numerically) zero and positive eigenvalues of a symmetric matrix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+pub struct Inertia {
+    /// Number of negative eigenvalues.
+    pub negative: usize,
+    /// Number of eigenvalues indistinguishable from zero at working precision.
+    pub zero: usize,
+    /// Number of positive eigenvalues.
+    pub positive: usize,
+}
+
+impl Inertia {
+    /// negative + zero + positive, the matrix dimension.
+    pub fn total(&self) -> usize {
+        self.negative + self.zero + self.positive
+    }
+
+    /// True if all eigenvalues are (numerically) positive.
+    pub fn is_positive_definite(&self) -> bool {
+        self.negative == 0 && self.zero == 0
+    }
+}
+
+/// Why a factorization or solve failed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FactorError {
+    /// Pivot `index` is exactly zero: the matrix is singular or needs pivoting.
+    #[error("zero pivot at index {index}: matrix is singular or needs pivoting")]
+    ZeroPivot {
+        /// Row of the zero pivot.
+        index: usize,
+    },
+    /// A NaN or infinity appeared in row `index` (in the input, the shift, or by overflow).
+    #[error("non-finite value in row {index} of the factorization")]
+    NonFinite {
+        /// Row where the non-finite value was detected.
+        index: usize,
+    },
+    /// A vector's length does not match the factored matrix.
+    #[error("dimension mismatch: expected length {expected}, found {found}")]
+    DimensionMismatch {
+        /// The factored dimension n.
+        expected: usize,
+        /// The length supplied.
+        found: usize,
+    },
+    /// No successful factorization is available to solve with.
+    #[error("no valid factorization: factorize() has not succeeded")]
+    NotFactored,
+    /// The operation needs a matrix of dimension at least 1.
+    #[error("the matrix is empty")]
+    EmptyMatrix,
+    /// The symbolic analysis (ordering, elimination tree) of a sparse matrix failed.
+    #[error("symbolic analysis of the sparse matrix failed: {reason}")]
+    Analysis {
+        /// What the sparse library reported.
+        reason: String,
+    },
+}

@@ -1,0 +1,220 @@
+//! Second-order forward-mode differentiation on a small fixed stencil.
+//!
+//! Why: the mid-edge bending term chains a dihedral angle, an altitude and a tangent through
+//! twelve-plus coordinates. Writing that Hessian by hand is error-prone; propagating value,
+//! gradient and Hessian through each elementary operation gives the *exact* derivatives (to
+//! round-off) at a cost of O(N²) per operation, which on a 13-variable stencil is cheap.
+//! Every result is still checked against finite differences in `tests/shell_derivatives.rs`.
+
+use nalgebra::{SMatrix, SVector};
+
+/// A scalar function of N variables with its gradient and (symmetric) Hessian.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dual2<const N: usize> {
+    /// Value.
+    pub v: f64,
+    /// Gradient ∂f/∂x.
+    pub g: SVector<f64, N>,
+    /// Hessian ∂²f/∂x².
+    pub h: SMatrix<f64, N, N>,
+}
+
+impl<const N: usize> Dual2<N> {
+    /// A constant.
+    pub fn constant(v: f64) -> Self {
+        Self {
+            v,
+            g: SVector::zeros(),
+            h: SMatrix::zeros(),
+        }
+    }
+
+    /// The independent variable number `i` with value `v`.
+    pub fn variable(v: f64, i: usize) -> Self {
+        let mut d = Self::constant(v);
+        d.g[i] = 1.0;
+        d
+    }
+
+    /// f(self) from f, f′, f″ at the value.
+    #[inline]
+    fn chain(&self, f: f64, df: f64, d2f: f64) -> Self {
+        // Entry loops instead of matrix expressions: no N×N temporaries.
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            let gj = self.g[j] * d2f;
+            for i in 0..N {
+                h[(i, j)] = self.h[(i, j)] * df + self.g[i] * gj;
+            }
+        }
+        Self {
+            v: f,
+            g: self.g * df,
+            h,
+        }
+    }
+
+    /// f(self, other) from the first and second partial derivatives of f at the values.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn chain2(&self, o: &Self, f: f64, fa: f64, fb: f64, faa: f64, fab: f64, fbb: f64) -> Self {
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            let (aj, bj) = (self.g[j], o.g[j]);
+            for i in 0..N {
+                let (ai, bi) = (self.g[i], o.g[i]);
+                h[(i, j)] = self.h[(i, j)] * fa
+                    + o.h[(i, j)] * fb
+                    + ai * aj * faa
+                    + bi * bj * fbb
+                    + (ai * bj + bi * aj) * fab;
+            }
+        }
+        Self {
+            v: f,
+            g: self.g * fa + o.g * fb,
+            h,
+        }
+    }
+
+    /// Square root (argument > 0).
+    pub fn sqrt(&self) -> Self {
+        let s = self.v.sqrt();
+        self.chain(s, 0.5 / s, -0.25 / (s * self.v))
+    }
+
+    /// Tangent.
+    pub fn tan(&self) -> Self {
+        let t = self.v.tan();
+        let d = 1.0 + t * t;
+        self.chain(t, d, 2.0 * t * d)
+    }
+
+    /// Sine.
+    pub fn sin(&self) -> Self {
+        let (s, c) = self.v.sin_cos();
+        self.chain(s, c, -s)
+    }
+
+    /// 1/self.
+    pub fn recip(&self) -> Self {
+        let r = 1.0 / self.v;
+        self.chain(r, -r * r, 2.0 * r * r * r)
+    }
+
+    /// Scales by a constant.
+    pub fn scale(&self, c: f64) -> Self {
+        Self {
+            v: self.v * c,
+            g: self.g * c,
+            h: self.h * c,
+        }
+    }
+
+    /// atan2(self, x): the angle of the point (x, self).
+    pub fn atan2(&self, x: &Self) -> Self {
+        let (y0, x0) = (self.v, x.v);
+        let r2 = x0 * x0 + y0 * y0;
+        let r4 = r2 * r2;
+        // With a = y, b = x: ∂/∂y = x/r², ∂/∂x = −y/r².
+        self.chain2(
+            x,
+            y0.atan2(x0),
+            x0 / r2,
+            -y0 / r2,
+            -2.0 * x0 * y0 / r4,
+            (y0 * y0 - x0 * x0) / r4,
+            2.0 * x0 * y0 / r4,
+        )
+    }
+}
+
+impl<const N: usize> std::ops::Add for Dual2<N> {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            v: self.v + o.v,
+            g: self.g + o.g,
+            h: self.h + o.h,
+        }
+    }
+}
+
+impl<const N: usize> std::ops::Sub for Dual2<N> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        Self {
+            v: self.v - o.v,
+            g: self.g - o.g,
+            h: self.h - o.h,
+        }
+    }
+}
+
+impl<const N: usize> std::ops::Mul for Dual2<N> {
+    type Output = Self;
+    fn mul(self, o: Self) -> Self {
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            let (aj, bj) = (self.g[j], o.g[j]);
+            for i in 0..N {
+                h[(i, j)] =
+                    self.h[(i, j)] * o.v + o.h[(i, j)] * self.v + self.g[i] * bj + o.g[i] * aj;
+            }
+        }
+        Self {
+            v: self.v * o.v,
+            g: self.g * o.v + o.g * self.v,
+            h,
+        }
+    }
+}
+
+impl<const N: usize> std::ops::Div for Dual2<N> {
+    type Output = Self;
+    #[allow(clippy::suspicious_arithmetic_impl)] // a / b = a · (1/b)
+    fn div(self, o: Self) -> Self {
+        self * o.recip()
+    }
+}
+
+/// A 3-vector of [`Dual2`] scalars.
+pub type DualVec3<const N: usize> = [Dual2<N>; 3];
+
+/// Point `k` of a stencil whose variables are stored as consecutive triples.
+pub fn point<const N: usize>(x: &[f64], k: usize) -> DualVec3<N> {
+    std::array::from_fn(|c| Dual2::variable(x[3 * k + c], 3 * k + c))
+}
+
+/// a − b.
+pub fn sub3<const N: usize>(a: &DualVec3<N>, b: &DualVec3<N>) -> DualVec3<N> {
+    std::array::from_fn(|c| a[c] - b[c])
+}
+
+/// a × b.
+pub fn cross3<const N: usize>(a: &DualVec3<N>, b: &DualVec3<N>) -> DualVec3<N> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// a · b.
+pub fn dot3<const N: usize>(a: &DualVec3<N>, b: &DualVec3<N>) -> Dual2<N> {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// a · c for a constant vector c.
+pub fn dot3_const<const N: usize>(a: &DualVec3<N>, c: &[f64; 3]) -> Dual2<N> {
+    a[0].scale(c[0]) + a[1].scale(c[1]) + a[2].scale(c[2])
+}
+
+/// a × c for a constant vector c.
+pub fn cross3_const<const N: usize>(a: &DualVec3<N>, c: &[f64; 3]) -> DualVec3<N> {
+    [
+        a[1].scale(c[2]) - a[2].scale(c[1]),
+        a[2].scale(c[0]) - a[0].scale(c[2]),
+        a[0].scale(c[1]) - a[1].scale(c[0]),
+    ]
+}

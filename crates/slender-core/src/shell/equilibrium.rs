@@ -1,0 +1,124 @@
+//! The shell as an [`EquilibriumProblem`]: step caps, scales and the mass metric.
+
+use crate::linalg::SparseSymmetricMatrix;
+use crate::solver::problem::{AssemblyInfo, EquilibriumProblem};
+
+use super::dofs::DofKind;
+use super::model::{Shell, ShellTerms};
+use super::state::ShellState;
+
+/// Largest change of an edge angle φ (rad) in one Newton step: keeps α = θ/2 ± φ away from
+/// the tan barrier at π/2.
+const MAX_ANGLE_STEP: f64 = std::f64::consts::FRAC_PI_4;
+/// Largest relative change of an edge vector in one Newton step (no triangle inversion).
+const MAX_EDGE_CHANGE: f64 = 0.5;
+
+impl EquilibriumProblem for Shell {
+    type State = ShellState;
+
+    fn n_free(&self) -> usize {
+        self.dofs.n_free()
+    }
+
+    type Hessian = SparseSymmetricMatrix;
+
+    fn new_hessian(&self) -> SparseSymmetricMatrix {
+        self.sparse_hessian()
+    }
+
+    fn energy(&self, state: &ShellState, load: f64) -> f64 {
+        self.energy_terms(state, load, ShellTerms::ALL)
+    }
+
+    fn assemble(
+        &self,
+        state: &ShellState,
+        load: f64,
+        grad: &mut [f64],
+        hess: &mut SparseSymmetricMatrix,
+        abs_grad: &mut [f64],
+    ) -> AssemblyInfo {
+        self.assemble_terms(
+            state,
+            load,
+            ShellTerms::ALL,
+            Some(grad),
+            Some(hess),
+            Some(abs_grad),
+        )
+    }
+
+    fn dof_values(&self, state: &ShellState, out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = match self.dofs.split(self.dofs.full(i)) {
+                DofKind::Position(v, c) => state.positions[v][c],
+                DofKind::Angle(e) => state.angles[e],
+            };
+        }
+    }
+
+    fn displace(&self, state: &ShellState, dx: &[f64], alpha: f64, out: &mut ShellState) {
+        out.clone_from(state);
+        for (i, d) in dx.iter().enumerate() {
+            match self.dofs.split(self.dofs.full(i)) {
+                DofKind::Position(v, c) => out.positions[v][c] += alpha * d,
+                DofKind::Angle(e) => out.angles[e] += alpha * d,
+            }
+        }
+    }
+
+    fn max_step(&self, state: &ShellState, dx: &[f64]) -> f64 {
+        let mut step = state.clone();
+        for p in step.positions.iter_mut() {
+            p.fill(0.0);
+        }
+        step.angles.fill(0.0);
+        let mut alpha: f64 = 1.0;
+        for (i, d) in dx.iter().enumerate() {
+            match self.dofs.split(self.dofs.full(i)) {
+                DofKind::Position(v, c) => step.positions[v][c] = *d,
+                DofKind::Angle(_) => {
+                    if d.abs() > MAX_ANGLE_STEP {
+                        alpha = alpha.min(MAX_ANGLE_STEP / d.abs());
+                    }
+                }
+            }
+        }
+        for [a, b] in &self.mesh.edges {
+            let e = state.positions[*b] - state.positions[*a];
+            let de = (step.positions[*b] - step.positions[*a]).norm();
+            let change = de / e.norm();
+            if change > MAX_EDGE_CHANGE {
+                alpha = alpha.min(MAX_EDGE_CHANGE / change);
+            }
+        }
+        alpha
+    }
+
+    fn force_length(&self, i: usize) -> f64 {
+        if self.dofs.is_angle(i) {
+            self.properties.length
+        } else {
+            1.0
+        }
+    }
+
+    fn dof_magnitude(&self, state: &ShellState, i: usize) -> f64 {
+        match self.dofs.split(self.dofs.full(i)) {
+            DofKind::Position(v, _) => state.positions[v].amax().max(self.properties.length),
+            DofKind::Angle(e) => state.angles[e].abs().max(std::f64::consts::PI),
+        }
+    }
+
+    fn inertia_metric(&self, i: usize) -> f64 {
+        match self.dofs.split(self.dofs.full(i)) {
+            DofKind::Position(v, _) => self.vertex_masses[v],
+            DofKind::Angle(e) => self.edge_inertia[e],
+        }
+    }
+
+    fn eigenvalue_scale(&self) -> f64 {
+        let p = &self.properties;
+        p.bending_stiffness() / (p.density * p.thickness * p.length.powi(4))
+    }
+}

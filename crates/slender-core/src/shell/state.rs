@@ -1,0 +1,13 @@
+//! Configuration of a shell: vertex positions and one director angle per edge.
+
+use crate::geometry::Vec3;
+
+/// Positions (m) of all vertices (clamped ones included) and angles (rad) of all edges
+/// (clamped edges keep 0: their director is the clamp normal).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShellState {
+    /// Vertex positions (m).
+    pub positions: Vec<Vec3>,
+    /// Edge director angles φ (rad).
+    pub angles: Vec<f64>,
+}

@@ -1,0 +1,167 @@
+//! One lateral-buckling strip: its planar equilibrium and stability at a given Γ_shell, the
+//! critical Γ_c by bisection on the inertia, and the seed's protocol (rotate the clamp about x
+//! by σ, ramp gravity in m_ls steps, rotate the clamp back, measure the free end's y).
+
+use slender_core::geometry::Vec3;
+use slender_core::rod::Grading;
+use slender_core::shell::{Shell, ShellBuilder, ShellState};
+use slender_core::solver::{EquilibriumSolver, SolveReport, SolverParams};
+use slender_core::ModelError;
+
+use crate::cantilever::shell_case::column_centre;
+use crate::materials::ShellMaterialSet;
+
+/// A strip of the lateral-buckling benchmark.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LateralBucklingCase {
+    /// Material set.
+    pub material: ShellMaterialSet,
+    /// Aspect ratio w/L (> 0).
+    pub width_ratio: f64,
+    /// Elements along the length.
+    pub n_length: usize,
+}
+
+/// What the seed's protocol ended with.
+#[derive(Clone, Debug)]
+pub struct ProtocolOutcome {
+    /// y of the centre of the free end divided by L (signed).
+    pub tip_deviation: f64,
+    /// Whether every stage converged.
+    pub converged: bool,
+    /// Report of the final re-equilibration.
+    pub report: SolveReport,
+}
+
+impl LateralBucklingCase {
+    /// Elements across the width: square elements, as in the seed (at least 1).
+    pub fn n_width(&self) -> usize {
+        ((self.width_ratio * self.n_length as f64).round() as usize).max(1)
+    }
+
+    /// The strip at Γ_shell = `gamma`, gravity −z (in its plane, along the width).
+    pub fn build(&self, gamma: f64) -> Result<Shell, ModelError> {
+        if !(gamma.is_finite() && gamma >= 0.0) {
+            return Err(ModelError::parameter("gamma", gamma, "finite and >= 0"));
+        }
+        let p = self.material.properties(self.width_ratio);
+        ShellBuilder::new(p)
+            .elements(self.n_length, self.n_width())
+            .grading(Grading::Uniform)
+            .gravity(Vec3::new(0.0, 0.0, -p.gravity_for_gamma(gamma)))
+            .build()
+    }
+
+    /// The planar equilibrium at Γ (gravity ramped from the flat strip; the loads have no
+    /// out-of-plane component, so Newton stays on the planar branch even where it is
+    /// unstable) and its report, whose inertia says whether it is stable.
+    pub fn planar_state(
+        &self,
+        gamma: f64,
+        params: &SolverParams,
+    ) -> Result<(ShellState, SolveReport), ModelError> {
+        let shell = self.build(gamma)?;
+        let flat = shell.rest_state();
+        let mut solver = EquilibriumSolver::new(&shell, &flat, params.clone());
+        let s = solver.solve(&shell, &flat, 0.0, 1.0);
+        Ok((s.state, s.report))
+    }
+
+    /// `Some(true)` if the planar state at Γ is unstable (a negative Hessian eigenvalue),
+    /// `Some(false)` if stable, `None` if it did not converge or the inertia is unknown.
+    pub fn planar_unstable(
+        &self,
+        gamma: f64,
+        params: &SolverParams,
+    ) -> Result<Option<bool>, ModelError> {
+        let (_, report) = self.planar_state(gamma, params)?;
+        Ok(report.stable().map(|s| !s))
+    }
+
+    /// Γ_c by bisection (in log Γ) on the sign of the inertia along the planar branch, within
+    /// [lo, hi] (lo must be stable, hi unstable) to relative width `rel_tol`. `None` if the
+    /// bracket is not valid or a probe does not converge.
+    pub fn critical_gamma(
+        &self,
+        lo: f64,
+        hi: f64,
+        rel_tol: f64,
+        params: &SolverParams,
+    ) -> Result<Option<f64>, ModelError> {
+        let (mut lo, mut hi) = (lo, hi);
+        if self.planar_unstable(lo, params)? != Some(false)
+            || self.planar_unstable(hi, params)? != Some(true)
+        {
+            return Ok(None);
+        }
+        while hi / lo - 1.0 > rel_tol {
+            let mid = (lo * hi).sqrt();
+            match self.planar_unstable(mid, params)? {
+                Some(true) => hi = mid,
+                Some(false) => lo = mid,
+                None => return Ok(None),
+            }
+        }
+        Ok(Some((lo * hi).sqrt()))
+    }
+
+    /// The seed's protocol at Γ: rotate the clamp about x by `sigma` (rad; the unloaded strip
+    /// turns rigidly with it), ramp gravity to its full value in `load_steps` steps, rotate the
+    /// clamp back in as many steps, and re-equilibrate. Returns the y of the free end's centre.
+    pub fn protocol(
+        &self,
+        gamma: f64,
+        sigma: f64,
+        load_steps: usize,
+        params: &SolverParams,
+    ) -> Result<ProtocolOutcome, ModelError> {
+        if load_steps == 0 {
+            return Err(ModelError::structure(
+                "load_steps",
+                "got 0; need at least 1",
+            ));
+        }
+        let mut shell = self.build(gamma)?;
+        let mut state = shell.rest_state();
+        let rotation = nalgebra::Rotation3::from_axis_angle(&Vec3::x_axis(), sigma);
+        for p in state.positions.iter_mut() {
+            *p = rotation * *p;
+        }
+        shell.set_clamp_rotation(sigma, &mut state);
+        let mut solver = EquilibriumSolver::new(&shell, &state, params.clone());
+        let m = load_steps as f64;
+        let mut converged = true;
+        let mut report = None;
+        for k in 0..load_steps {
+            let s = solver.solve(&shell, &state, k as f64 / m, (k + 1) as f64 / m);
+            converged &= s.report.converged();
+            state = s.state;
+            report = Some(s.report);
+        }
+        // Rotating the clamp back: the whole strip turns rigidly with it as the predictor, and
+        // Newton gets the long budget of a snap (the stiff membrane makes large out-of-plane
+        // corrections slow, design.md §3.3).
+        let back = SolverParams {
+            max_iterations: params.snap_iterations.max(params.max_iterations),
+            ..params.clone()
+        };
+        let mut back_solver = EquilibriumSolver::new(&shell, &state, back);
+        let step = nalgebra::Rotation3::from_axis_angle(&Vec3::x_axis(), -sigma / m);
+        for k in 1..=load_steps {
+            for p in state.positions.iter_mut() {
+                *p = step * *p;
+            }
+            shell.set_clamp_rotation(sigma * (1.0 - k as f64 / m), &mut state);
+            let s = back_solver.solve(&shell, &state, 1.0, 1.0);
+            converged &= s.report.converged();
+            state = s.state;
+            report = Some(s.report);
+        }
+        let end = column_centre(&shell, &state.positions, shell.mesh().n_length);
+        Ok(ProtocolOutcome {
+            tip_deviation: end.y / shell.properties().length,
+            converged,
+            report: report.expect("at least one stage"),
+        })
+    }
+}

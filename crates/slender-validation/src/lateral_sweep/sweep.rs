@@ -1,0 +1,139 @@
+//! The lateral-buckling sweep of the seed's §5 (Figs. 9–11): Γ_shell × w/L, each point decided
+//! 2-D or 3-D by the seed's protocol (free end's y beyond ε·L) and by stability (Γ above the
+//! critical Γ_c found by bisection on the Hessian inertia along the planar branch).
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use slender_core::solver::SolverParams;
+use slender_core::ModelError;
+
+use super::case::LateralBucklingCase;
+use crate::materials::ShellMaterialSet;
+
+/// Bracket of the Γ_c bisection (the classical narrow-strip value is ≈ 13.7 for ν = 0.35 and
+/// warping restraint at most doubles it for w ≤ L, design.md §1.3).
+pub const GAMMA_C_BRACKET: (f64, f64) = (2.0, 200.0);
+
+/// The parameter grid and protocol settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LateralBucklingSweep {
+    /// Shell set.
+    pub material: ShellMaterialSet,
+    /// Elements along the length (square elements across).
+    pub n_length: usize,
+    /// Aspect ratios w/L (> 0).
+    pub width_ratios: Vec<f64>,
+    /// Γ_shell values (> 0).
+    pub gammas: Vec<f64>,
+    /// Clamp rotation of the protocol (rad).
+    pub sigma: f64,
+    /// Load steps m_ls of the protocol (≥ 1).
+    pub load_steps: usize,
+    /// Decision threshold ε on |y_tip|/L.
+    pub threshold: f64,
+}
+
+/// The critical Γ of one aspect ratio, as written to `critical.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CriticalRecord {
+    /// w/L.
+    pub width_ratio: f64,
+    /// Elements (length × width).
+    pub n_length: usize,
+    /// Elements across.
+    pub n_width: usize,
+    /// Γ_c from the inertia (NaN if the bracket failed).
+    pub gamma_c: f64,
+}
+
+/// One protocol point, as written to `results.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LateralBucklingRecord {
+    /// w/L.
+    pub width_ratio: f64,
+    /// Γ_shell.
+    pub gamma: f64,
+    /// y of the free end's centre / L after the protocol.
+    pub tip_deviation: f64,
+    /// Protocol verdict: |tip_deviation| > threshold.
+    pub protocol_3d: bool,
+    /// Stability verdict: Γ > Γ_c (None if Γ_c is unknown).
+    pub stability_3d: Option<bool>,
+    /// Whether every protocol stage converged.
+    pub converged: bool,
+    /// Relative residual of the final state.
+    pub relative_residual: f64,
+}
+
+impl LateralBucklingSweep {
+    fn case(&self, width_ratio: f64) -> LateralBucklingCase {
+        LateralBucklingCase {
+            material: self.material,
+            width_ratio,
+            n_length: self.n_length,
+        }
+    }
+
+    /// Γ_c for every aspect ratio (bisection to 0.1 %), in parallel.
+    pub fn critical(&self, params: &SolverParams) -> Result<Vec<CriticalRecord>, ModelError> {
+        self.width_ratios
+            .par_iter()
+            .map(|&w| {
+                let c = self.case(w);
+                let gc = c
+                    .critical_gamma(GAMMA_C_BRACKET.0, GAMMA_C_BRACKET.1, 1e-3, params)?
+                    .unwrap_or(f64::NAN);
+                Ok(CriticalRecord {
+                    width_ratio: w,
+                    n_length: self.n_length,
+                    n_width: c.n_width(),
+                    gamma_c: gc,
+                })
+            })
+            .collect()
+    }
+
+    /// Runs the protocol at every (w/L, Γ) and compares with `critical`; records in
+    /// (w/L, Γ) order whatever the thread count. `progress` is called once per point.
+    pub fn run(
+        &self,
+        critical: &[CriticalRecord],
+        params: &SolverParams,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<Vec<LateralBucklingRecord>, ModelError> {
+        if self.load_steps == 0 {
+            return Err(ModelError::structure(
+                "load_steps",
+                "got 0; need at least 1",
+            ));
+        }
+        let points: Vec<(f64, f64)> = self
+            .width_ratios
+            .iter()
+            .flat_map(|&w| self.gammas.iter().map(move |&g| (w, g)))
+            .collect();
+        points
+            .par_iter()
+            .map(|&(w, g)| {
+                let out = self
+                    .case(w)
+                    .protocol(g, self.sigma, self.load_steps, params)?;
+                progress();
+                let gc = critical
+                    .iter()
+                    .find(|c| c.width_ratio == w)
+                    .map(|c| c.gamma_c)
+                    .filter(|x| x.is_finite());
+                Ok(LateralBucklingRecord {
+                    width_ratio: w,
+                    gamma: g,
+                    tip_deviation: out.tip_deviation,
+                    protocol_3d: out.tip_deviation.abs() > self.threshold,
+                    stability_3d: gc.map(|c| g > c),
+                    converged: out.converged,
+                    relative_residual: out.report.relative_residual,
+                })
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,144 @@
+//! `slender lateral-buckling`: the seed's §5 — Γ_shell × w/L decided 2-D or 3-D by the
+//! protocol and by stability, written as CSV and drawn as a phase diagram.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use slender_core::solver::SolverParams;
+use slender_validation::cantilever::log_space;
+use slender_validation::lateral_sweep::vlasov_fd::critical_gamma_band;
+use slender_validation::lateral_sweep::{
+    CriticalRecord, LateralBucklingRecord, LateralBucklingSweep,
+};
+
+use crate::output::write_csv;
+use crate::plot::{plot_phase_diagram, Overlay, Phase, PhasePoint};
+use crate::progress::Progress;
+
+/// What the benchmark produced.
+pub struct LateralBucklingOutput {
+    /// Γ_c per aspect ratio.
+    pub critical: Vec<CriticalRecord>,
+    /// Protocol points.
+    pub records: Vec<LateralBucklingRecord>,
+}
+
+/// Runs `sweep`, writes `critical.csv`, `results.csv` and `phase_diagram.{png,svg}` under `out`.
+pub fn run(sweep: &LateralBucklingSweep, out: &Path) -> Result<LateralBucklingOutput> {
+    let params = SolverParams::default();
+    let critical = sweep.critical(&params)?;
+    write_csv(&out.join("critical.csv"), &critical)?;
+    let progress = Progress::new("lateral", sweep.width_ratios.len() * sweep.gammas.len());
+    let records = sweep.run(&critical, &params, &|| progress.tick())?;
+    progress.finish();
+    write_csv(&out.join("results.csv"), &records)?;
+
+    let curve: Vec<(f64, f64)> = critical
+        .iter()
+        .filter(|c| c.gamma_c.is_finite())
+        .map(|c| (c.width_ratio, c.gamma_c))
+        .collect();
+    // Stability truth between the computed aspect ratios: Γ_c interpolated in log–log.
+    let gamma_c_at = |w: f64| -> Option<f64> {
+        let i = curve.iter().position(|p| p.0 >= w)?;
+        if i == 0 {
+            return (curve[0].0 == w).then_some(curve[0].1);
+        }
+        let (a, b) = (curve[i - 1], curve[i]);
+        let t = (w.ln() - a.0.ln()) / (b.0.ln() - a.0.ln());
+        Some((a.1.ln() + t * (b.1.ln() - a.1.ln())).exp())
+    };
+    let truth = |w: f64, g: f64| gamma_c_at(w).map(|gc| g > gc);
+    let points: Vec<PhasePoint> = records
+        .iter()
+        .map(|r| PhasePoint {
+            x: r.width_ratio,
+            y: r.gamma,
+            phase: if !r.tip_deviation.is_finite() {
+                Phase::NotConverged
+            } else if r.protocol_3d {
+                Phase::ThreeD
+            } else {
+                Phase::TwoD
+            },
+            disagrees: r.stability_3d.is_some_and(|s| s != r.protocol_3d),
+        })
+        .collect();
+    // The Vlasov-beam master curve (computed in slender-validation by finite differences,
+    // independently of the shell), with the beam and the plate lateral stiffness.
+    let nu = sweep.material.poisson;
+    let band: Vec<(f64, (f64, f64))> = log_space(0.01, 1.0, 40)
+        .into_iter()
+        .filter_map(|w| critical_gamma_band(nu, w).map(|b| (w, b)))
+        .collect();
+    let overlays = vec![
+        Overlay {
+            label: format!("Γ_c from the Hessian inertia (n_L = {})", sweep.n_length),
+            points: curve.clone(),
+            dashed: false,
+            color: None,
+        },
+        Overlay {
+            label: format!("Vlasov beam, B = E w h³/12 (ν = {nu})"),
+            points: band.iter().map(|(w, b)| (*w, b.0)).collect(),
+            dashed: true,
+            color: None,
+        },
+        Overlay {
+            label: "Vlasov beam, B = D w".into(),
+            points: band.iter().map(|(w, b)| (*w, b.1)).collect(),
+            dashed: true,
+            color: None,
+        },
+    ];
+    let lo = |v: &[f64]| v.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hi = |v: &[f64]| v.iter().cloned().fold(0.0, f64::max);
+    let stem = out.join("phase_diagram");
+    plot_phase_diagram(
+        &stem,
+        &format!(
+            "Lateral buckling, {} (ν = {}), n_L = {}: protocol σ = {}, m_ls = {}, ε = {}",
+            sweep.material.label,
+            sweep.material.poisson,
+            sweep.n_length,
+            sweep.sigma,
+            sweep.load_steps,
+            sweep.threshold
+        ),
+        "w / L",
+        "Γ_shell",
+        (lo(&sweep.width_ratios) / 1.2, hi(&sweep.width_ratios) * 1.2),
+        (lo(&sweep.gammas) / 1.2, hi(&sweep.gammas) * 1.2),
+        &truth,
+        &points,
+        &overlays,
+    )
+    .with_context(|| format!("plotting {}", stem.display()))?;
+    Ok(LateralBucklingOutput { critical, records })
+}
+
+/// Prints Γ_c per aspect ratio and the protocol's agreement with stability.
+pub fn print_summary(out: &LateralBucklingOutput) {
+    println!("{:>6} {:>4} {:>4} {:>10}", "w/L", "n_L", "n_W", "Γ_c");
+    for c in &out.critical {
+        println!(
+            "{:>6.3} {:>4} {:>4} {:>10.3}",
+            c.width_ratio, c.n_length, c.n_width, c.gamma_c
+        );
+    }
+    let decided: Vec<&LateralBucklingRecord> = out
+        .records
+        .iter()
+        .filter(|r| r.stability_3d.is_some())
+        .collect();
+    let agree = decided
+        .iter()
+        .filter(|r| r.stability_3d == Some(r.protocol_3d))
+        .count();
+    println!(
+        "protocol agrees with stability at {agree} of {} points ({:.0} %); {} protocol runs with a stage not converged",
+        decided.len(),
+        100.0 * agree as f64 / decided.len().max(1) as f64,
+        out.records.iter().filter(|r| !r.converged).count()
+    );
+}

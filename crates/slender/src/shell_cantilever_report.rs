@@ -1,0 +1,259 @@
+//! The shell part of `slender cantilever`: the strip sets of seed Table 2 against the master
+//! curve, drawn on the same Fig. 2 plot as the rods, plus shape pictures (seed Fig. 4).
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use slender_core::rod::Grading;
+use slender_core::solver::SolverParams;
+use slender_validation::cantilever::master_curve::heavy_elastica;
+use slender_validation::cantilever::{
+    log_space, CantileverRecord, ShellCantileverCase, ShellCantileverRecord, ShellCantileverSweep,
+    CABLE_RANGE,
+};
+use slender_validation::materials::{ShellMaterialSet, OMEGA_COMBINED, OMEGA_IPS};
+
+use crate::output::write_csv;
+use crate::plot::{plot_cantilever_ratio, plot_relative_error, plot_shape_views, Curve, Polyline3};
+use crate::progress::Progress;
+
+/// Runs the shell sweep, writes `shell_results.csv`, the per-set ratio and error plots, the
+/// combined Fig. 2 (`fig2_rod_and_shell`, with the rod `records` of `rod_material` on the
+/// graded mesh) and the shape pictures. Returns the shell records.
+pub fn run(
+    sweep: &ShellCantileverSweep,
+    rod_records: &[CantileverRecord],
+    rod_material: Option<&str>,
+    out: &Path,
+) -> Result<Vec<ShellCantileverRecord>> {
+    let params = SolverParams::default();
+    let progress = Progress::new("shells", sweep.cases().len());
+    let records = sweep.run(&params, &|| progress.tick())?;
+    progress.finish();
+    write_csv(&out.join("shell_results.csv"), &records)?;
+    let lo = sweep.gammas.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hi = sweep.gammas.iter().cloned().fold(0.0, f64::max);
+    let master: Vec<(f64, f64)> = log_space(lo, hi, 200)
+        .into_iter()
+        .filter_map(|g| heavy_elastica(g).ok().map(|h| (g, h.ratio())))
+        .collect();
+    let shell_curves = |set: &ShellMaterialSet, error: bool| -> Vec<Curve> {
+        sweep
+            .element_counts
+            .iter()
+            .map(|&n| {
+                let rows = records
+                    .iter()
+                    .filter(|r| r.material == set.name && r.n_length == n);
+                Curve {
+                    label: format!("shell {}, n_L = {n}", set.label),
+                    points: rows
+                        .map(|r| (r.gamma, if error { 100.0 * r.rel_error } else { r.ratio }))
+                        .collect(),
+                    dashed: true,
+                    markers: true,
+                }
+            })
+            .collect()
+    };
+    for set in &sweep.materials {
+        // The narrow-strip limit: lateral stiffness E·w·h³/12 = D·w·(1 − ν²), i.e. the master
+        // curve at Γ/(1 − ν²) (anticlastic curvature free, design.md §1.1).
+        let nu2 = 1.0 - set.poisson * set.poisson;
+        let mut curves = vec![Curve {
+            label: format!(
+                "heavy elastica with E·w·h³/12 (narrow strip, ν = {})",
+                set.poisson
+            ),
+            points: log_space(lo, hi, 100)
+                .into_iter()
+                .filter_map(|g| heavy_elastica(g / nu2).ok().map(|h| (g, h.ratio())))
+                .collect(),
+            dashed: true,
+            markers: false,
+        }];
+        curves.extend(shell_curves(set, false));
+        let stem = out.join(format!("ratio_shell_{}", set.name));
+        plot_cantilever_ratio(
+            &stem,
+            &format!(
+                "Shell cantilever, {} (ν = {}), w/L = {}",
+                set.label, set.poisson, sweep.width_ratio
+            ),
+            &master,
+            &curves,
+            Some(CABLE_RANGE),
+        )
+        .with_context(|| format!("plotting {}", stem.display()))?;
+        let stem = out.join(format!("error_shell_{}", set.name));
+        plot_relative_error(
+            &stem,
+            &format!(
+                "Shell error vs master curve (D·w), {} (ν = {})",
+                set.label, set.poisson
+            ),
+            &shell_curves(set, true),
+            Some(CABLE_RANGE),
+        )
+        .with_context(|| format!("plotting {}", stem.display()))?;
+    }
+    // The seed's Fig. 2: rods (graded mesh) and the Ω_combined shells on one plot.
+    let mut curves = Vec::new();
+    if let Some(rod) = rod_material {
+        let mut counts: Vec<usize> = rod_records
+            .iter()
+            .filter(|r| r.material == rod && r.mesh == "graded")
+            .map(|r| r.n_elements)
+            .collect();
+        counts.sort_unstable();
+        counts.dedup();
+        for n in counts {
+            curves.push(Curve {
+                label: format!("rod Ω_{rod}, graded, N = {n}"),
+                points: rod_records
+                    .iter()
+                    .filter(|r| r.material == rod && r.mesh == "graded" && r.n_elements == n)
+                    .map(|r| (r.gamma, r.ratio))
+                    .collect(),
+                dashed: false,
+                markers: true,
+            });
+        }
+    }
+    if let Some(set) = sweep
+        .materials
+        .iter()
+        .find(|s| s.name == OMEGA_COMBINED.name)
+        .or(sweep.materials.first())
+    {
+        curves.extend(shell_curves(set, false));
+    }
+    let stem = out.join("fig2_rod_and_shell");
+    plot_cantilever_ratio(
+        &stem,
+        "Cantilever under self-weight: rods and shells (seed Fig. 2)",
+        &master,
+        &curves,
+        Some(CABLE_RANGE),
+    )
+    .with_context(|| format!("plotting {}", stem.display()))?;
+    plot_shapes(sweep, out)?;
+    Ok(records)
+}
+
+/// The deformed strip as a wire frame (lines along the length and across the width).
+fn wire_frame(
+    case: &ShellCantileverCase,
+    positions: &[slender_core::geometry::Vec3],
+) -> Vec<Polyline3> {
+    let (nl, nw) = (case.n_length, case.n_width);
+    let at = |i: usize, j: usize| {
+        let p = positions[i * (nw + 1) + j];
+        [p.x, p.y, p.z]
+    };
+    let mut lines = Vec::new();
+    for j in 0..=nw {
+        lines.push(Polyline3 {
+            label: if j == 0 {
+                format!("{} × {} elements", nl, nw)
+            } else {
+                String::new()
+            },
+            points: (0..=nl).map(|i| at(i, j)).collect(),
+            markers: true,
+        });
+    }
+    for i in 0..=nl {
+        lines.push(Polyline3 {
+            label: String::new(),
+            points: (0..=nw).map(|j| at(i, j)).collect(),
+            markers: false,
+        });
+    }
+    lines
+}
+
+/// Shapes as in the seed's Fig. 4 (an IPS-default strip with fifteen elements), at a large Γ
+/// where coarse meshes struggle, and the Ω_combined strip, each with the exact centre line.
+fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path) -> Result<()> {
+    let params = SolverParams::default();
+    for (set, gamma) in [(OMEGA_IPS, 1e3), (OMEGA_IPS, 1e4), (OMEGA_COMBINED, 61.3)] {
+        let n_length = 15;
+        let case = ShellCantileverCase {
+            material: set,
+            width_ratio: sweep.width_ratio,
+            n_length,
+            n_width: ShellCantileverCase::default_width_elements(sweep.width_ratio, n_length),
+            grading: Grading::Power { exponent: 2.0 },
+            gamma,
+        };
+        let run = case.run(&params)?;
+        let l = set.length;
+        let mut lines = wire_frame(&case, &run.positions);
+        if let Ok(exact) = heavy_elastica(gamma) {
+            lines.push(Polyline3 {
+                label: "heavy elastica centre line (exact)".into(),
+                points: exact
+                    .shape(200)
+                    .iter()
+                    .map(|p| [p[0] * l, p[1] * l, 0.0])
+                    .collect(),
+                markers: false,
+            });
+        }
+        let status = if run.ratio.is_finite() {
+            format!("Δy/Δx = {:.4}", run.ratio)
+        } else {
+            "not converged".into()
+        };
+        let stem = out.join(format!(
+            "shell_shape_{}_n{}_gamma{}",
+            set.name, n_length, gamma
+        ));
+        plot_shape_views(
+            &stem,
+            &format!(
+                "Shell cantilever, {}, w/L = {}, Γ = {gamma}: {status}",
+                set.label, sweep.width_ratio
+            ),
+            &lines,
+        )
+        .with_context(|| format!("plotting {}", stem.display()))?;
+    }
+    Ok(())
+}
+
+/// Prints the worst errors per shell discretization against the D·w master curve.
+pub fn print_summary(records: &[ShellCantileverRecord]) {
+    println!(
+        "{:<8} {:>5} {:>4} {:>4}  {:>22}  {:>16}  {:>9}",
+        "shell", "ν", "n_L", "n_W", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
+    );
+    let mut keys: Vec<(String, usize)> = records
+        .iter()
+        .map(|r| (r.material.clone(), r.n_length))
+        .collect();
+    keys.dedup();
+    for (material, n) in keys {
+        let rows: Vec<&ShellCantileverRecord> = records
+            .iter()
+            .filter(|r| r.material == material && r.n_length == n)
+            .collect();
+        let worst = |lo: f64, hi: f64| {
+            rows.iter()
+                .filter(|r| r.converged && r.gamma >= lo && r.gamma <= hi)
+                .map(|r| 100.0 * r.rel_error.abs())
+                .fold(0.0, f64::max)
+        };
+        println!(
+            "{:<8} {:>5} {:>4} {:>4}  {:>22.3}  {:>16.3}  {:>9}",
+            material,
+            rows[0].poisson,
+            n,
+            rows[0].n_width,
+            worst(CABLE_RANGE.0, CABLE_RANGE.1),
+            worst(0.0, f64::INFINITY),
+            rows.iter().filter(|r| !r.converged).count()
+        );
+    }
+}
