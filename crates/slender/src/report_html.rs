@@ -115,7 +115,32 @@ fn caption(dir: &str, stem: &str) -> String {
                 .into(),
             _ => words(stem),
         },
+        "cantilever-shell" => {
+            if stem == "fig2_rod_and_shell" {
+                "Counterpart of the seed's Fig. 2: rods (Ω_bundle) and shells of Table 2 along the \
+                 master curve."
+                    .into()
+            } else if let Some(rest) = stem.strip_prefix("ratio_") {
+                format!(
+                    "Shell Δy/Δx against Γ_shell ({}), with the heavy elastica.",
+                    words(rest)
+                )
+            } else if let Some(rest) = stem.strip_prefix("error_") {
+                format!("Relative error of the shell's Δy/Δx ({}).", words(rest))
+            } else if stem.starts_with("shell_shape") {
+                format!(
+                    "Counterpart of the seed's Fig. 4: shell equilibrium ({}).",
+                    words(stem)
+                )
+            } else {
+                words(stem)
+            }
+        }
         "lateral-buckling" => match stem {
+            "phase_diagram" => "Counterpart of the seed's Figs. 10b–11b: 2-D/3-D decisions of the \
+                                seed's protocol over (w/L, Γ_shell), with Γ_c from the Hessian \
+                                inertia and the master curves."
+                .into(),
             "master_curves" => "Ground truth of the seed's Figs. 10–11: critical Γ_shell against \
                                 w/L, Kirchhoff plate and Vlasov beam (both weak-axis stiffnesses)."
                 .into(),
@@ -245,12 +270,12 @@ pub fn write_report(out: &Path, r: &Report) -> Result<PathBuf> {
     for c in r.checks {
         writeln!(
             w,
-            "<tr><td class=\"{}\">{}</td><td>{}</td><td>{}</td><td class=\"num\">{:.5}</td><td class=\"target\">{}</td></tr>",
+            "<tr><td class=\"{}\">{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"target\">{}</td></tr>",
             if c.passed { "pass" } else { "fail" },
             if c.passed { "PASS" } else { "FAIL" },
             esc(&c.benchmark),
             esc(&c.description),
-            c.measured,
+            crate::validate::format_measured(c.measured),
             esc(&c.target)
         )?;
     }

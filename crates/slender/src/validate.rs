@@ -8,7 +8,12 @@ use anyhow::Result;
 use slender_core::solver::SolverParams;
 use slender_validation::bend_twist::acceptance::bend_twist_checks;
 use slender_validation::bend_twist::sweep::BendTwistSweep;
-use slender_validation::cantilever::{cantilever_checks, CantileverSweep, Check};
+use slender_validation::cantilever::{
+    cantilever_checks, log_space, shell_cantilever_checks, CantileverSweep, Check,
+    ShellCantileverSweep,
+};
+use slender_validation::lateral_sweep::{lateral_buckling_checks, LateralBucklingSweep};
+use slender_validation::materials::{OMEGA_SHELL, SHELL_SETS};
 
 use crate::output::{write_atomic, write_csv};
 use crate::report_html::{write_report, Report, Section};
@@ -35,10 +40,42 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     };
     crate::cantilever_report::print_summary(&cantilever.summary);
     crate::bend_twist_report::print_summary(&bend_twist.summary);
+    let params = SolverParams::default();
+    // Flat cables: the shell sets of the seed's Table 2 on the same Fig. 2 plot as the rods.
+    let shell_clock = Instant::now();
+    let shell_sweep = ShellCantileverSweep {
+        gammas: sweep.gammas.clone(),
+        element_counts: vec![8, 15, 30],
+        width_ratio: 0.1,
+        materials: SHELL_SETS.to_vec(),
+    };
+    let shell_records = crate::shell_cantilever_report::run(
+        &shell_sweep,
+        &cantilever.records,
+        Some("bundle"),
+        &out.join("cantilever-shell"),
+    )?;
+    crate::shell_cantilever_report::print_summary(&shell_records);
+    let shell_checks = shell_cantilever_checks(&params)?;
+    let shell_seconds = shell_clock.elapsed().as_secs_f64();
     let lb_clock = Instant::now();
-    let lateral_checks = crate::lateral_buckling_curves_report::run(&out.join("lateral-buckling"))?;
+    let lb_dir = out.join("lateral-buckling");
+    let mut lateral_checks = crate::lateral_buckling_curves_report::run(&lb_dir)?;
+    let lateral_sweep = LateralBucklingSweep {
+        material: OMEGA_SHELL,
+        n_length: 8,
+        width_ratios: vec![0.05, 0.1, 0.2, 0.5, 1.0],
+        gammas: log_space(8.0, 40.0, 8),
+        sigma: 0.2,
+        load_steps: 5,
+        threshold: 1e-4,
+    };
+    let lateral = crate::lateral_sweep_report::run(&lateral_sweep, &lb_dir)?;
+    crate::lateral_sweep_report::print_summary(&lateral);
+    lateral_checks.extend(lateral_buckling_checks(&params)?);
     let lateral_seconds = lb_clock.elapsed().as_secs_f64();
-    let mut checks = cantilever_checks(&cantilever.records, &SolverParams::default())?;
+    let mut checks = cantilever_checks(&cantilever.records, &params)?;
+    checks.extend(shell_checks);
     checks.extend(bend_twist_checks(&bend_twist.summary));
     checks.extend(lateral_checks);
     let scene_clock = Instant::now();
@@ -71,6 +108,17 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                     ),
                 },
                 Section {
+                    title: "Cantilever under self-weight (flat cables, shells)".into(),
+                    dir: "cantilever-shell".into(),
+                    wall_seconds: shell_seconds,
+                    stats: Default::default(),
+                    about: "The same benchmark for strips of the seed's Table 2 (Ω_shell, Ω_IPS, \
+                            Ω_combined), w/L = 0.1, n_L ∈ {8, 15, 30}, with the mid-edge director \
+                            shell and the exact director clamp, against the heavy elastica with \
+                            EI = D·w and with the narrow-strip stiffness E·w·h³/12."
+                        .into(),
+                },
+                Section {
                     title: "Bend–twist bifurcation of a naturally curved rod".into(),
                     dir: "bend-twist".into(),
                     wall_seconds: bend_twist_seconds,
@@ -85,7 +133,7 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                     ),
                 },
                 Section {
-                    title: "Lateral buckling of a heavy clamped strip: master curves".into(),
+                    title: "Lateral buckling of a heavy clamped strip".into(),
                     dir: "lateral-buckling".into(),
                     wall_seconds: lateral_seconds,
                     stats: Default::default(),
@@ -94,9 +142,17 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                          w/L (ν = {}), computed in code by two methods independent of any shell: the \
                          linear buckling load of the clamped Kirchhoff plate under its in-plane \
                          self-weight (Legendre Ritz), and the Vlasov warping-torsion beam with both \
-                         weak-axis stiffness conventions (shooting and Hermite Ritz). The shell model \
-                         and its lateral-buckling sweep are not in this version yet.",
-                        crate::lateral_buckling_curves_report::NU
+                         weak-axis stiffness conventions (shooting and Hermite Ritz). Beside them the \
+                         shell (Ω_shell, n_L = {}, square elements) over {} w/L × {} Γ_shell: Γ_c by \
+                         bisection on the Hessian inertia and the seed's protocol (σ = {}, m_ls = {}, \
+                         ε = {:e}).",
+                        crate::lateral_buckling_curves_report::NU,
+                        lateral_sweep.n_length,
+                        lateral_sweep.width_ratios.len(),
+                        lateral_sweep.gammas.len(),
+                        lateral_sweep.sigma,
+                        lateral_sweep.load_steps,
+                        lateral_sweep.threshold
                     ),
                 },
                 Section {
@@ -125,13 +181,23 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     Ok(failed == 0)
 }
 
+/// A measured value for tables: fixed point, or scientific when small (a 1e-12 force
+/// imbalance must not print as 0.00000).
+pub(crate) fn format_measured(v: f64) -> String {
+    if v != 0.0 && v.abs() < 1e-3 {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.5}")
+    }
+}
+
 fn print_table(checks: &[Check]) {
     for c in checks {
         println!(
-            "{}  {:<11} {:>12.5}  target {:<8}  {}",
+            "{}  {:<11} {:>12}  target {:<8}  {}",
             if c.passed { "PASS" } else { "FAIL" },
             c.benchmark,
-            c.measured,
+            format_measured(c.measured),
             c.target,
             c.description
         );
@@ -143,11 +209,11 @@ fn markdown(checks: &[Check]) -> String {
         String::from("| result | benchmark | check | measured | target |\n|---|---|---|---|---|\n");
     for c in checks {
         s += &format!(
-            "| {} | {} | {} | {:.5} | {} |\n",
+            "| {} | {} | {} | {} | {} |\n",
             if c.passed { "PASS" } else { "FAIL" },
             c.benchmark,
             c.description,
-            c.measured,
+            format_measured(c.measured),
             c.target
         );
     }
