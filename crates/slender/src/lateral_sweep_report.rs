@@ -6,7 +6,8 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::log_space;
-use slender_validation::lateral_sweep::vlasov_fd::critical_gamma_band;
+use slender_validation::lateral_buckling::{sample_master_curve, MasterCurve};
+use slender_validation::lateral_sweep::vlasov_band;
 use slender_validation::lateral_sweep::{
     CriticalRecord, LateralBucklingRecord, LateralBucklingSweep,
 };
@@ -64,14 +65,23 @@ pub fn run(sweep: &LateralBucklingSweep, out: &Path) -> Result<LateralBucklingOu
             disagrees: r.stability_3d.is_some_and(|s| s != r.protocol_3d),
         })
         .collect();
-    // The Vlasov-beam master curve (computed in slender-validation by finite differences,
-    // independently of the shell), with the beam and the plate lateral stiffness.
+    // The master curves (slender_validation::lateral_buckling, independent of the shell): the
+    // Kirchhoff plate's linear buckling load, and the Vlasov beam with the beam and the plate
+    // lateral stiffness.
     let nu = sweep.material.poisson;
-    let band: Vec<(f64, (f64, f64))> = log_space(0.01, 1.0, 40)
-        .into_iter()
-        .filter_map(|w| critical_gamma_band(nu, w).map(|b| (w, b)))
+    let grid = log_space(0.01, 1.0, 40);
+    let band: Vec<(f64, (f64, f64))> = grid
+        .iter()
+        .filter_map(|&w| vlasov_band(nu, w).map(|b| (w, b)))
         .collect();
+    let plate = sample_master_curve(MasterCurve::KirchhoffPlate, nu, &grid)?;
     let overlays = vec![
+        Overlay {
+            label: format!("master curve: Kirchhoff plate (ν = {nu})"),
+            points: plate,
+            dashed: false,
+            color: Some(plotters::style::RGBColor(200, 30, 30)),
+        },
         Overlay {
             label: format!("Γ_c from the Hessian inertia (n_L = {})", sweep.n_length),
             points: curve.clone(),
@@ -79,7 +89,7 @@ pub fn run(sweep: &LateralBucklingSweep, out: &Path) -> Result<LateralBucklingOu
             color: None,
         },
         Overlay {
-            label: format!("Vlasov beam, B = E w h³/12 (ν = {nu})"),
+            label: "Vlasov beam, B = E w h³/12".into(),
             points: band.iter().map(|(w, b)| (*w, b.0)).collect(),
             dashed: true,
             color: None,

@@ -6,7 +6,7 @@ use slender_core::ModelError;
 
 use super::case::LateralBucklingCase;
 use super::sweep::GAMMA_C_BRACKET;
-use super::vlasov_fd::critical_gamma_band;
+use super::vlasov_band;
 use crate::cantilever::Check;
 use crate::materials::OMEGA_SHELL;
 
@@ -50,7 +50,7 @@ pub fn lateral_buckling_checks(params: &SolverParams) -> Result<Vec<Check>, Mode
         ));
         // The Vlasov beam is a 1-D approximation (design.md §1.3): the converged shell should
         // fall in its band [B = E w h³/12, B = D w] up to a few %.
-        if let Some((beam, plate)) = critical_gamma_band(OMEGA_SHELL.poisson, w) {
+        if let Some((beam, plate)) = vlasov_band(OMEGA_SHELL.poisson, w) {
             let outside = 100.0
                 * if fine < beam {
                     beam / fine - 1.0
