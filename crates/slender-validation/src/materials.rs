@@ -7,6 +7,8 @@
 //! * Ω_bundle: ρ = 2485 kg/m³ with the printed "d = 6 mm" a *radius*: only this reading gives
 //!   Γ = ρ A g L³/EI ≈ 61.3 at earth gravity, as the seed states.
 
+use serde::Serialize;
+
 use slender_core::rod::{RodProperties, SectionStiffness};
 use slender_core::shell::ShellProperties;
 
@@ -80,7 +82,7 @@ pub const ROD_SETS: [RodMaterialSet; 2] = [OMEGA_ROD, OMEGA_BUNDLE];
 ///
 /// The densities are printed in "kg/dm³" with values (1000, 1210) that only make sense as
 /// kg/m³; Γ_shell = ρhgL³/D is varied through g, so the reading does not matter for Δy/Δx.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ShellMaterialSet {
     /// Identifier used in files and plots (`shell`, `ips`, `combined`).
     pub name: &'static str,

@@ -4,17 +4,21 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::log_space;
 use slender_validation::lateral_buckling::{sample_master_curve, MasterCurve};
+use slender_validation::lateral_sweep::sweep::GAMMA_C_BRACKET;
 use slender_validation::lateral_sweep::vlasov_band;
 use slender_validation::lateral_sweep::{
     CriticalRecord, LateralBucklingRecord, LateralBucklingSweep,
 };
+use slender_validation::materials::ShellMaterialSet;
 
 use crate::output::write_csv;
 use crate::plot::{plot_phase_diagram, Overlay, Phase, PhasePoint};
-use crate::progress::Progress;
+use crate::store::runner::{run_cases, StoreOptions};
+use crate::store::BenchmarkStore;
 
 /// What the benchmark produced.
 pub struct LateralBucklingOutput {
@@ -24,14 +28,83 @@ pub struct LateralBucklingOutput {
     pub records: Vec<LateralBucklingRecord>,
 }
 
-/// Runs `sweep`, writes `critical.csv`, `results.csv` and `phase_diagram.{png,svg}` under `out`.
-pub fn run(sweep: &LateralBucklingSweep, out: &Path) -> Result<LateralBucklingOutput> {
+/// Everything a Γ_c record depends on: its store key.
+#[derive(Serialize)]
+struct CriticalKey {
+    material: ShellMaterialSet,
+    n_length: usize,
+    width_ratio: f64,
+    bracket: (f64, f64),
+    solver: SolverParams,
+}
+
+/// Everything a protocol point depends on (not the threshold: it is applied afterwards).
+#[derive(Serialize)]
+struct ProtocolKey {
+    material: ShellMaterialSet,
+    n_length: usize,
+    width_ratio: f64,
+    gamma: f64,
+    sigma: f64,
+    load_steps: usize,
+    solver: SolverParams,
+}
+
+/// Runs `sweep` through the store, writes `critical.csv`, `results.csv` and
+/// `phase_diagram.{png,svg}` under `out`; `None` if this run computed one shard only.
+pub fn run(
+    sweep: &LateralBucklingSweep,
+    out: &Path,
+    store: &StoreOptions,
+) -> Result<Option<LateralBucklingOutput>> {
     let params = SolverParams::default();
-    let critical = sweep.critical(&params)?;
+    params.validate()?;
+    let critical_keys: Vec<CriticalKey> = sweep
+        .width_ratios
+        .iter()
+        .map(|&width_ratio| CriticalKey {
+            material: sweep.material,
+            n_length: sweep.n_length,
+            width_ratio,
+            bracket: GAMMA_C_BRACKET,
+            solver: params.clone(),
+        })
+        .collect();
+    let critical_run = run_cases(
+        &BenchmarkStore::new(&store.root, "lateral-buckling-critical"),
+        store.shard,
+        &critical_keys,
+        |k| Ok(sweep.critical_at(k.width_ratio, &k.solver)?),
+    )?;
+    let points = sweep.points();
+    let protocol_keys: Vec<ProtocolKey> = points
+        .iter()
+        .map(|&(width_ratio, gamma)| ProtocolKey {
+            material: sweep.material,
+            n_length: sweep.n_length,
+            width_ratio,
+            gamma,
+            sigma: sweep.sigma,
+            load_steps: sweep.load_steps,
+            solver: params.clone(),
+        })
+        .collect();
+    let protocol_run = run_cases(
+        &BenchmarkStore::new(&store.root, "lateral-buckling"),
+        store.shard,
+        &protocol_keys,
+        |k| Ok(sweep.protocol_at(k.width_ratio, k.gamma, &k.solver)?),
+    )?;
+    let (Some(critical), Some(protocol)) = (critical_run.complete(), protocol_run.complete())
+    else {
+        return Ok(None);
+    };
     write_csv(&out.join("critical.csv"), &critical)?;
-    let progress = Progress::new("lateral", sweep.width_ratios.len() * sweep.gammas.len());
-    let records = sweep.run(&critical, &params, &|| progress.tick())?;
-    progress.finish();
+    let records: Vec<LateralBucklingRecord> = points
+        .iter()
+        .zip(&protocol)
+        .map(|(&wg, p)| sweep.record(wg, p, &critical))
+        .collect();
     write_csv(&out.join("results.csv"), &records)?;
 
     let curve: Vec<(f64, f64)> = critical
@@ -124,7 +197,7 @@ pub fn run(sweep: &LateralBucklingSweep, out: &Path) -> Result<LateralBucklingOu
         &overlays,
     )
     .with_context(|| format!("plotting {}", stem.display()))?;
-    Ok(LateralBucklingOutput { critical, records })
+    Ok(Some(LateralBucklingOutput { critical, records }))
 }
 
 /// Prints Γ_c per aspect ratio and the protocol's agreement with stability.

@@ -271,6 +271,13 @@ struct LateralBucklingArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
+    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
+    #[arg(long)]
+    store: Option<PathBuf>,
+    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
+    /// shards with `slender merge`, then rerun without --shard to write the report.
+    #[arg(long)]
+    shard: Option<Shard>,
 }
 
 fn lateral_sweep_from_args(
@@ -463,9 +470,14 @@ fn run(cli: Cli) -> Result<bool> {
         Command::LateralBuckling(a) => {
             let sweep = lateral_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
-            let out = pool.install(|| lateral_sweep_report::run(&sweep, &a.out))?;
-            lateral_sweep_report::print_summary(&out);
-            println!("wrote {}", a.out.display());
+            let store = store_options(&a.out, &a.store, a.shard);
+            match pool.install(|| lateral_sweep_report::run(&sweep, &a.out, &store))? {
+                Some(out) => {
+                    lateral_sweep_report::print_summary(&out);
+                    println!("wrote {}", a.out.display());
+                }
+                None => print_shard_done(&store),
+            }
             Ok(true)
         }
         Command::Validate(a) => {

@@ -34,7 +34,21 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     let bt_clock = Instant::now();
     let bend_twist = crate::bend_twist_report::run(&bt_sweep, &out.join("bend-twist"), store)?;
     let bend_twist_seconds = bt_clock.elapsed().as_secs_f64();
-    let (Some(cantilever), Some(bend_twist)) = (cantilever, bend_twist) else {
+    let lb_clock = Instant::now();
+    let lb_dir = out.join("lateral-buckling");
+    let lateral_sweep = LateralBucklingSweep {
+        material: OMEGA_SHELL,
+        n_length: 8,
+        width_ratios: vec![0.05, 0.1, 0.2, 0.5, 1.0],
+        gammas: log_space(8.0, 40.0, 8),
+        sigma: 0.2,
+        load_steps: 5,
+        threshold: 1e-4,
+    };
+    let lateral = crate::lateral_sweep_report::run(&lateral_sweep, &lb_dir, store)?;
+    let lateral_sweep_seconds = lb_clock.elapsed().as_secs_f64();
+    let (Some(cantilever), Some(bend_twist), Some(lateral)) = (cantilever, bend_twist, lateral)
+    else {
         crate::print_shard_done(store);
         return Ok(true);
     };
@@ -58,22 +72,11 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     crate::shell_cantilever_report::print_summary(&shell_records);
     let shell_checks = shell_cantilever_checks(&params)?;
     let shell_seconds = shell_clock.elapsed().as_secs_f64();
-    let lb_clock = Instant::now();
-    let lb_dir = out.join("lateral-buckling");
-    let mut lateral_checks = crate::lateral_buckling_curves_report::run(&lb_dir)?;
-    let lateral_sweep = LateralBucklingSweep {
-        material: OMEGA_SHELL,
-        n_length: 8,
-        width_ratios: vec![0.05, 0.1, 0.2, 0.5, 1.0],
-        gammas: log_space(8.0, 40.0, 8),
-        sigma: 0.2,
-        load_steps: 5,
-        threshold: 1e-4,
-    };
-    let lateral = crate::lateral_sweep_report::run(&lateral_sweep, &lb_dir)?;
     crate::lateral_sweep_report::print_summary(&lateral);
+    let lb_clock = Instant::now();
+    let mut lateral_checks = crate::lateral_buckling_curves_report::run(&lb_dir)?;
     lateral_checks.extend(lateral_buckling_checks(&params)?);
-    let lateral_seconds = lb_clock.elapsed().as_secs_f64();
+    let lateral_seconds = lateral_sweep_seconds + lb_clock.elapsed().as_secs_f64();
     let mut checks = cantilever_checks(&cantilever.records, &params)?;
     checks.extend(shell_checks);
     checks.extend(bend_twist_checks(&bend_twist.summary));

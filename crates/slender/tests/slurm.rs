@@ -43,6 +43,8 @@ fn sweep_args() -> Vec<&'static str> {
         "graded",
         "--materials",
         "rod",
+        "--shell-materials",
+        "none",
     ]
 }
 

@@ -9,7 +9,7 @@ pub mod sweep;
 
 pub use acceptance::lateral_buckling_checks;
 pub use case::{LateralBucklingCase, ProtocolOutcome};
-pub use sweep::{CriticalRecord, LateralBucklingRecord, LateralBucklingSweep};
+pub use sweep::{CriticalRecord, LateralBucklingRecord, LateralBucklingSweep, ProtocolPoint};
 
 use crate::lateral_buckling::{critical_gamma, MasterCurve};
 

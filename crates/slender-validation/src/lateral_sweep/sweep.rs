@@ -74,23 +74,84 @@ impl LateralBucklingSweep {
         }
     }
 
-    /// Γ_c for every aspect ratio (bisection to 0.1 %), in parallel.
+    /// Γ_c at one aspect ratio (bisection on the inertia to 0.1 %).
+    pub fn critical_at(
+        &self,
+        width_ratio: f64,
+        params: &SolverParams,
+    ) -> Result<CriticalRecord, ModelError> {
+        let c = self.case(width_ratio);
+        let gc = c
+            .critical_gamma(GAMMA_C_BRACKET.0, GAMMA_C_BRACKET.1, 1e-3, params)?
+            .unwrap_or(f64::NAN);
+        Ok(CriticalRecord {
+            width_ratio,
+            n_length: self.n_length,
+            n_width: c.n_width(),
+            gamma_c: gc,
+        })
+    }
+
+    /// Γ_c for every aspect ratio, in parallel.
     pub fn critical(&self, params: &SolverParams) -> Result<Vec<CriticalRecord>, ModelError> {
         self.width_ratios
             .par_iter()
-            .map(|&w| {
-                let c = self.case(w);
-                let gc = c
-                    .critical_gamma(GAMMA_C_BRACKET.0, GAMMA_C_BRACKET.1, 1e-3, params)?
-                    .unwrap_or(f64::NAN);
-                Ok(CriticalRecord {
-                    width_ratio: w,
-                    n_length: self.n_length,
-                    n_width: c.n_width(),
-                    gamma_c: gc,
-                })
-            })
+            .map(|&w| self.critical_at(w, params))
             .collect()
+    }
+
+    /// The (w/L, Γ) points of the protocol in their fixed order (w/L outer).
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        self.width_ratios
+            .iter()
+            .flat_map(|&w| self.gammas.iter().map(move |&g| (w, g)))
+            .collect()
+    }
+
+    /// Runs the protocol at one point (independent of the threshold and of Γ_c).
+    pub fn protocol_at(
+        &self,
+        width_ratio: f64,
+        gamma: f64,
+        params: &SolverParams,
+    ) -> Result<ProtocolPoint, ModelError> {
+        if self.load_steps == 0 {
+            return Err(ModelError::structure(
+                "load_steps",
+                "got 0; need at least 1",
+            ));
+        }
+        let out = self
+            .case(width_ratio)
+            .protocol(gamma, self.sigma, self.load_steps, params)?;
+        Ok(ProtocolPoint {
+            tip_deviation: out.tip_deviation,
+            converged: out.converged,
+            relative_residual: out.report.relative_residual,
+        })
+    }
+
+    /// The record of a protocol point: its verdict by the threshold and by Γ_c of `critical`.
+    pub fn record(
+        &self,
+        (width_ratio, gamma): (f64, f64),
+        point: &ProtocolPoint,
+        critical: &[CriticalRecord],
+    ) -> LateralBucklingRecord {
+        let gc = critical
+            .iter()
+            .find(|c| c.width_ratio == width_ratio)
+            .map(|c| c.gamma_c)
+            .filter(|x| x.is_finite());
+        LateralBucklingRecord {
+            width_ratio,
+            gamma,
+            tip_deviation: point.tip_deviation,
+            protocol_3d: point.tip_deviation.abs() > self.threshold,
+            stability_3d: gc.map(|c| gamma > c),
+            converged: point.converged,
+            relative_residual: point.relative_residual,
+        }
     }
 
     /// Runs the protocol at every (w/L, Γ) and compares with `critical`; records in
@@ -101,39 +162,24 @@ impl LateralBucklingSweep {
         params: &SolverParams,
         progress: &(dyn Fn() + Sync),
     ) -> Result<Vec<LateralBucklingRecord>, ModelError> {
-        if self.load_steps == 0 {
-            return Err(ModelError::structure(
-                "load_steps",
-                "got 0; need at least 1",
-            ));
-        }
-        let points: Vec<(f64, f64)> = self
-            .width_ratios
-            .iter()
-            .flat_map(|&w| self.gammas.iter().map(move |&g| (w, g)))
-            .collect();
-        points
+        self.points()
             .par_iter()
-            .map(|&(w, g)| {
-                let out = self
-                    .case(w)
-                    .protocol(g, self.sigma, self.load_steps, params)?;
+            .map(|&wg| {
+                let point = self.protocol_at(wg.0, wg.1, params)?;
                 progress();
-                let gc = critical
-                    .iter()
-                    .find(|c| c.width_ratio == w)
-                    .map(|c| c.gamma_c)
-                    .filter(|x| x.is_finite());
-                Ok(LateralBucklingRecord {
-                    width_ratio: w,
-                    gamma: g,
-                    tip_deviation: out.tip_deviation,
-                    protocol_3d: out.tip_deviation.abs() > self.threshold,
-                    stability_3d: gc.map(|c| g > c),
-                    converged: out.converged,
-                    relative_residual: out.report.relative_residual,
-                })
+                Ok(self.record(wg, &point, critical))
             })
             .collect()
     }
+}
+
+/// What the protocol measured at one point (the part of a record that costs a solve).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProtocolPoint {
+    /// y of the free end's centre / L after the protocol.
+    pub tip_deviation: f64,
+    /// Whether every protocol stage converged.
+    pub converged: bool,
+    /// Relative residual of the final state.
+    pub relative_residual: f64,
 }
