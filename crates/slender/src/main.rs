@@ -69,15 +69,23 @@ struct MergeArgs {
     sources: Vec<PathBuf>,
 }
 
-/// Store root and shard of a run.
-fn store_options(
-    out: &std::path::Path,
-    store: &Option<PathBuf>,
+/// Where a sweep keeps its finished cases, and which shard of it this run computes.
+#[derive(clap::Args, Debug)]
+struct StoreArgs {
+    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
+    #[arg(long)]
+    store: Option<PathBuf>,
+    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
+    /// shards with `slender merge`, then rerun without --shard to write the report.
+    #[arg(long)]
     shard: Option<Shard>,
-) -> StoreOptions {
+}
+
+/// Store root and shard of a run writing to `out`.
+fn store_options(out: &std::path::Path, args: &StoreArgs) -> StoreOptions {
     StoreOptions {
-        root: store.clone().unwrap_or_else(|| out.join("store")),
-        shard,
+        root: args.store.clone().unwrap_or_else(|| out.join("store")),
+        shard: args.shard,
     }
 }
 
@@ -114,13 +122,8 @@ struct BendTwistArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
-    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
-    #[arg(long)]
-    store: Option<PathBuf>,
-    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
-    /// shards with `slender merge`, then rerun without --shard to write the report.
-    #[arg(long)]
-    shard: Option<Shard>,
+    #[command(flatten)]
+    store: StoreArgs,
 }
 
 fn bend_twist_sweep(a: &BendTwistArgs) -> Result<BendTwistSweep> {
@@ -187,13 +190,8 @@ struct CantileverArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
-    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
-    #[arg(long)]
-    store: Option<PathBuf>,
-    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
-    /// shards with `slender merge`, then rerun without --shard to write the report.
-    #[arg(long)]
-    shard: Option<Shard>,
+    #[command(flatten)]
+    store: StoreArgs,
     /// Shell sets (seed Table 2), comma-separated: shell, ips, combined; `none` skips shells.
     #[arg(long, value_delimiter = ',', default_values_t = vec!["shell".to_string(), "ips".to_string(), "combined".to_string()])]
     shell_materials: Vec<String>,
@@ -271,13 +269,8 @@ struct LateralBucklingArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
-    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
-    #[arg(long)]
-    store: Option<PathBuf>,
-    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
-    /// shards with `slender merge`, then rerun without --shard to write the report.
-    #[arg(long)]
-    shard: Option<Shard>,
+    #[command(flatten)]
+    store: StoreArgs,
 }
 
 fn lateral_sweep_from_args(
@@ -350,13 +343,8 @@ struct ValidateArgs {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
-    /// Result store (default: OUT/store). Finished cases found there are not recomputed.
-    #[arg(long)]
-    store: Option<PathBuf>,
-    /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
-    /// shards with `slender merge`, then rerun without --shard to write the report.
-    #[arg(long)]
-    shard: Option<Shard>,
+    #[command(flatten)]
+    store: StoreArgs,
 }
 
 fn sweep_from_args(a: &CantileverArgs) -> Result<CantileverSweep> {
@@ -421,7 +409,7 @@ fn run(cli: Cli) -> Result<bool> {
             let sweep = sweep_from_args(&a)?;
             let shells = shell_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
-            let store = store_options(&a.out, &a.store, a.shard);
+            let store = store_options(&a.out, &a.store);
             match pool.install(|| cantilever_report::run(&sweep, &a.out, &store))? {
                 Some(out) => {
                     cantilever_report::print_summary(&out.summary);
@@ -444,7 +432,7 @@ fn run(cli: Cli) -> Result<bool> {
         Command::BendTwist(a) => {
             let sweep = bend_twist_sweep(&a)?;
             let pool = thread_pool(a.jobs)?;
-            let store = store_options(&a.out, &a.store, a.shard);
+            let store = store_options(&a.out, &a.store);
             match pool.install(|| bend_twist_report::run(&sweep, &a.out, &store))? {
                 Some(out) => {
                     bend_twist_report::print_summary(&out.summary);
@@ -470,7 +458,7 @@ fn run(cli: Cli) -> Result<bool> {
         Command::LateralBuckling(a) => {
             let sweep = lateral_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
-            let store = store_options(&a.out, &a.store, a.shard);
+            let store = store_options(&a.out, &a.store);
             match pool.install(|| lateral_sweep_report::run(&sweep, &a.out, &store))? {
                 Some(out) => {
                     lateral_sweep_report::print_summary(&out);
@@ -482,7 +470,7 @@ fn run(cli: Cli) -> Result<bool> {
         }
         Command::Validate(a) => {
             let pool = thread_pool(a.jobs)?;
-            let store = store_options(&a.out, &a.store, a.shard);
+            let store = store_options(&a.out, &a.store);
             let jobs = pool.current_num_threads();
             pool.install(|| validate::run(&a.out, a.preset == Preset::Full, &store, jobs))
         }
