@@ -640,6 +640,11 @@ fn shell_cantilever_scene_matches_the_heavy_elastica_master_curve() {
         (f[1] + weight).abs() < 1e-12 * weight && f[0] == 0.0 && f[2] == 0.0,
         "{f:?}"
     );
+    // The clamp force (differentiated from the energy on the held vertices) carries it.
+    let c = v3(&sh["clamp_force"]);
+    let off = norm(add(c, [0.0, -weight, 0.0])) / weight;
+    eprintln!("clamp force {c:?}, weight {weight:e}, relative imbalance {off:.2e}");
+    assert!(off < 1e-6, "clamp force {c:?} vs weight {weight}");
     // The solver report is in solver.csv like a rod's.
     let csv = std::fs::read_to_string(out.join("solver.csv")).unwrap();
     assert!(

@@ -344,6 +344,13 @@ fn shell_strips_read_back_as_triangle_meshes() {
     // The strip hangs: its free edge is below the clamp, the clamp edge did not move.
     assert!(strip[nl * (nw + 1)][1] < -1e-3);
     assert!(strip[..=nw].iter().all(|p| p[0] == 0.0 && p[1] == 0.0));
+    // The clamp force carries the weight ρ h w L g (computed here from the scene's data).
+    let weight = 1200.0 * 0.0003 * 0.04 * 0.2 * 9.81;
+    let fy = result["shells"][0]["clamp_force"][1].as_f64().unwrap();
+    assert!(
+        (fy / weight - 1.0).abs() < 1e-6,
+        "clamp force {fy} vs weight {weight}"
+    );
 
     // VTK, read token by token.
     let text = std::fs::read_to_string(out.join("step_000/shape.vtk")).unwrap();

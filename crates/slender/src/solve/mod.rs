@@ -228,13 +228,15 @@ struct StepSummary<'a> {
     shells: Vec<ShellSummary<'a>>,
 }
 
-/// A shell strip in `report.json`: solver report and total load (no separate reaction).
+/// A shell strip in `report.json`: solver report, total load and clamp force (no moment).
 #[derive(Serialize)]
 struct ShellSummary<'a> {
     name: &'a str,
     converged: bool,
     elements: [usize; 2],
     applied_force: [f64; 3],
+    clamp_force: [f64; 3],
+    relative_force_imbalance: f64,
     rod_predictor_used: bool,
     report: &'a slender_core::solver::SolveReport,
 }
@@ -431,6 +433,7 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
             iterations += rep.iterations;
             max_residual = max_residual.max(rep.residual);
             solver_rows.push(solver_row(s.step, &sh.name, 0, rep));
+            max_f = max_f.max(sh.relative_force_imbalance);
         }
         step_rows.push(StepRow {
             step: s.step,
@@ -482,6 +485,8 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
                         converged: r.converged,
                         elements: r.elements,
                         applied_force: r.applied_force,
+                        clamp_force: r.clamp_force,
+                        relative_force_imbalance: r.relative_force_imbalance,
                         rod_predictor_used: r.rod_predictor_used,
                         report: &r.report,
                     })
