@@ -625,8 +625,7 @@ fn shell_cantilever_scene_matches_the_heavy_elastica_master_curve() {
     // The shell's documented accuracy at n_L = 15 (README, "Shells"): ≤ 1 %.
     assert!(err.abs() <= 0.01, "relative error {err:e}");
     // The clamp edge did not move; the strip's length is kept (membrane is stiff).
-    for j in 0..=nw {
-        let q = p[j];
+    for q in &p[..=nw] {
         assert!(q[0].abs() < 1e-15 && q[1].abs() < 1e-15, "{q:?}");
     }
     let arc: f64 = (0..nl)
