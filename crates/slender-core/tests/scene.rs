@@ -413,3 +413,85 @@ fn reactions_are_the_energy_derivatives_with_respect_to_the_support_motion() {
         );
     }
 }
+
+#[test]
+fn a_shell_strip_is_solved_on_its_own_and_does_not_change_the_rods() {
+    use slender_core::scene::spec::{MaterialSpec, ShellSpec};
+    use slender_core::shell::{ShellBuilder, ShellProperties};
+    let g = [0.0, -9.81, 0.0];
+    let rod = rod_spec(
+        Centerline::Straight {
+            start: [0.0, 0.0, 1.0],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        vec![(SupportKind::Clamp, VertexRef::Index(0))],
+    );
+    let strip = ShellSpec {
+        name: None,
+        length: 0.2,
+        width: 0.02,
+        thickness: 3e-4,
+        material: MaterialSpec {
+            young: 5e9,
+            poisson: Some(0.3),
+            shear_modulus: None,
+            density: 1200.0,
+        },
+        elements: Some(8),
+        width_elements: None,
+        grading: None,
+        support: None,
+    };
+    let alone = scene(vec![rod.clone()], g);
+    let mut mixed = scene(vec![rod], g);
+    mixed.shells.push(strip.clone());
+    let (_, a) = SceneSolver::new(&alone.compile().unwrap());
+    let compiled = mixed.compile().unwrap();
+    let (_, b) = SceneSolver::new(&compiled);
+    assert!(a.converged && b.converged);
+    assert_eq!(
+        a.rods[0].positions, b.rods[0].positions,
+        "the strip changed the rod"
+    );
+    let sh = &b.shells[0];
+    assert_eq!(sh.name, "shell0");
+    // n_W from the aspect ratio, at least 2.
+    assert_eq!(sh.elements, [8, 2]);
+    // The same strip built and solved directly (flat start, load stepping) reaches the same
+    // equilibrium as the scene's rod-predictor start, to the solver's tolerance.
+    let shell = ShellBuilder::new(ShellProperties {
+        length: 0.2,
+        width: 0.02,
+        thickness: 3e-4,
+        young: 5e9,
+        poisson: 0.3,
+        density: 1200.0,
+    })
+    .elements(8, 2)
+    .gravity(slender_core::geometry::Vec3::from(g))
+    .build()
+    .unwrap();
+    let flat = shell.rest_state();
+    let direct =
+        slender_core::solver::EquilibriumSolver::new(&shell, &flat, SolverParams::default())
+            .solve(&shell, &flat, 0.0, 1.0);
+    assert!(direct.report.converged());
+    for (p, q) in sh.positions.iter().zip(&direct.state.positions) {
+        for c in 0..3 {
+            assert!((p[c] - q[c]).abs() < 1e-8, "{p:?} vs {q:?}");
+        }
+    }
+    // The clamp force carries the weight ρ h w L g.
+    let weight = 1200.0 * 3e-4 * 0.02 * 0.2 * 9.81;
+    assert!(
+        (sh.clamp_force[1] / weight - 1.0).abs() < 1e-6,
+        "{:?}",
+        sh.clamp_force
+    );
+    // Anything but the edge x = 0 clamped is refused, naming the field.
+    let mut pinned = mixed.clone();
+    pinned.shells[0].support = Some("pin_end".into());
+    let e = pinned.compile().unwrap_err();
+    assert_eq!(e.path, "shells[0].support");
+}

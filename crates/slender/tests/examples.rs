@@ -599,3 +599,55 @@ fn a_json_scene_gives_the_same_equilibrium_as_its_toml() {
         );
     }
 }
+
+#[test]
+fn shell_cantilever_scene_matches_the_heavy_elastica_master_curve() {
+    use slender_validation::cantilever::master_curve::master_ratio;
+    let out = solve("flat_cable_shell_cantilever");
+    assert_eq!(n_steps(&out), 1);
+    let r = step(&out, 0);
+    let sh = &r["shells"][0];
+    assert_eq!(sh["converged"], Value::Bool(true));
+    // The scene's data (examples/flat_cable_shell_cantilever.toml), ν = 0: D·w = E I.
+    let (l, w, h, e, rho, g) = (0.3, 0.03, 0.2e-3, 10530e6, 1000.0, 9.81);
+    let d = e * h * h * h / 12.0;
+    let gamma = rho * h * g * l * l * l / d;
+    let p = positions(sh);
+    let [nl, nw] = [15, 2];
+    assert_eq!(p.len(), (nl + 1) * (nw + 1));
+    // Centre line: the middle column (n_W even).
+    let a = p[nw / 2];
+    let b = p[nl * (nw + 1) + nw / 2];
+    let ratio = (a[1] - b[1]) / (b[0] - a[0]);
+    let master = master_ratio(gamma).unwrap();
+    let err = (ratio - master) / master;
+    eprintln!("Γ = {gamma:.4}: shell Δy/Δx = {ratio:.6}, master {master:.6}, error {err:+.3e}");
+    // The shell's documented accuracy at n_L = 15 (README, "Shells"): ≤ 1 %.
+    assert!(err.abs() <= 0.01, "relative error {err:e}");
+    // The clamp edge did not move; the strip's length is kept (membrane is stiff).
+    for q in &p[..=nw] {
+        assert!(q[0].abs() < 1e-15 && q[1].abs() < 1e-15, "{q:?}");
+    }
+    let arc: f64 = (0..nl)
+        .map(|i| norm(sub(p[(i + 1) * (nw + 1) + 1], p[i * (nw + 1) + 1])))
+        .sum();
+    assert!((arc - l).abs() < 1e-5 * l, "centre-line length {arc}");
+    // Total load: the weight ρ h w L g, computed here from the scene's data.
+    let f = v3(&sh["applied_force"]);
+    let weight = rho * h * w * l * g;
+    assert!(
+        (f[1] + weight).abs() < 1e-12 * weight && f[0] == 0.0 && f[2] == 0.0,
+        "{f:?}"
+    );
+    // The clamp force (differentiated from the energy on the held vertices) carries it.
+    let c = v3(&sh["clamp_force"]);
+    let off = norm(add(c, [0.0, -weight, 0.0])) / weight;
+    eprintln!("clamp force {c:?}, weight {weight:e}, relative imbalance {off:.2e}");
+    assert!(off < 1e-6, "clamp force {c:?} vs weight {weight}");
+    // The solver report is in solver.csv like a rod's.
+    let csv = std::fs::read_to_string(out.join("solver.csv")).unwrap();
+    assert!(
+        csv.lines().any(|l| l.starts_with("0,strip,0,true,")),
+        "{csv}"
+    );
+}

@@ -256,14 +256,107 @@ fn free_rigid_body_motions_are_rejected() {
     );
 }
 
+/// A valid shell strip; the cases below change one line of it.
+const SHELL: &str = "[[shells]]
+length = 0.3
+width = 0.03
+thickness = 0.0002
+material = { young = 1.0e10, poisson = 0.0, density = 1000.0 }
+elements = 6
+";
+
+/// Rejected with exit 2 (bad input), no output left, a message naming `needles`.
+fn rejects_with_2(name: &str, text: &str, needles: &[&str]) {
+    let (code, err) = run(name, "scene.toml", text);
+    assert_eq!(code, 2, "{name}: exit code\n{err}");
+    for n in needles {
+        assert!(err.contains(n), "{name}: message lacks {n:?}:\n{err}");
+    }
+}
+
 #[test]
-fn shells_are_not_supported_yet() {
-    rejects(
-        "shell",
-        &format!(
-            "{GOOD}\n[[shells]]\nlength = 1.0\nwidth = 0.1\nthickness = 0.001\nmesh = [20, 4]\n"
+fn bad_shell_strips_are_named() {
+    let shell = |from: &str, to: &str| {
+        assert!(SHELL.contains(from), "{from}");
+        format!("gravity = [0.0, -9.81, 0.0]\n{}", SHELL.replace(from, to))
+    };
+    let cases: [(&str, &str, &str, &[&str]); 12] = [
+        (
+            "zero length",
+            "length = 0.3",
+            "length = 0.0",
+            &["shells[0].length", "> 0"],
         ),
-        &["shells", "not supported yet"],
+        (
+            "negative width",
+            "width = 0.03",
+            "width = -0.03",
+            &["shells[0].width", "> 0"],
+        ),
+        (
+            "zero thickness",
+            "thickness = 0.0002",
+            "thickness = 0.0",
+            &["shells[0].thickness", "> 0"],
+        ),
+        (
+            "nan thickness",
+            "thickness = 0.0002",
+            "thickness = nan",
+            &["shells[0].thickness", "finite"],
+        ),
+        (
+            "poisson 0.5",
+            "poisson = 0.0",
+            "poisson = 0.5",
+            &["shells[0].material.poisson", "(-1, 0.5)"],
+        ),
+        (
+            "poisson -1",
+            "poisson = 0.0",
+            "poisson = -1.0",
+            &["shells[0].material.poisson", "(-1, 0.5)"],
+        ),
+        (
+            "zero young",
+            "young = 1.0e10",
+            "young = 0.0",
+            &["shells[0].material.young", "> 0"],
+        ),
+        (
+            "zero elements",
+            "elements = 6",
+            "elements = 0",
+            &["shells[0].elements", "at least 1"],
+        ),
+        (
+            "zero width elements",
+            "elements = 6",
+            "elements = 6\nwidth_elements = 0",
+            &["shells[0].width_elements", "at least 1"],
+        ),
+        (
+            "huge mesh",
+            "elements = 6",
+            "elements = 1000000",
+            &["shells[0].elements", "triangles"],
+        ),
+        (
+            "pinned strip",
+            "elements = 6",
+            "elements = 6\nsupport = \"pin\"",
+            &["shells[0].support", "clamp_start", "x = 0"],
+        ),
+        ("old mesh key", "elements = 6", "mesh = [20, 4]", &["mesh"]),
+    ];
+    for (name, from, to, needles) in cases {
+        rejects_with_2(name, &shell(from, to), needles);
+    }
+    // A shell and a rod may not share a name (their output files would collide).
+    rejects_with_2(
+        "shared name",
+        &format!("{GOOD}\n{}name = \"{}\"\n", SHELL, "cable"),
+        &["shells[0].name", "unique"],
     );
 }
 

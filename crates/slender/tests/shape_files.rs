@@ -29,10 +29,14 @@ supports = [{ kind = "clamp", vertex = "start" }, { kind = "pin", vertex = "end"
 "#;
 
 fn solve_scene(name: &str) -> (PathBuf, Value) {
+    solve_text(name, SCENE)
+}
+
+fn solve_text(name: &str, text: &str) -> (PathBuf, Value) {
     let d = std::env::temp_dir().join(format!("slender-shapes-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
-    std::fs::write(d.join("scene.toml"), SCENE).unwrap();
+    std::fs::write(d.join("scene.toml"), text).unwrap();
     let out = d.join("out");
     let o = Command::new(env!("CARGO_BIN_EXE_slender"))
         .arg("solve")
@@ -297,4 +301,178 @@ fn the_json_schema_is_generated_from_the_types_and_matches_the_committed_copy() 
         committed, text,
         "examples/scene.schema.json is stale; regenerate it"
     );
+}
+
+/// A rod and a shell strip in one scene (they do not interact; each is solved on its own).
+const SHELL_SCENE: &str = r#"
+gravity = [0.0, -9.81, 0.0]
+
+[[rods]]
+name = "arm"
+elements = 4
+centerline = { kind = "straight", start = [0.0, 0.0, 1.0], direction = [1.0, 0.0, 0.0], length = 0.5 }
+section = { shape = "circle", diameter = 0.004 }
+material = { young = 1.0e9, poisson = 0.4, density = 1400.0 }
+supports = [{ kind = "clamp", vertex = "start" }]
+
+[[shells]]
+name = "strip"
+length = 0.2
+width = 0.04
+thickness = 0.0003
+material = { young = 5.0e9, poisson = 0.3, density = 1200.0 }
+elements = 6
+width_elements = 3
+"#;
+
+/// The shell as triangles in VTK (POLYGONS after the rod's LINES) and in glTF (an indexed
+/// triangle mesh), both matching the result's positions and the structured mesh's counts.
+#[test]
+fn shell_strips_read_back_as_triangle_meshes() {
+    let (out, result) = solve_text("shell", SHELL_SCENE);
+    assert_eq!(result["converged"], Value::Bool(true));
+    let arm = rod_positions(&result, 0);
+    let strip: Vec<[f64; 3]> = result["shells"][0]["positions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| [0, 1, 2].map(|i| p[i].as_f64().unwrap()))
+        .collect();
+    let (nl, nw) = (6, 3);
+    let (n_vertices, n_faces) = ((nl + 1) * (nw + 1), 2 * nl * nw);
+    assert_eq!(strip.len(), n_vertices);
+    // The strip hangs: its free edge is below the clamp, the clamp edge did not move.
+    assert!(strip[nl * (nw + 1)][1] < -1e-3);
+    assert!(strip[..=nw].iter().all(|p| p[0] == 0.0 && p[1] == 0.0));
+    // The clamp force carries the weight ρ h w L g (computed here from the scene's data).
+    let weight = 1200.0 * 0.0003 * 0.04 * 0.2 * 9.81;
+    let fy = result["shells"][0]["clamp_force"][1].as_f64().unwrap();
+    assert!(
+        (fy / weight - 1.0).abs() < 1e-6,
+        "clamp force {fy} vs weight {weight}"
+    );
+
+    // VTK, read token by token.
+    let text = std::fs::read_to_string(out.join("step_000/shape.vtk")).unwrap();
+    let words: Vec<&str> = text
+        .lines()
+        .skip(4)
+        .flat_map(|l| l.split_whitespace())
+        .collect();
+    let mut k = 0;
+    let mut word = || {
+        k += 1;
+        words[k - 1]
+    };
+    assert_eq!(word(), "POINTS");
+    let n: usize = word().parse().unwrap();
+    assert_eq!(n, arm.len() + n_vertices);
+    word();
+    let points: Vec<[f64; 3]> = (0..n)
+        .map(|_| [0; 3].map(|_| word().parse::<f64>().unwrap()))
+        .collect();
+    for (p, q) in points[arm.len()..].iter().zip(&strip) {
+        for c in 0..3 {
+            assert!(
+                (p[c] - q[c]).abs() <= f64::EPSILON * q[c].abs(),
+                "{p:?} {q:?}"
+            );
+        }
+    }
+    assert_eq!(word(), "LINES");
+    assert_eq!(word(), "1");
+    let size: usize = word().parse().unwrap();
+    for _ in 0..size {
+        word();
+    }
+    assert_eq!(word(), "POLYGONS");
+    assert_eq!(word().parse::<usize>().unwrap(), n_faces);
+    assert_eq!(word().parse::<usize>().unwrap(), 4 * n_faces);
+    let mut area = 0.0;
+    let mut used = vec![false; n];
+    for _ in 0..n_faces {
+        assert_eq!(word(), "3");
+        let t = [0; 3].map(|_| word().parse::<usize>().unwrap());
+        for &v in &t {
+            assert!(
+                v >= arm.len() && v < n,
+                "triangle vertex {v} is not the strip's"
+            );
+            used[v] = true;
+        }
+        let [a, b, c] = t.map(|v| points[v]);
+        let (u, w) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        );
+        let x = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
+        area += 0.5 * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+    }
+    assert!(
+        used[arm.len()..].iter().all(|&u| u),
+        "every strip vertex in a triangle"
+    );
+    // The membrane is stiff: the deformed surface keeps the rest area L·w.
+    assert!((area / (0.2 * 0.04) - 1.0).abs() < 1e-4, "area {area}");
+    assert_eq!(word(), "POINT_DATA");
+    assert_eq!(word().parse::<usize>().unwrap(), n);
+
+    // glTF: the strip's mesh is the last one, indexed triangles over its vertices.
+    let doc: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("step_000/shape.gltf")).unwrap())
+            .unwrap();
+    let uri = doc["buffers"][0]["uri"].as_str().unwrap();
+    let bin = base64::engine::general_purpose::STANDARD
+        .decode(
+            uri.strip_prefix("data:application/octet-stream;base64,")
+                .unwrap(),
+        )
+        .unwrap();
+    let meshes = doc["meshes"].as_array().unwrap();
+    assert_eq!(
+        meshes.len(),
+        3,
+        "tube and centerline of the rod, the strip's surface"
+    );
+    let prim = &meshes[2]["primitives"][0];
+    assert_eq!(prim["mode"], 4);
+    assert_eq!(
+        doc["materials"][prim["material"].as_u64().unwrap() as usize]["doubleSided"],
+        true
+    );
+    let pts = accessor_f32(
+        &doc,
+        &bin,
+        prim["attributes"]["POSITION"].as_u64().unwrap() as usize,
+    );
+    assert_eq!(pts.len(), n_vertices);
+    for (p, q) in pts.iter().zip(&strip) {
+        for c in 0..3 {
+            assert_eq!(p[c], q[c] as f32);
+        }
+    }
+    let acc = &doc["accessors"][prim["indices"].as_u64().unwrap() as usize];
+    assert_eq!(acc["componentType"], 5125);
+    assert_eq!(acc["count"].as_u64().unwrap() as usize, 3 * n_faces);
+    let view = &doc["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize];
+    let off = view["byteOffset"].as_u64().unwrap() as usize;
+    let idx: Vec<u32> = (0..3 * n_faces)
+        .map(|i| u32::from_le_bytes(bin[off + 4 * i..off + 4 * i + 4].try_into().unwrap()))
+        .collect();
+    assert!(idx.iter().all(|&i| (i as usize) < n_vertices));
+    let faces = result["shells"][0]["faces"].as_array().unwrap();
+    assert_eq!(faces.len(), n_faces);
+    for (f, t) in faces.iter().zip(idx.chunks(3)) {
+        for c in 0..3 {
+            assert_eq!(f[c].as_u64().unwrap(), t[c] as u64);
+        }
+    }
+    // The vertex CSV has one row per strip vertex.
+    let csv = std::fs::read_to_string(out.join("step_000/strip_vertices.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + n_vertices);
+    assert!(out.join("preview.png").exists());
 }

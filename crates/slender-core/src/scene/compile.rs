@@ -79,6 +79,8 @@ pub struct CompiledRod {
 pub struct CompiledScene {
     /// The rods.
     pub rods: Vec<CompiledRod>,
+    /// The shell strips (solved independently of the rods).
+    pub shells: Vec<super::shells::CompiledShell>,
     /// Prescribed motion stages (validated).
     pub motion: Vec<MotionStage>,
     /// Solver parameters (validated).
@@ -244,7 +246,7 @@ fn section(path: &str, spec: &RodSpec, length: f64) -> Result<(RodProperties, f6
 }
 
 /// Name check: safe as a file-name stem.
-fn check_name(path: &str, name: &str) -> Result<(), SceneError> {
+pub(super) fn check_name(path: &str, name: &str) -> Result<(), SceneError> {
     let ok = !name.is_empty()
         && name.len() <= 64
         && name
@@ -263,16 +265,10 @@ fn check_name(path: &str, name: &str) -> Result<(), SceneError> {
 impl Scene {
     /// Validates the scene and builds its rods. Errors name the path in the file.
     pub fn compile(&self) -> Result<CompiledScene, SceneError> {
-        if !self.shells.is_empty() {
-            return Err(SceneError::new(
-                "shells",
-                "shell strips are not supported yet (the shell model is not available); model a flat cable as a rod with a rectangle section (fine for width/length <= 0.05)",
-            ));
-        }
-        if self.rods.is_empty() {
+        if self.rods.is_empty() && self.shells.is_empty() {
             return Err(SceneError::new(
                 "rods",
-                "the scene has no rod; add at least one [[rods]] table",
+                "the scene has no rod and no shell; add at least one [[rods]] or [[shells]] table",
             ));
         }
         let gravity = finite3("gravity", self.gravity)?;
@@ -360,8 +356,25 @@ impl Scene {
                 ));
             }
         }
+        let mut shells = Vec::with_capacity(self.shells.len());
+        for (i, spec) in self.shells.iter().enumerate() {
+            let path = format!("shells[{i}]");
+            let shell = super::shells::compile_shell(&path, i, spec, gravity)?;
+            if names.contains(&shell.name) {
+                return Err(SceneError::new(
+                    format!("{path}.name"),
+                    format!(
+                        "{:?} is used by another rod or shell; names must be unique",
+                        shell.name
+                    ),
+                ));
+            }
+            names.push(shell.name.clone());
+            shells.push(shell);
+        }
         Ok(CompiledScene {
             rods,
+            shells,
             motion: self.motion.clone(),
             solver: self.solver.clone(),
             gravity: self.gravity,

@@ -8,10 +8,12 @@ pub mod compile;
 pub mod error;
 pub mod free_motion;
 pub mod magnitudes;
+pub mod shells;
 pub mod solve;
 pub mod spec;
 
 pub use compile::{CompiledRod, CompiledScene, CompiledSupport, Segment};
 pub use error::SceneError;
+pub use shells::{CompiledShell, ShellResult};
 pub use solve::{RodResult, SceneStep, SupportResult};
 pub use spec::Scene;

@@ -137,7 +137,9 @@ pub struct SceneStep {
     pub pieces: usize,
     /// Every rod.
     pub rods: Vec<RodResult>,
-    /// True if every rod converged.
+    /// Every shell strip (solved once, at step 0: motion moves rod supports only).
+    pub shells: Vec<super::shells::ShellResult>,
+    /// True if every rod and shell converged.
     pub converged: bool,
 }
 
@@ -147,6 +149,7 @@ pub struct SceneSolver<'a> {
     states: Vec<Vec<RodState>>,
     reports: Vec<Vec<SolveReport>>,
     solvers: Vec<Vec<EquilibriumSolver<RodState>>>,
+    shells: Vec<super::shells::ShellResult>,
 }
 
 impl<'a> SceneSolver<'a> {
@@ -172,11 +175,17 @@ impl<'a> SceneSolver<'a> {
             reports.push(rep);
             solvers.push(sol);
         }
+        let shells = scene
+            .shells
+            .iter()
+            .map(|s| super::shells::solve_shell(s, &scene.solver))
+            .collect();
         let me = Self {
             scene,
             states,
             reports,
             solvers,
+            shells,
         };
         let step = me.snapshot(0, None, 1.0, 1);
         (me, step)
@@ -257,7 +266,7 @@ impl<'a> SceneSolver<'a> {
             .enumerate()
             .map(|(i, r)| rod_result(r, &self.states[i], &self.reports[i]))
             .collect();
-        let converged = rods.iter().all(|r| r.converged);
+        let converged = rods.iter().all(|r| r.converged) && self.shells.iter().all(|s| s.converged);
         SceneStep {
             step,
             stage,
@@ -265,6 +274,7 @@ impl<'a> SceneSolver<'a> {
             seconds: 0.0,
             pieces,
             rods,
+            shells: self.shells.clone(),
             converged,
         }
     }

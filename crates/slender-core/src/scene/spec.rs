@@ -9,7 +9,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::rod::Grading;
 use crate::solver::SolverParams;
 
-/// A whole scene: rods (and, later, shells), gravity, prescribed support motion and solver
+/// A whole scene: rods and shell strips, gravity, prescribed support motion and solver
 /// parameters.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
@@ -24,7 +24,8 @@ pub struct Scene {
     /// The rods (independent of each other).
     #[serde(default)]
     pub rods: Vec<RodSpec>,
-    /// Shell strips. Not supported yet: a scene with shells is rejected with a clear error.
+    /// Shell strips, each clamped along its edge x = 0 (independent of each other and of the
+    /// rods: structures in one scene do not interact).
     #[serde(default)]
     pub shells: Vec<ShellSpec>,
     /// Prescribed support motion, in stages run one after the other after the initial solve.
@@ -319,17 +320,34 @@ fn one() -> usize {
     1
 }
 
-/// A rectangular shell strip (format reserved; the shell model is not available yet).
+/// A rectangular shell strip (Kirchhoff–Love shell, `slender_core::shell`): length along x,
+/// width along z centred on z = 0, mid-surface in the plane y = 0 (rest normal +y), clamped
+/// along its edge x = 0 (exact director clamp). That is the only support the shell model has.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct ShellSpec {
-    /// Length (m).
+    /// Name used in output files (default `shell<i>`): letters, digits, `-` and `_`.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Length L along x (m).
     pub length: f64,
-    /// Width (m).
+    /// Width w along z (m).
     pub width: f64,
-    /// Thickness (m).
+    /// Thickness h (m).
     pub thickness: f64,
-    /// Elements along the length and across the width.
-    pub mesh: [usize; 2],
+    /// Material: E with ν (or G), and the density. ν ∈ (−1, 0.5).
+    pub material: MaterialSpec,
+    /// Elements along the length n_L (≥ 1). Default 15.
+    #[serde(default)]
+    pub elements: Option<usize>,
+    /// Elements across the width n_W (≥ 1). Default round(n_L·w/L), at least 2.
+    #[serde(default)]
+    pub width_elements: Option<usize>,
+    /// Stations along the length (default: power grading s = L(i/n)² toward the clamp).
+    #[serde(default)]
+    pub grading: Option<Grading>,
+    /// Support: only `"clamp_start"` (the edge x = 0 clamped), the default.
+    #[serde(default)]
+    pub support: Option<String>,
 }

@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 7] = [
+pub const EXAMPLES: [(&str, &str); 8] = [
     (
         "cantilever_tip_force",
         include_str!("../../../../examples/cantilever_tip_force.toml"),
@@ -40,6 +40,10 @@ pub const EXAMPLES: [(&str, &str); 7] = [
         "clipped_cable",
         include_str!("../../../../examples/clipped_cable.toml"),
     ),
+    (
+        "flat_cable_shell_cantilever",
+        include_str!("../../../../examples/flat_cable_shell_cantilever.toml"),
+    ),
 ];
 
 fn check(description: String, measured: f64, target: &str, passed: bool) -> Check {
@@ -52,9 +56,10 @@ fn check(description: String, measured: f64, target: &str, passed: bool) -> Chec
     }
 }
 
-/// Solves every example: one balance check per example (worst relative force or moment
-/// imbalance over its steps, target ≤ 1e-9; NaN if a step did not converge) and the
-/// cantilever-benchmark check (relative difference of Δy/Δx, target ≤ 1e-10).
+/// Solves every example: one balance check per example with rods (worst relative force or
+/// moment imbalance over its steps, target ≤ 1e-9; NaN if a step did not converge), the
+/// cantilever-benchmark check (relative difference of Δy/Δx, target ≤ 1e-10) and the two
+/// shell-strip checks of [`shell_example_checks`].
 pub fn scene_checks() -> Result<Vec<Check>> {
     let mut checks = Vec::new();
     for (name, text) in EXAMPLES {
@@ -74,15 +79,18 @@ pub fn scene_checks() -> Result<Vec<Check>> {
             .map(|r| r.relative_force_imbalance.max(r.relative_moment_imbalance))
             .fold(0.0, f64::max);
         let measured = if converged { worst } else { f64::NAN };
-        checks.push(check(
-            format!(
-                "{name}: reactions balance the loads (worst relative imbalance, {} steps)",
-                steps.len()
-            ),
-            measured,
-            "≤ 1e-9",
-            measured <= 1e-9,
-        ));
+        // Rod reactions only; a shell strip's clamp force is checked in shell_example_checks.
+        if !compiled.rods.is_empty() {
+            checks.push(check(
+                format!(
+                    "{name}: reactions balance the loads (worst relative imbalance, {} steps)",
+                    steps.len()
+                ),
+                measured,
+                "≤ 1e-9",
+                measured <= 1e-9,
+            ));
+        }
         if name == "cantilever_benchmark" {
             let p: Vec<_> = steps[0].rods[0]
                 .positions
@@ -116,7 +124,57 @@ pub fn scene_checks() -> Result<Vec<Check>> {
             ));
         }
     }
+    checks.extend(shell_example_checks()?);
     Ok(checks)
+}
+
+/// The shell-strip example against the heavy-elastica master curve: relative error of the
+/// centre line's Δy/Δx, target ≤ 1 % (the shell's accuracy at n_L = 15 with ν = 0); and its
+/// clamp force against the weight, target ≤ 1e-6 (the force is a finite-difference
+/// derivative of the energy, good to ~1e-8, not the 1e-9 of the rods' exact reactions).
+fn shell_example_checks() -> Result<Vec<Check>> {
+    use slender_core::scene::shells::centre_line_ratio;
+    use slender_validation::cantilever::master_curve::master_ratio;
+    let (_, text) = EXAMPLES[7];
+    let scene = parse_scene(text, Syntax::Toml, "flat_cable_shell_cantilever")?;
+    let compiled = match scene.compile() {
+        Ok(c) => c,
+        Err(e) => bail!("flat_cable_shell_cantilever: {e}"),
+    };
+    let spec = &scene.shells[0];
+    let m = &spec.material;
+    let nu = m.poisson.unwrap_or(0.0);
+    let d = m.young * spec.thickness.powi(3) / (12.0 * (1.0 - nu * nu));
+    let g = slender_core::geometry::Vec3::from(scene.gravity).norm();
+    let gamma = m.density * spec.thickness * g * spec.length.powi(3) / d;
+    let (_, step) = SceneSolver::new(&compiled);
+    let shell = &step.shells[0];
+    let master = master_ratio(gamma)?;
+    let error = (centre_line_ratio(shell) - master) / master;
+    let measured = if shell.converged {
+        error.abs()
+    } else {
+        f64::NAN
+    };
+    let balance = if shell.converged {
+        shell.relative_force_imbalance
+    } else {
+        f64::NAN
+    };
+    Ok(vec![
+        check(
+            format!("flat_cable_shell_cantilever (shell strip, 15 × 2, ν = 0, Γ = {gamma:.3}): |Δy/Δx error| vs the heavy-elastica master curve"),
+            measured,
+            "≤ 1e-2",
+            measured <= 1e-2,
+        ),
+        check(
+            "flat_cable_shell_cantilever: clamp force (energy derivative on the held vertices) vs the weight, relative".into(),
+            balance,
+            "≤ 1e-6",
+            balance <= 1e-6,
+        ),
+    ])
 }
 
 #[cfg(test)]
@@ -126,7 +184,8 @@ mod tests {
     #[test]
     fn every_scene_check_passes() {
         let checks = scene_checks().unwrap();
-        assert_eq!(checks.len(), EXAMPLES.len() + 1);
+        // One balance check per rod example, the benchmark check, two shell checks.
+        assert_eq!(checks.len(), EXAMPLES.len() - 1 + 3);
         for c in &checks {
             eprintln!("{:e}  {}", c.measured, c.description);
             assert!(

@@ -1,13 +1,14 @@
 //! Rod shapes as glTF 2.0 (a `.gltf` JSON file with its binary buffer embedded as a base64
 //! data URI) for Blender and the web: per rod a tube mesh (triangles, ring frames from the
-//! material frames) and its centerline as a line strip. Vertex data are in the scene's
+//! material frames) and its centerline as a line strip; per shell strip its triangle mesh
+//! (double-sided material, no normals: viewers compute flat ones). Vertex data are in the scene's
 //! coordinates; a root node rotates the scene's "up" (against gravity, +z without gravity)
 //! onto glTF's +y, so that viewers show cables hanging down.
 
 use base64::Engine;
 use serde_json::{json, Value};
 use slender_core::geometry::Vec3;
-use slender_core::scene::{CompiledRod, RodResult};
+use slender_core::scene::{CompiledRod, RodResult, ShellResult};
 
 /// Sides of the tube around each rod.
 const TUBE_SIDES: usize = 12;
@@ -125,7 +126,12 @@ pub fn scene_up(gravity: [f64; 3]) -> Vec3 {
 }
 
 /// The glTF JSON of one step; `up` is the scene direction shown upward.
-pub fn rods_to_gltf(rods: &[CompiledRod], results: &[RodResult], up: Vec3) -> Value {
+pub fn rods_to_gltf(
+    rods: &[CompiledRod],
+    results: &[RodResult],
+    shells: &[ShellResult],
+    up: Vec3,
+) -> Value {
     let mut b = Builder {
         bin: Vec::new(),
         views: Vec::new(),
@@ -176,6 +182,19 @@ pub fn rods_to_gltf(rods: &[CompiledRod], results: &[RodResult], up: Vec3) -> Va
         }));
         nodes.push(json!({"name": format!("{}-centerline", r.name), "mesh": meshes.len() - 1}));
     }
+    for sh in shells {
+        let pos: Vec<[f32; 3]> = sh.positions.iter().map(|p| f32x3(Vec3::from(*p))).collect();
+        let idx: Vec<u32> = sh.faces.iter().flatten().map(|&v| v as u32).collect();
+        let p = b.vec3(&pos);
+        let i = b.indices(&idx);
+        meshes.push(json!({
+            "name": format!("{} surface", sh.name),
+            "primitives": [{
+                "attributes": {"POSITION": p}, "indices": i, "mode": TRIANGLES, "material": 0
+            }]
+        }));
+        nodes.push(json!({"name": sh.name.clone(), "mesh": meshes.len() - 1}));
+    }
     let uri = format!(
         "data:application/octet-stream;base64,{}",
         base64::engine::general_purpose::STANDARD.encode(&b.bin)
@@ -190,6 +209,7 @@ pub fn rods_to_gltf(rods: &[CompiledRod], results: &[RodResult], up: Vec3) -> Va
             "children": (0..nodes.len()).collect::<Vec<_>>()
         }))).collect::<Vec<_>>(),
         "meshes": meshes,
+        "materials": [{"name": "shell (both sides)", "doubleSided": true}],
         "buffers": [{"byteLength": b.bin.len(), "uri": uri}],
         "bufferViews": b.views,
         "accessors": b.accessors

@@ -178,6 +178,19 @@ struct VertexRow {
     strain: f64,
 }
 
+/// One row of `<shell>_vertices.csv`.
+#[derive(Serialize)]
+struct ShellVertexRow {
+    vertex: usize,
+    /// Station along the length (0 at the clamp).
+    station: usize,
+    /// Column across the width.
+    column: usize,
+    x: f64,
+    y: f64,
+    z: f64,
+}
+
 /// One row of `<rod>_edges.csv`.
 #[derive(Serialize)]
 struct EdgeRow {
@@ -212,6 +225,20 @@ struct StepSummary<'a> {
     pieces: usize,
     converged: bool,
     rods: Vec<RodSummary<'a>>,
+    shells: Vec<ShellSummary<'a>>,
+}
+
+/// A shell strip in `report.json`: solver report, total load and clamp force (no moment).
+#[derive(Serialize)]
+struct ShellSummary<'a> {
+    name: &'a str,
+    converged: bool,
+    elements: [usize; 2],
+    applied_force: [f64; 3],
+    clamp_force: [f64; 3],
+    relative_force_imbalance: f64,
+    rod_predictor_used: bool,
+    report: &'a slender_core::solver::SolveReport,
 }
 
 #[derive(Serialize)]
@@ -302,20 +329,67 @@ fn write_step(scene: &CompiledScene, dir: &Path, step: &SceneStep) -> Result<()>
             .collect();
         write_csv(&d.join(format!("{}_edges.csv", r.name)), &rows)?;
     }
+    for sh in &step.shells {
+        let rows: Vec<ShellVertexRow> = sh
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(v, p)| ShellVertexRow {
+                vertex: v,
+                station: v / (sh.elements[1] + 1),
+                column: v % (sh.elements[1] + 1),
+                x: p[0],
+                y: p[1],
+                z: p[2],
+            })
+            .collect();
+        write_csv(&d.join(format!("{}_vertices.csv", sh.name)), &rows)?;
+    }
     let title = format!("slender step {}", step.step);
     write_atomic(
         &d.join("shape.vtk"),
-        vtk::rods_to_vtk(&title, &scene.rods, &step.rods).as_bytes(),
+        vtk::rods_to_vtk(&title, &scene.rods, &step.rods, &step.shells).as_bytes(),
     )?;
     write_atomic(
         &d.join("shape.gltf"),
         &serde_json::to_vec(&gltf::rods_to_gltf(
             &scene.rods,
             &step.rods,
+            &step.shells,
             gltf::scene_up(scene.gravity),
         ))?,
     )?;
     Ok(())
+}
+
+/// The `solver.csv` row of one solve (`rod` is the rod's or the shell's name).
+fn solver_row(
+    step: usize,
+    name: &str,
+    part: usize,
+    rep: &slender_core::solver::SolveReport,
+) -> SolverRow {
+    SolverRow {
+        step,
+        rod: name.to_string(),
+        part,
+        converged: rep.converged(),
+        reason: match &rep.status {
+            slender_core::solver::SolveStatus::Converged => String::new(),
+            slender_core::solver::SolveStatus::NotConverged { reason } => reason.clone(),
+        },
+        iterations: rep.iterations,
+        load_steps: rep.load_steps,
+        rejected_steps: rep.rejected_steps,
+        residual: rep.residual,
+        relative_residual: rep.relative_residual,
+        energy: rep.energy,
+        inertia_negative: rep.inertia.map(|i| i.negative),
+        inertia_zero: rep.inertia.map(|i| i.zero),
+        inertia_positive: rep.inertia.map(|i| i.positive),
+        lambda_min: rep.lambda_min,
+        lambda_min_normalized: rep.lambda_min_normalized,
+    }
 }
 
 fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64) -> Result<()> {
@@ -333,29 +407,7 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
             for (part, rep) in r.reports.iter().enumerate() {
                 iterations += rep.iterations;
                 max_residual = max_residual.max(rep.residual);
-                solver_rows.push(SolverRow {
-                    step: s.step,
-                    rod: r.name.clone(),
-                    part,
-                    converged: rep.converged(),
-                    reason: match &rep.status {
-                        slender_core::solver::SolveStatus::Converged => String::new(),
-                        slender_core::solver::SolveStatus::NotConverged { reason } => {
-                            reason.clone()
-                        }
-                    },
-                    iterations: rep.iterations,
-                    load_steps: rep.load_steps,
-                    rejected_steps: rep.rejected_steps,
-                    residual: rep.residual,
-                    relative_residual: rep.relative_residual,
-                    energy: rep.energy,
-                    inertia_negative: rep.inertia.map(|i| i.negative),
-                    inertia_zero: rep.inertia.map(|i| i.zero),
-                    inertia_positive: rep.inertia.map(|i| i.positive),
-                    lambda_min: rep.lambda_min,
-                    lambda_min_normalized: rep.lambda_min_normalized,
-                });
+                solver_rows.push(solver_row(s.step, &r.name, part, rep));
             }
             for sup in &r.supports {
                 reaction_rows.push(ReactionRow {
@@ -375,6 +427,13 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
                     mz: sup.moment[2],
                 });
             }
+        }
+        for sh in &s.shells {
+            let rep = &sh.report;
+            iterations += rep.iterations;
+            max_residual = max_residual.max(rep.residual);
+            solver_rows.push(solver_row(s.step, &sh.name, 0, rep));
+            max_f = max_f.max(sh.relative_force_imbalance);
         }
         step_rows.push(StepRow {
             step: s.step,
@@ -416,6 +475,20 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
                         relative_force_imbalance: r.relative_force_imbalance,
                         relative_moment_imbalance: r.relative_moment_imbalance,
                         reports: &r.reports,
+                    })
+                    .collect(),
+                shells: s
+                    .shells
+                    .iter()
+                    .map(|r| ShellSummary {
+                        name: &r.name,
+                        converged: r.converged,
+                        elements: r.elements,
+                        applied_force: r.applied_force,
+                        clamp_force: r.clamp_force,
+                        relative_force_imbalance: r.relative_force_imbalance,
+                        rod_predictor_used: r.rod_predictor_used,
+                        report: &r.report,
                     })
                     .collect(),
             })

@@ -27,6 +27,25 @@ pub fn write_preview(scene: &CompiledScene, steps: &[SceneStep], stem: &Path) ->
             markers: false,
         });
     }
+    for (k, sh) in steps[0].shells.iter().enumerate() {
+        let rest: Vec<[f64; 3]> = scene.shells[k]
+            .shell
+            .mesh()
+            .rest_positions
+            .iter()
+            .map(|p| [p.x, p.y, p.z])
+            .collect();
+        shapes.push(Polyline3 {
+            label: format!("{} at rest", sh.name),
+            points: strip_grid(&rest, sh.elements),
+            markers: false,
+        });
+        shapes.push(Polyline3 {
+            label: format!("{} equilibrium", sh.name),
+            points: strip_grid(&sh.positions, sh.elements),
+            markers: false,
+        });
+    }
     let last = steps.len() - 1;
     let shown: &[usize] = if last == 0 { &[0] } else { &[0, last] };
     for &k in shown {
@@ -45,4 +64,20 @@ pub fn write_preview(scene: &CompiledScene, steps: &[SceneStep], stem: &Path) ->
         format!("slender solve: equilibrium and step {last} of the motion")
     };
     plot_shape_views(stem, &title, &shapes)
+}
+
+/// A strip's mesh lines as one polyline broken by NaN points: the lines along the length
+/// (one per column) and across the width (one per station).
+fn strip_grid(positions: &[[f64; 3]], [nl, nw]: [usize; 2]) -> Vec<[f64; 3]> {
+    let v = |i: usize, j: usize| positions[i * (nw + 1) + j];
+    let mut out = Vec::new();
+    for j in 0..=nw {
+        out.extend((0..=nl).map(|i| v(i, j)));
+        out.push([f64::NAN; 3]);
+    }
+    for i in 0..=nl {
+        out.extend((0..=nw).map(|j| v(i, j)));
+        out.push([f64::NAN; 3]);
+    }
+    out
 }

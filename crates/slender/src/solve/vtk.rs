@@ -1,14 +1,22 @@
-//! Rod shapes as legacy ASCII VTK PolyData for ParaView: one polyline per rod, with the
-//! radius (for ParaView's Tube filter: "Vary radius by scalar"), curvature and twist as point
-//! data. Numbers are written in shortest round-trip form, so a reader gets the exact values.
+//! Rod and shell shapes as legacy ASCII VTK PolyData for ParaView: one polyline per rod, with
+//! the radius (for ParaView's Tube filter: "Vary radius by scalar"), curvature and twist as
+//! point data; every shell strip as triangles (POLYGONS), its points after the rods' (radius,
+//! curvature and twist 0 there; `rod` numbers rods first, then shells). Numbers are written in shortest round-trip form, so a reader gets the exact values.
 
 use std::fmt::Write;
 
-use slender_core::scene::{CompiledRod, RodResult};
+use slender_core::scene::{CompiledRod, RodResult, ShellResult};
 
-/// The VTK text of one step: every rod of `results` (matched with `rods`) as a polyline.
-pub fn rods_to_vtk(title: &str, rods: &[CompiledRod], results: &[RodResult]) -> String {
-    let n_points: usize = results.iter().map(|r| r.positions.len()).sum();
+/// The VTK text of one step: every rod of `results` (matched with `rods`) as a polyline and
+/// every shell of `shells` as triangles.
+pub fn rods_to_vtk(
+    title: &str,
+    rods: &[CompiledRod],
+    results: &[RodResult],
+    shells: &[ShellResult],
+) -> String {
+    let rod_points: usize = results.iter().map(|r| r.positions.len()).sum();
+    let n_points: usize = rod_points + shells.iter().map(|r| r.positions.len()).sum::<usize>();
     let mut s = String::new();
     let title: String = title.chars().filter(|c| *c != '\n').take(250).collect();
     let _ = writeln!(
@@ -21,8 +29,15 @@ pub fn rods_to_vtk(title: &str, rods: &[CompiledRod], results: &[RodResult]) -> 
             let _ = writeln!(s, "{:e} {:e} {:e}", p[0], p[1], p[2]);
         }
     }
-    let size: usize = results.iter().map(|r| r.positions.len() + 1).sum();
-    let _ = writeln!(s, "LINES {} {size}", results.len());
+    for r in shells {
+        for p in &r.positions {
+            let _ = writeln!(s, "{:e} {:e} {:e}", p[0], p[1], p[2]);
+        }
+    }
+    if !results.is_empty() {
+        let size: usize = results.iter().map(|r| r.positions.len() + 1).sum();
+        let _ = writeln!(s, "LINES {} {size}", results.len());
+    }
     let mut offset = 0;
     for r in results {
         let n = r.positions.len();
@@ -33,12 +48,33 @@ pub fn rods_to_vtk(title: &str, rods: &[CompiledRod], results: &[RodResult]) -> 
         s.push('\n');
         offset += n;
     }
+    let n_faces: usize = shells.iter().map(|r| r.faces.len()).sum();
+    if n_faces > 0 {
+        let _ = writeln!(s, "POLYGONS {n_faces} {}", 4 * n_faces);
+        for r in shells {
+            for f in &r.faces {
+                let _ = writeln!(s, "3 {} {} {}", offset + f[0], offset + f[1], offset + f[2]);
+            }
+            offset += r.positions.len();
+        }
+    }
     let _ = writeln!(s, "POINT_DATA {n_points}");
     let mut scalar = |name: &str, value: &dyn Fn(usize, &RodResult, usize) -> f64| {
         let _ = writeln!(s, "SCALARS {name} double 1\nLOOKUP_TABLE default");
         for (k, r) in results.iter().enumerate() {
             for i in 0..r.positions.len() {
                 let _ = writeln!(s, "{:e}", value(k, r, i));
+            }
+        }
+        // Shells: structure number for `rod`, 0 for the rod-only quantities.
+        for (k, r) in shells.iter().enumerate() {
+            let v = if name == "rod" {
+                (results.len() + k) as f64
+            } else {
+                0.0
+            };
+            for _ in 0..r.positions.len() {
+                let _ = writeln!(s, "{v:e}");
             }
         }
     };

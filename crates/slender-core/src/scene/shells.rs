@@ -1,0 +1,251 @@
+//! Shell strips in a scene: validation of `[[shells]]` (errors name the place in the file),
+//! building the strip, and its equilibrium under the scene's gravity.
+//!
+//! A strip does not interact with the rods or the other strips of the scene: each structure
+//! is solved on its own.
+
+use serde::Serialize;
+
+use crate::geometry::Vec3;
+use crate::shell::{rod_predictor, Shell, ShellBuilder, ShellProperties, ShellState, ShellTerms};
+use crate::solver::{EquilibriumSolver, SolveReport, SolverParams};
+
+use super::error::SceneError;
+use super::spec::ShellSpec;
+
+/// Default number of elements along a strip's length.
+pub const DEFAULT_SHELL_ELEMENTS: usize = 15;
+
+/// The only support a strip may have: its edge x = 0 clamped.
+pub const SHELL_CLAMP: &str = "clamp_start";
+
+/// A strip of the scene, ready to solve.
+#[derive(Clone, Debug)]
+pub struct CompiledShell {
+    /// Output name.
+    pub name: String,
+    /// The shell model (clamped at x = 0, with the scene's gravity at load factor 1).
+    pub shell: Shell,
+}
+
+/// Equilibrium of one strip.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ShellResult {
+    /// Strip name.
+    pub name: String,
+    /// Vertex positions (m); vertex (i, j) of station i and column j is i·(n_W + 1) + j.
+    pub positions: Vec<[f64; 3]>,
+    /// Triangles (vertex triples).
+    pub faces: Vec<[usize; 3]>,
+    /// Elements along the length and across the width.
+    pub elements: [usize; 2],
+    /// Total applied load (N): the weight of the whole strip, Σ mᵥ g.
+    pub applied_force: [f64; 3],
+    /// Force the clamp applies to the strip (N): Σ over the clamp edge's vertices of ∂E/∂x
+    /// (the generalized force the held DOFs need), by central differences of the total
+    /// energy. The clamp moment is not reported.
+    pub clamp_force: [f64; 3],
+    /// |clamp_force + applied_force| / |applied_force| (0 without load).
+    pub relative_force_imbalance: f64,
+    /// True if the start came from the equivalent rod's equilibrium (else load stepping from
+    /// the flat strip).
+    pub rod_predictor_used: bool,
+    /// Solver report.
+    pub report: SolveReport,
+    /// True if the solve converged.
+    pub converged: bool,
+}
+
+fn positive(path: String, v: f64) -> Result<(), SceneError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError::new(
+            path,
+            format!("{v}: must be finite and > 0"),
+        ))
+    }
+}
+
+/// Validates `[[shells]]` entry `path` (e.g. `shells[0]`) and builds it.
+pub fn compile_shell(
+    path: &str,
+    index: usize,
+    spec: &ShellSpec,
+    gravity: Vec3,
+) -> Result<CompiledShell, SceneError> {
+    let name = spec.name.clone().unwrap_or_else(|| format!("shell{index}"));
+    super::compile::check_name(&format!("{path}.name"), &name)?;
+    positive(format!("{path}.length"), spec.length)?;
+    positive(format!("{path}.width"), spec.width)?;
+    positive(format!("{path}.thickness"), spec.thickness)?;
+    let m = &spec.material;
+    positive(format!("{path}.material.young"), m.young)?;
+    positive(format!("{path}.material.density"), m.density)?;
+    let poisson = match (m.poisson, m.shear_modulus) {
+        (Some(nu), None) => nu,
+        (None, Some(g)) => {
+            positive(format!("{path}.material.shear_modulus"), g)?;
+            m.young / (2.0 * g) - 1.0
+        }
+        _ => {
+            return Err(SceneError::new(
+                format!("{path}.material"),
+                "give exactly one of `poisson` or `shear_modulus`",
+            ))
+        }
+    };
+    if !(poisson > -1.0 && poisson < 0.5) {
+        let key = if m.poisson.is_some() {
+            "poisson"
+        } else {
+            "shear_modulus"
+        };
+        return Err(SceneError::new(
+            format!("{path}.material.{key}"),
+            format!("Poisson ratio {poisson}: the shell model needs it in (-1, 0.5)"),
+        ));
+    }
+    if let Some(s) = &spec.support {
+        if s != SHELL_CLAMP {
+            return Err(SceneError::new(
+                format!("{path}.support"),
+                format!(
+                    "{s:?}: not supported; a shell strip can only be clamped along its edge x = 0 (\"{SHELL_CLAMP}\")"
+                ),
+            ));
+        }
+    }
+    let n_length = spec.elements.unwrap_or(DEFAULT_SHELL_ELEMENTS);
+    if n_length < 1 {
+        return Err(SceneError::new(
+            format!("{path}.elements"),
+            format!("{n_length}: need at least 1 element along the length"),
+        ));
+    }
+    let n_width = spec
+        .width_elements
+        .unwrap_or_else(|| ((spec.width / spec.length * n_length as f64).round() as usize).max(2));
+    if n_width < 1 {
+        return Err(SceneError::new(
+            format!("{path}.width_elements"),
+            format!("{n_width}: need at least 1 element across the width"),
+        ));
+    }
+    // The sparse Hessian grows with n_L·n_W; keep a typo from asking for a huge mesh.
+    const MAX_FACES: usize = 200_000;
+    if n_length.saturating_mul(n_width).saturating_mul(2) > MAX_FACES {
+        return Err(SceneError::new(
+            format!("{path}.elements"),
+            format!(
+                "{n_length} x {n_width} elements: more than {MAX_FACES} triangles; valid: 2·elements·width_elements <= {MAX_FACES}"
+            ),
+        ));
+    }
+    let properties = ShellProperties {
+        length: spec.length,
+        width: spec.width,
+        thickness: spec.thickness,
+        young: m.young,
+        poisson,
+        density: m.density,
+    };
+    let shell = ShellBuilder::new(properties)
+        .elements(n_length, n_width)
+        .grading(spec.grading.unwrap_or_default())
+        .gravity(gravity)
+        .build()
+        .map_err(|e| {
+            let place = if spec.grading.is_some() {
+                format!("{path}.grading")
+            } else {
+                path.to_string()
+            };
+            SceneError::model(place, e)
+        })?;
+    Ok(CompiledShell { name, shell })
+}
+
+fn arr(v: Vec3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+/// Solves a strip under the full gravity: Newton from the equivalent rod's equilibrium
+/// mapped onto the strip (as the shell cantilever does); if the rod does not converge or
+/// Newton fails from there, load stepping from the flat strip.
+pub fn solve_shell(c: &CompiledShell, params: &SolverParams) -> ShellResult {
+    let shell = &c.shell;
+    let flat = shell.rest_state();
+    let mut solver = EquilibriumSolver::new(shell, &flat, params.clone());
+    let mut solution = None;
+    if let Ok(Some(guess)) = rod_predictor(shell, 1.0, params) {
+        let s = solver.solve(shell, &guess, 1.0, 1.0);
+        if s.report.converged() {
+            solution = Some(s);
+        }
+    }
+    let rod_predictor_used = solution.is_some();
+    let solution = solution.unwrap_or_else(|| solver.solve(shell, &flat, 0.0, 1.0));
+    let weight: f64 = shell.vertex_masses().iter().sum();
+    let applied = shell.gravity() * weight;
+    let clamp = clamp_force(shell, &solution.state);
+    let imbalance = (clamp + applied).norm();
+    let mesh = shell.mesh();
+    ShellResult {
+        name: c.name.clone(),
+        positions: solution.state.positions.iter().map(|p| arr(*p)).collect(),
+        faces: mesh.faces.clone(),
+        elements: [mesh.n_length, mesh.n_width],
+        applied_force: arr(applied),
+        clamp_force: arr(clamp),
+        relative_force_imbalance: if applied.norm() > 0.0 {
+            imbalance / applied.norm()
+        } else {
+            imbalance
+        },
+        rod_predictor_used,
+        converged: solution.report.converged(),
+        report: solution.report,
+    }
+}
+
+/// Σ over the clamped vertices of ∂E/∂x (N): the force the clamp must apply. The shell's
+/// assembly gives the gradient on free DOFs only, so the held ones are differentiated here by
+/// central differences of the total energy, Richardson-extrapolated over steps h and 2h
+/// (h = 1e-8·L): the stiff membrane of the small graded elements next to the clamp makes the
+/// O(h²) error of a plain central difference large (measured 1e-3 of the weight at 1e-7·L).
+fn clamp_force(shell: &Shell, state: &ShellState) -> Vec3 {
+    let h = 1e-8 * shell.properties().length;
+    let mut s = state.clone();
+    let mut f = Vec3::zeros();
+    for &v in &shell.mesh().clamp_vertices {
+        for c in 0..3 {
+            let x = s.positions[v][c];
+            let mut central = |step: f64| {
+                s.positions[v][c] = x + step;
+                let up = shell.energy_terms(&s, 1.0, ShellTerms::ALL);
+                s.positions[v][c] = x - step;
+                let down = shell.energy_terms(&s, 1.0, ShellTerms::ALL);
+                s.positions[v][c] = x;
+                (up - down) / (2.0 * step)
+            };
+            let (d1, d2) = (central(h), central(2.0 * h));
+            f[c] += (4.0 * d1 - d2) / 3.0;
+        }
+    }
+    f
+}
+
+/// Δy/Δx (y downward) between the centres of the clamp and the free end of a solved strip:
+/// the seed's cantilever measure, for tests and reports.
+pub fn centre_line_ratio(r: &ShellResult) -> f64 {
+    let [nl, nw] = r.elements;
+    let centre = |i: usize| {
+        let (lo, hi) = (nw / 2, nw.div_ceil(2));
+        let a = Vec3::from(r.positions[i * (nw + 1) + lo]);
+        let b = Vec3::from(r.positions[i * (nw + 1) + hi]);
+        (a + b) * 0.5
+    };
+    let (a, b) = (centre(0), centre(nl));
+    (a.y - b.y) / (b.x - a.x)
+}
