@@ -8,7 +8,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{
-    builder, draw_frame, draw_legend, draw_lines, draw_markers, draw_mesh, draw_no_data_note,
+    builder, draw_curves, draw_frame, draw_legend, draw_lines, draw_mesh, draw_no_data_note,
     drawable_runs, extent, label_areas, occupied_fractions, padded_range, render, style,
     titled_area, Axis, Figure, LegendEntry, Sample, Scale, SeriesStyle, TextFix,
 };
@@ -125,19 +125,7 @@ impl Figure for RatioFigure<'_> {
             marker: None,
         };
         draw_lines(&mut chart, &master, &master_style)?;
-        let styles: Vec<_> = self
-            .curves
-            .iter()
-            .enumerate()
-            .map(|(i, c)| SeriesStyle::for_curve(i, c))
-            .collect();
-        for (runs, st) in curves.iter().zip(&styles) {
-            draw_lines(&mut chart, runs, st)?;
-        }
-        // Markers after all lines so that no line hides a data point.
-        for (runs, st) in curves.iter().zip(&styles) {
-            draw_markers(&chart, runs, st)?;
-        }
+        let styles = draw_curves(&mut chart, self.curves, &curves)?;
         draw_frame(&area, &chart, &x, &y)?;
         if all_runs.is_empty() {
             draw_no_data_note(&chart, fix)?;

@@ -8,9 +8,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{
-    builder, draw_frame, draw_legend, draw_lines, draw_markers, draw_mesh, draw_no_data_note,
-    drawable_runs, extent, label_areas, occupied_fractions, padded_range, render, style,
-    titled_area, Axis, Curve, Figure, LegendEntry, Scale, SeriesStyle, TextFix,
+    builder, draw_curves, draw_frame, draw_legend, draw_mesh, draw_no_data_note, drawable_runs,
+    extent, label_areas, occupied_fractions, padded_range, render, style, titled_area, Axis, Curve,
+    Figure, LegendEntry, Scale, TextFix,
 };
 
 /// Axes of a line chart.
@@ -76,18 +76,7 @@ impl Figure for LineFigure<'_> {
         let mut chart =
             builder(&area, label_areas(&area, &x, &y)?).build_cartesian_2d(x.coord(), y.coord())?;
         draw_mesh(&mut chart, &x, &y, fix)?;
-        let styles: Vec<_> = self
-            .curves
-            .iter()
-            .enumerate()
-            .map(|(i, c)| SeriesStyle::for_curve(i, c))
-            .collect();
-        for (runs, st) in curves.iter().zip(&styles) {
-            draw_lines(&mut chart, runs, st)?;
-        }
-        for (runs, st) in curves.iter().zip(&styles) {
-            draw_markers(&chart, runs, st)?;
-        }
+        let styles = draw_curves(&mut chart, self.curves, &curves)?;
         draw_frame(&area, &chart, &x, &y)?;
         if all_runs.is_empty() {
             draw_no_data_note(&chart, fix)?;

@@ -544,6 +544,33 @@ where
 }
 
 /// Draws the markers of a series, if it has any.
+/// Draws `curves` (their drawable `runs`) in the standard series styles: all lines first, then
+/// all markers, so that no line hides a data point. Returns the styles for the legend.
+fn draw_curves<DB, X, Y>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
+    curves: &[Curve],
+    runs: &[Vec<Vec<(f64, f64)>>],
+) -> Result<Vec<SeriesStyle>>
+where
+    DB: DrawingBackend,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let styles: Vec<_> = curves
+        .iter()
+        .enumerate()
+        .map(|(i, c)| SeriesStyle::for_curve(i, c))
+        .collect();
+    for (r, st) in runs.iter().zip(&styles) {
+        draw_lines(chart, r, st)?;
+    }
+    for (r, st) in runs.iter().zip(&styles) {
+        draw_markers(chart, r, st)?;
+    }
+    Ok(styles)
+}
+
 fn draw_markers<DB, X, Y>(
     chart: &ChartContext<'_, DB, Cartesian2d<X, Y>>,
     runs: &[Vec<(f64, f64)>],

@@ -9,9 +9,9 @@ use plotters::prelude::*;
 
 use super::cantilever_ratio::{band_label, GAMMA_DESC};
 use super::{
-    builder, draw_frame, draw_legend, draw_lines, draw_markers, draw_mesh, draw_no_data_note,
-    drawable_runs, extent, label_areas, occupied_fractions, padded_range, render, style,
-    titled_area, Axis, Curve, Figure, LegendEntry, Sample, Scale, SeriesStyle, TextFix,
+    builder, draw_curves, draw_frame, draw_legend, draw_mesh, draw_no_data_note, drawable_runs,
+    extent, label_areas, occupied_fractions, padded_range, render, style, titled_area, Axis, Curve,
+    Figure, LegendEntry, Sample, Scale, TextFix,
 };
 
 /// Plots relative errors in % (`curves[i].points = (Γ, error %)`) against Γ
@@ -97,18 +97,7 @@ impl Figure for ErrorFigure<'_> {
             style::AXIS.stroke_width(1),
         )))?;
 
-        let styles: Vec<_> = self
-            .curves
-            .iter()
-            .enumerate()
-            .map(|(i, c)| SeriesStyle::for_curve(i, c))
-            .collect();
-        for (runs, st) in curves.iter().zip(&styles) {
-            draw_lines(&mut chart, runs, st)?;
-        }
-        for (runs, st) in curves.iter().zip(&styles) {
-            draw_markers(&chart, runs, st)?;
-        }
+        let styles = draw_curves(&mut chart, self.curves, &curves)?;
         draw_frame(&area, &chart, &x, &y)?;
         if all_runs.is_empty() {
             draw_no_data_note(&chart, fix)?;
