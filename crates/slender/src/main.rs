@@ -11,6 +11,7 @@ mod output;
 mod plot;
 mod progress;
 mod report_html;
+mod sensitivity_report;
 mod shell_cantilever_report;
 mod solve;
 mod store;
@@ -57,6 +58,10 @@ enum Command {
     /// The lateral-buckling benchmark (seed §5): a heavy strip with its width along gravity,
     /// 2-D or 3-D over (w/L, Γ_shell) by the seed's protocol and by stability.
     LateralBuckling(LateralBucklingArgs),
+    /// The sensitivity study of the lateral-buckling protocol (seed §5.3, Fig. 12): the
+    /// percentage of correct 2-D/3-D decisions against the plate master curve, for every
+    /// combination of Ω, n_L, m_ls and σ, as box plots.
+    Sensitivity(sensitivity_report::SensitivityArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -462,6 +467,19 @@ fn run(cli: Cli) -> Result<bool> {
             match pool.install(|| lateral_sweep_report::run(&sweep, &a.out, &store))? {
                 Some(out) => {
                     lateral_sweep_report::print_summary(&out);
+                    println!("wrote {}", a.out.display());
+                }
+                None => print_shard_done(&store),
+            }
+            Ok(true)
+        }
+        Command::Sensitivity(a) => {
+            let study = sensitivity_report::study_from_args(&a)?;
+            let pool = thread_pool(a.jobs)?;
+            let store = store_options(&a.out, &a.store);
+            match pool.install(|| sensitivity_report::run(&study, &a.out, &store))? {
+                Some(out) => {
+                    sensitivity_report::print_summary(&out);
                     println!("wrote {}", a.out.display());
                 }
                 None => print_shard_done(&store),

@@ -5,6 +5,7 @@
 
 pub mod acceptance;
 pub mod case;
+pub mod sensitivity;
 pub mod sweep;
 
 pub use acceptance::lateral_buckling_checks;

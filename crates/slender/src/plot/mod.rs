@@ -20,8 +20,6 @@ mod shape_2d;
 mod shape_3d;
 mod style;
 
-// Used by the sensitivity study of the lateral-buckling benchmark (issue 4).
-#[allow(unused_imports)]
 pub use boxplot::{plot_boxplots, BoxPanel, BoxSample};
 pub use cantilever_ratio::{plot_cantilever_ratio, Curve};
 pub use height_map::{plot_height_map, Overlay};
