@@ -42,21 +42,21 @@ pub(crate) struct SensitivityArgs {
     #[arg(long, value_delimiter = ',')]
     pub(crate) load_steps: Option<Vec<usize>>,
     /// Clamp rotations σ of the protocol (rad), comma-separated.
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub(crate) sigmas: Option<Vec<f64>>,
     /// Aspect ratios w/L of the scored grid, comma-separated, each in [0.01, 1).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub(crate) width_ratios: Option<Vec<f64>>,
     /// Γ/Γ_c factors placing the grid around the plate master curve, comma-separated (> 0;
     /// default 0.7, 0.85, 0.93, 1.07, 1.2, 1.5).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub(crate) gamma_factors: Option<Vec<f64>>,
     /// Also run the square strip w = L, reported separately and not in the score (costly:
     /// n_L² elements).
     #[arg(long)]
     pub(crate) with_square: bool,
     /// Decision threshold ε on |y_tip|/L (default 1e-4, the seed's).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) threshold: Option<f64>,
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long)]
@@ -248,7 +248,7 @@ pub(crate) fn run(
     plot_boxplots(
         &stem,
         &format!(
-            "Lateral buckling: correct 2-D/3-D decisions of the protocol (w < L, ε = {}), {} configurations",
+            "Correct 2-D/3-D decisions of the protocol (w < L, ε = {:e}), {} configurations",
             study.threshold,
             scores.len()
         ),

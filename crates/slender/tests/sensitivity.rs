@@ -186,7 +186,7 @@ fn tiny_study_scores_against_the_master_curve_and_reuses_the_store() {
 #[test]
 fn bad_flags_name_the_flag_and_the_valid_range() {
     let out = scratch("bad");
-    let cases: [(&[&str], &[&str]); 9] = [
+    let cases: [(&[&str], &[&str]); 11] = [
         (&["--elements", "0"], &["--elements", ">= 1"]),
         (&["--sigmas", "NaN"], &["--sigmas", "finite"]),
         (&["--sigmas", "inf"], &["--sigmas", "finite"]),
@@ -199,6 +199,8 @@ fn bad_flags_name_the_flag_and_the_valid_range() {
             &["--materials", "shell, combined, ips"],
         ),
         (&["--threshold", "0"], &["--threshold", "> 0"]),
+        (&["--sigmas", "-0.1"], &["--sigmas", "> 0"]),
+        (&["--load-steps", "3,3"], &["--load-steps", "twice"]),
     ];
     for (flags, needles) in cases {
         let o = slender()
