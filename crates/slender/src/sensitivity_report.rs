@@ -10,8 +10,9 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::lateral_sweep::sensitivity::{
-    group_scores, median, score, shell_set_by_name, Configuration, ConfigurationScore, GridPoint,
-    Grouping, SensitivityPoint, SensitivityStudy, StudyError, Verdict, SQUARE,
+    group_scores, median, score, shell_set_by_name, summary_by_elements, Configuration,
+    ConfigurationScore, GridPoint, Grouping, SensitivityPoint, SensitivityStudy, StudyError,
+    Verdict, SQUARE,
 };
 use slender_validation::lateral_sweep::LateralBucklingSweep;
 use slender_validation::materials::ShellMaterialSet;
@@ -272,8 +273,6 @@ pub(crate) fn print_summary(out: &SensitivityOutput) {
         "protocol points: {} computed, {} reused from the store",
         out.computed, out.reused
     );
-    let mut ns: Vec<usize> = out.scores.iter().map(|s| s.n_length).collect();
-    ns.dedup();
     let square = out.scores.iter().any(|s| s.square_points > 0);
     print!(
         "{:>4} {:>8} {:>10} {:>8} {:>8}",
@@ -283,19 +282,13 @@ pub(crate) fn print_summary(out: &SensitivityOutput) {
         print!(" {:>14}", "w = L median %");
     }
     println!();
-    for n in ns {
-        let at: Vec<&ConfigurationScore> = out.scores.iter().filter(|s| s.n_length == n).collect();
-        let v: Vec<f64> = at.iter().map(|s| s.score_percent).collect();
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    for s in summary_by_elements(&out.scores) {
         print!(
-            "{n:>4} {:>8} {:>10.1} {lo:>8.1} {hi:>8.1}",
-            at.len(),
-            median(&v)
+            "{:>4} {:>8} {:>10.1} {:>8.1} {:>8.1}",
+            s.n_length, s.configurations, s.median, s.min, s.max
         );
         if square {
-            let sq: Vec<f64> = at.iter().filter_map(|s| s.square_score_percent).collect();
-            print!(" {:>14.1}", median(&sq));
+            print!(" {:>14.1}", s.square_median);
         }
         println!();
     }

@@ -572,6 +572,46 @@ pub fn median(values: &[f64]) -> f64 {
     }
 }
 
+/// The scores (w < L) of the configurations with one n_L: the seed's headline figures
+/// (≈ 70 % at n_L = 8, ≥ 90 % from n_L = 30).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ElementsSummary {
+    /// n_L.
+    pub n_length: usize,
+    /// Configurations with this n_L.
+    pub configurations: usize,
+    /// Median score (%).
+    pub median: f64,
+    /// Lowest score (%).
+    pub min: f64,
+    /// Highest score (%).
+    pub max: f64,
+    /// Median score at w = L (%), NaN if w = L was not run.
+    pub square_median: f64,
+}
+
+/// One [`ElementsSummary`] per n_L, ascending.
+pub fn summary_by_elements(scores: &[ConfigurationScore]) -> Vec<ElementsSummary> {
+    let mut ns: Vec<usize> = scores.iter().map(|s| s.n_length).collect();
+    ns.sort_unstable();
+    ns.dedup();
+    ns.into_iter()
+        .map(|n| {
+            let at: Vec<&ConfigurationScore> = scores.iter().filter(|s| s.n_length == n).collect();
+            let v: Vec<f64> = at.iter().map(|s| s.score_percent).collect();
+            let sq: Vec<f64> = at.iter().filter_map(|s| s.square_score_percent).collect();
+            ElementsSummary {
+                n_length: n,
+                configurations: at.len(),
+                median: median(&v),
+                min: v.iter().copied().fold(f64::INFINITY, f64::min),
+                max: v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                square_median: median(&sq),
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -720,6 +760,18 @@ mod tests {
         assert_eq!(median(&[60.0, 70.0, 100.0]), 70.0);
         assert_eq!(median(&[60.0, 70.0, 90.0, 100.0]), 80.0);
         assert!(median(&[f64::NAN]).is_nan());
+        let summary = summary_by_elements(&scores);
+        assert_eq!(summary.len(), 2);
+        assert_eq!(
+            (
+                summary[0].n_length,
+                summary[0].configurations,
+                summary[0].median
+            ),
+            (8, 2, 65.0)
+        );
+        assert_eq!((summary[1].min, summary[1].max), (90.0, 100.0));
+        assert!(summary[1].square_median.is_nan());
     }
 
     #[test]
