@@ -258,7 +258,7 @@ pub fn run(
     plot_height_map(
         &stem,
         &format!(
-            "Lateral buckling, {}, n_L = {}: end-point y-deviation after the protocol (σ = {}, m_ls = {})",
+            "{}, n_L = {}: free-end y-deviation after the protocol (σ = {}, m_ls = {})",
             sweep.material.label, sweep.n_length, sweep.sigma, sweep.load_steps
         ),
         "w / L",
@@ -420,7 +420,7 @@ pub fn run_convergence(
     plot_lines(
         &stem,
         &format!(
-            "Lateral buckling, {}: Γ_c from the Hessian inertia against the mesh, relative to the plate master curve",
+            "{}: Γ_c from the inertia against the mesh, relative to the master curve",
             material.label
         ),
         LineAxes {
