@@ -74,6 +74,25 @@ fn inertia_matches_dense_eigenvalues_and_symbolic_analysis_is_reused() {
     }
 }
 
+/// Both of faer's variants give the inertia: a sparse pattern is factored simplicially, a
+/// dense-ish one supernodally (D read from the supernodes' diagonal blocks).
+#[test]
+fn inertia_from_both_simplicial_and_supernodal_factors() {
+    let mut rng = XorShift(0x9E37_79B9_7F4A_7C15);
+    for (n, per_row, supernodal) in [(120usize, 1usize, false), (240, 25, true)] {
+        let a = random_sparse(&mut rng, n, per_row);
+        let eigs = eigenvalues(&a);
+        let mut ldlt = SparseLdlt::new();
+        for shift in [0.0, 1.5, -2.0] {
+            let inertia = ldlt.factorize(&a, shift).expect("nonzero pivots");
+            let negative = eigs.iter().filter(|l| **l + shift < 0.0).count();
+            assert_eq!(inertia.negative, negative, "n = {n}, shift = {shift}");
+            assert_eq!(inertia.negative + inertia.positive, n);
+        }
+        assert_eq!(ldlt.is_supernodal(), Some(supernodal), "n = {n}");
+    }
+}
+
 #[test]
 fn solves_positive_definite_and_indefinite_systems() {
     let mut rng = XorShift(0x9E37_79B9_7F4A_7C15);

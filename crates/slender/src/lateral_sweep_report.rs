@@ -1,5 +1,7 @@
 //! `slender lateral-buckling`: the seed's §5 — Γ_shell × w/L decided 2-D or 3-D by the
-//! protocol and by stability, written as CSV and drawn as a phase diagram.
+//! protocol, scored against the master curve and compared with the shell's own stability;
+//! the mesh convergence of Γ_c. Written as CSV and drawn as a decision diagram (Figs. 9b–11b),
+//! a height map of the end point's y-deviation (Figs. 9a–11a) and a convergence plot.
 
 use std::path::Path;
 
@@ -7,16 +9,20 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::log_space;
-use slender_validation::lateral_buckling::{sample_master_curve, MasterCurve};
+use slender_validation::lateral_buckling::{critical_gamma, sample_master_curve, MasterCurve};
 use slender_validation::lateral_sweep::sweep::GAMMA_C_BRACKET;
 use slender_validation::lateral_sweep::vlasov_band;
 use slender_validation::lateral_sweep::{
-    CriticalRecord, LateralBucklingRecord, LateralBucklingSweep,
+    critical_record, score_decisions, CriticalConvergence, CriticalRecord, DecisionScore,
+    LateralBucklingRecord, LateralBucklingSweep,
 };
 use slender_validation::materials::ShellMaterialSet;
 
 use crate::output::write_csv;
-use crate::plot::{plot_phase_diagram, Overlay, Phase, PhasePoint};
+use crate::plot::{
+    plot_height_map, plot_lines, plot_phase_diagram, Curve, LineAxes, Overlay, Phase, PhasePoint,
+    Scale,
+};
 use crate::store::runner::{run_cases, StoreOptions};
 use crate::store::BenchmarkStore;
 
@@ -26,6 +32,38 @@ pub struct LateralBucklingOutput {
     pub critical: Vec<CriticalRecord>,
     /// Protocol points.
     pub records: Vec<LateralBucklingRecord>,
+    /// Decisions scored against the master curve, over the whole grid.
+    pub score: DecisionScore,
+}
+
+/// One row of `decisions.csv`: the score of one aspect ratio (w/L = NaN: the whole grid).
+#[derive(Serialize)]
+struct DecisionRow {
+    width_ratio: f64,
+    master_gamma_c: f64,
+    points: usize,
+    correct: usize,
+    percent: f64,
+    points_outside_band: usize,
+    correct_outside_band: usize,
+    percent_outside_band: f64,
+    not_converged: usize,
+}
+
+impl DecisionRow {
+    fn new(width_ratio: f64, master_gamma_c: f64, s: &DecisionScore) -> Self {
+        Self {
+            width_ratio,
+            master_gamma_c,
+            points: s.points,
+            correct: s.correct,
+            percent: s.percent(),
+            points_outside_band: s.points_outside_band,
+            correct_outside_band: s.correct_outside_band,
+            percent_outside_band: s.percent_outside_band(),
+            not_converged: s.not_converged,
+        }
+    }
 }
 
 /// Everything a Γ_c record depends on: its store key.
@@ -57,18 +95,12 @@ pub fn run(
     out: &Path,
     store: &StoreOptions,
 ) -> Result<Option<LateralBucklingOutput>> {
-    let params = SolverParams::default();
+    let params = slender_validation::lateral_sweep::solver_params();
     params.validate()?;
     let critical_keys: Vec<CriticalKey> = sweep
         .width_ratios
         .iter()
-        .map(|&width_ratio| CriticalKey {
-            material: sweep.material,
-            n_length: sweep.n_length,
-            width_ratio,
-            bracket: GAMMA_C_BRACKET,
-            solver: params.clone(),
-        })
+        .map(|&width_ratio| critical_key(sweep.material, sweep.n_length, width_ratio))
         .collect();
     let critical_run = run_cases(
         &BenchmarkStore::new(&store.root, "lateral-buckling-critical"),
@@ -100,29 +132,32 @@ pub fn run(
         return Ok(None);
     };
     write_csv(&out.join("critical.csv"), &critical)?;
+    let master = sweep.master_critical();
     let records: Vec<LateralBucklingRecord> = points
         .iter()
         .zip(&protocol)
-        .map(|(&wg, p)| sweep.record(wg, p, &critical))
+        .map(|(&wg, p)| sweep.record(wg, p, &critical, &master))
         .collect();
     write_csv(&out.join("results.csv"), &records)?;
+    let score = score_decisions(&records);
+    let mut rows: Vec<DecisionRow> = master
+        .iter()
+        .map(|&(w, gc)| {
+            DecisionRow::new(
+                w,
+                gc,
+                &score_decisions(records.iter().filter(|r| r.width_ratio == w)),
+            )
+        })
+        .collect();
+    rows.push(DecisionRow::new(f64::NAN, f64::NAN, &score));
+    write_csv(&out.join("decisions.csv"), &rows)?;
 
     let curve: Vec<(f64, f64)> = critical
         .iter()
         .filter(|c| c.gamma_c.is_finite())
         .map(|c| (c.width_ratio, c.gamma_c))
         .collect();
-    // Stability truth between the computed aspect ratios: Γ_c interpolated in log–log.
-    let gamma_c_at = |w: f64| -> Option<f64> {
-        let i = curve.iter().position(|p| p.0 >= w)?;
-        if i == 0 {
-            return (curve[0].0 == w).then_some(curve[0].1);
-        }
-        let (a, b) = (curve[i - 1], curve[i]);
-        let t = (w.ln() - a.0.ln()) / (b.0.ln() - a.0.ln());
-        Some((a.1.ln() + t * (b.1.ln() - a.1.ln())).exp())
-    };
-    let truth = |w: f64, g: f64| gamma_c_at(w).map(|gc| g > gc);
     let points: Vec<PhasePoint> = records
         .iter()
         .map(|r| PhasePoint {
@@ -148,10 +183,14 @@ pub fn run(
         .filter_map(|&w| vlasov_band(nu, w).map(|b| (w, b)))
         .collect();
     let plate = sample_master_curve(MasterCurve::KirchhoffPlate, nu, &grid)?;
+    // Ground truth of the background: Γ above the plate master curve, interpolated in log–log
+    // between its samples.
+    let plate_at = |w: f64| -> Option<f64> { log_interpolate(&plate, w) };
+    let truth = |w: f64, g: f64| plate_at(w).map(|gc| g > gc);
     let overlays = vec![
         Overlay {
             label: format!("master curve: Kirchhoff plate (ν = {nu})"),
-            points: plate,
+            points: plate.clone(),
             dashed: false,
             color: Some(plotters::style::RGBColor(200, 30, 30)),
         },
@@ -197,7 +236,227 @@ pub fn run(
         &overlays,
     )
     .with_context(|| format!("plotting {}", stem.display()))?;
-    Ok(Some(LateralBucklingOutput { critical, records }))
+    // Height map of |y_tip|/L (Figs. 9a–11a): the steep descent should follow the master curve.
+    let heights: Vec<Vec<f64>> = sweep
+        .gammas
+        .iter()
+        .map(|&g| {
+            sweep
+                .width_ratios
+                .iter()
+                .map(|&w| {
+                    records
+                        .iter()
+                        .find(|r| r.width_ratio == w && r.gamma == g)
+                        .filter(|r| r.converged)
+                        .map_or(f64::NAN, |r| r.tip_deviation.abs())
+                })
+                .collect()
+        })
+        .collect();
+    let stem = out.join("height_map");
+    plot_height_map(
+        &stem,
+        &format!(
+            "{}, n_L = {}: free-end y-deviation after the protocol (σ = {}, m_ls = {})",
+            sweep.material.label, sweep.n_length, sweep.sigma, sweep.load_steps
+        ),
+        "w / L",
+        "Γ_shell",
+        &sweep.width_ratios,
+        &sweep.gammas,
+        &heights,
+        "|y_tip| / L",
+        true,
+        &overlays[..2],
+    )
+    .with_context(|| format!("plotting {}", stem.display()))?;
+    Ok(Some(LateralBucklingOutput {
+        critical,
+        records,
+        score,
+    }))
+}
+
+/// Linear interpolation of log y against log x through `curve` (x ascending); None outside.
+fn log_interpolate(curve: &[(f64, f64)], x: f64) -> Option<f64> {
+    let i = curve.iter().position(|p| p.0 >= x)?;
+    if i == 0 {
+        return (curve[0].0 == x).then_some(curve[0].1);
+    }
+    let (a, b) = (curve[i - 1], curve[i]);
+    let t = (x.ln() - a.0.ln()) / (b.0.ln() - a.0.ln());
+    Some((a.1.ln() + t * (b.1.ln() - a.1.ln())).exp())
+}
+
+/// Everything a Γ_c record depends on, as in [`CriticalKey`] (shared store).
+fn critical_key(material: ShellMaterialSet, n_length: usize, width_ratio: f64) -> CriticalKey {
+    CriticalKey {
+        material,
+        n_length,
+        width_ratio,
+        bracket: GAMMA_C_BRACKET,
+        solver: slender_validation::lateral_sweep::solver_params(),
+    }
+}
+
+/// One row of `convergence.csv`.
+#[derive(Serialize)]
+struct ConvergenceRow {
+    width_ratio: f64,
+    /// Elements along the length; 0 marks the extrapolated value.
+    n_length: usize,
+    gamma_c: f64,
+    master_gamma_c: f64,
+    relative_to_master: f64,
+}
+
+/// Γ_c of `material` at each of `widths` on each mesh of `meshes` (through the store, shared
+/// with the sweep's Γ_c records), extrapolated; writes `convergence.csv` and
+/// `convergence.{png,svg}`. `None` if this run computed one shard only.
+pub fn run_convergence(
+    material: ShellMaterialSet,
+    widths: &[f64],
+    meshes: &[usize],
+    out: &Path,
+    store: &StoreOptions,
+) -> Result<Option<Vec<CriticalConvergence>>> {
+    let mut meshes = meshes.to_vec();
+    meshes.sort_unstable();
+    meshes.dedup();
+    let cases: Vec<(f64, usize)> = meshes
+        .iter()
+        .flat_map(|&n| widths.iter().map(move |&w| (w, n)))
+        .collect();
+    let keys: Vec<CriticalKey> = cases
+        .iter()
+        .map(|&(w, n)| critical_key(material, n, w))
+        .collect();
+    let run = run_cases(
+        &BenchmarkStore::new(&store.root, "lateral-buckling-critical"),
+        store.shard,
+        &keys,
+        |k| {
+            Ok(critical_record(
+                k.material,
+                k.width_ratio,
+                k.n_length,
+                &k.solver,
+            )?)
+        },
+    )?;
+    let Some(records) = run.complete() else {
+        return Ok(None);
+    };
+    let mut result = Vec::new();
+    let mut rows = Vec::new();
+    for &w in widths {
+        let gamma_c: Vec<f64> = meshes
+            .iter()
+            .map(|&n| {
+                records
+                    .iter()
+                    .find(|r| r.width_ratio == w && r.n_length == n)
+                    .map_or(f64::NAN, |r| r.gamma_c)
+            })
+            .collect();
+        let master =
+            critical_gamma(w, material.poisson, MasterCurve::KirchhoffPlate).unwrap_or(f64::NAN);
+        let c = CriticalConvergence::new(w, meshes.clone(), gamma_c, master);
+        for (&n, &g) in c.n_lengths.iter().zip(&c.gamma_c) {
+            rows.push(ConvergenceRow {
+                width_ratio: w,
+                n_length: n,
+                gamma_c: g,
+                master_gamma_c: master,
+                relative_to_master: g / master,
+            });
+        }
+        if let Some(e) = c.extrapolation {
+            rows.push(ConvergenceRow {
+                width_ratio: w,
+                n_length: 0,
+                gamma_c: e.value,
+                master_gamma_c: master,
+                relative_to_master: e.value / master,
+            });
+        }
+        result.push(c);
+    }
+    write_csv(&out.join("convergence.csv"), &rows)?;
+    let mut curves: Vec<Curve> = result
+        .iter()
+        .map(|c| Curve {
+            label: format!("w/L = {}: Γ_c(n_L) / Γ_c(master)", c.width_ratio),
+            points: c
+                .n_lengths
+                .iter()
+                .zip(&c.gamma_c)
+                .map(|(&n, &g)| (n as f64, g / c.master))
+                .collect(),
+            dashed: false,
+            markers: true,
+        })
+        .collect();
+    for c in &result {
+        if let Some(e) = c.extrapolation {
+            let last = *c.n_lengths.last().expect("three meshes") as f64;
+            curves.push(Curve {
+                label: format!(
+                    "w/L = {}: extrapolated Γ_∞ / Γ_c(master) = {:.4}",
+                    c.width_ratio,
+                    e.value / c.master
+                ),
+                points: vec![
+                    (c.n_lengths[0] as f64, e.value / c.master),
+                    (last, e.value / c.master),
+                ],
+                dashed: true,
+                markers: false,
+            });
+        }
+    }
+    let stem = out.join("convergence");
+    plot_lines(
+        &stem,
+        &format!(
+            "{}: Γ_c from the inertia against the mesh, relative to the master curve",
+            material.label
+        ),
+        LineAxes {
+            x_desc: "elements along the length n_L",
+            y_desc: "Γ_c / Γ_c(master)",
+            x_scale: Scale::Log,
+            y_scale: Scale::Linear,
+        },
+        &curves,
+    )
+    .with_context(|| format!("plotting {}", stem.display()))?;
+    Ok(Some(result))
+}
+
+/// Prints Γ_c per mesh, the extrapolated value and the master curve.
+pub fn print_convergence(conv: &[CriticalConvergence]) {
+    for c in conv {
+        let per_mesh: Vec<String> = c
+            .n_lengths
+            .iter()
+            .zip(&c.gamma_c)
+            .map(|(n, g)| format!("n_L {n}: {g:.3}"))
+            .collect();
+        println!(
+            "w/L = {}: Γ_c {}; extrapolated {}; master curve {:.3}",
+            c.width_ratio,
+            per_mesh.join(", "),
+            c.extrapolation.map_or("—".into(), |e| format!(
+                "{:.3} (p = {:.2}{})",
+                e.value,
+                e.order,
+                if e.assumed_order { ", assumed" } else { "" }
+            )),
+            c.master
+        );
+    }
 }
 
 /// Prints Γ_c per aspect ratio and the protocol's agreement with stability.
@@ -223,5 +482,16 @@ pub fn print_summary(out: &LateralBucklingOutput) {
         decided.len(),
         100.0 * agree as f64 / decided.len().max(1) as f64,
         out.records.iter().filter(|r| !r.converged).count()
+    );
+    let s = &out.score;
+    println!(
+        "protocol correct vs the plate master curve: {} of {} points ({:.1} %); outside ±{:.0} % of Γ_c: {} of {} ({:.1} %)",
+        s.correct,
+        s.points,
+        s.percent(),
+        100.0 * slender_validation::lateral_sweep::UNDECIDABLE_BAND,
+        s.correct_outside_band,
+        s.points_outside_band,
+        s.percent_outside_band()
     );
 }

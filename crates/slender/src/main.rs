@@ -251,17 +251,24 @@ struct LateralBucklingArgs {
     #[arg(long, default_value_t = 8)]
     elements: usize,
     /// Aspect ratios w/L, comma-separated (each in (0, 1]).
-    #[arg(long, value_delimiter = ',', default_values_t = vec![0.05, 0.1, 0.2, 0.5, 1.0])]
+    #[arg(long, value_delimiter = ',', default_values_t = vec![0.05, 0.1, 0.15, 0.2, 0.3, 0.5, 0.7, 1.0])]
     width_ratios: Vec<f64>,
     /// Smallest Γ_shell of the log-spaced sweep.
     #[arg(long, default_value_t = 8.0)]
     gamma_min: f64,
     /// Largest Γ_shell.
-    #[arg(long, default_value_t = 40.0)]
+    #[arg(long, default_value_t = 45.0)]
     gamma_max: f64,
     /// Number of Γ_shell values.
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 15)]
     gamma_count: usize,
+    /// Meshes n_L of the Γ_c convergence study (three or more give an extrapolation);
+    /// `--convergence-meshes 0` skips it.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![8, 15, 30])]
+    convergence_meshes: Vec<usize>,
+    /// Aspect ratios of the Γ_c convergence study.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![0.1, 0.5, 1.0])]
+    convergence_widths: Vec<f64>,
     /// Clamp rotation σ of the protocol (rad).
     #[arg(long, default_value_t = 0.2)]
     sigma: f64,
@@ -300,6 +307,13 @@ fn lateral_sweep_from_args(
         .find(|w| !(w.is_finite() && **w > 0.0 && **w <= 1.0))
     {
         bail!("--width-ratios contains {w}: each must be in (0, 1]");
+    }
+    if let Some(w) = a
+        .convergence_widths
+        .iter()
+        .find(|w| !(w.is_finite() && **w > 0.0 && **w <= 1.0))
+    {
+        bail!("--convergence-widths contains {w}: each must be in (0, 1]");
     }
     if !(a.gamma_min.is_finite()
         && a.gamma_min > 0.0
@@ -464,12 +478,33 @@ fn run(cli: Cli) -> Result<bool> {
             let sweep = lateral_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
             let store = store_options(&a.out, &a.store);
-            match pool.install(|| lateral_sweep_report::run(&sweep, &a.out, &store))? {
-                Some(out) => {
+            let meshes: Vec<usize> = a
+                .convergence_meshes
+                .iter()
+                .copied()
+                .filter(|&n| n > 0)
+                .collect();
+            let out = pool.install(|| lateral_sweep_report::run(&sweep, &a.out, &store))?;
+            let conv = if meshes.is_empty() {
+                Some(Vec::new())
+            } else {
+                pool.install(|| {
+                    lateral_sweep_report::run_convergence(
+                        sweep.material,
+                        &a.convergence_widths,
+                        &meshes,
+                        &a.out,
+                        &store,
+                    )
+                })?
+            };
+            match (out, conv) {
+                (Some(out), Some(conv)) => {
                     lateral_sweep_report::print_summary(&out);
+                    lateral_sweep_report::print_convergence(&conv);
                     println!("wrote {}", a.out.display());
                 }
-                None => print_shard_done(&store),
+                _ => print_shard_done(&store),
             }
             Ok(true)
         }

@@ -136,11 +136,20 @@ fn caption(dir: &str, stem: &str) -> String {
                 words(stem)
             }
         }
-        "lateral-buckling" => match stem {
-            "phase_diagram" => "Counterpart of the seed's Figs. 10b–11b: 2-D/3-D decisions of the \
-                                seed's protocol over (w/L, Γ_shell), with Γ_c from the Hessian \
-                                inertia and the master curves."
+        "lateral-buckling" | "lateral-buckling-n30" => match stem {
+            "phase_diagram" => "Counterpart of the seed's Figs. 9b–11b: 2-D/3-D decisions of the \
+                                seed's protocol over (w/L, Γ_shell) on the plate master curve's \
+                                ground truth, with Γ_c from the Hessian inertia and the Vlasov \
+                                band."
                 .into(),
+            "height_map" => "Counterpart of the seed's Figs. 9a–11a: the free end's y-deviation \
+                             after the protocol; its steep descent should follow the master curve."
+                .into(),
+            "convergence" => {
+                "Γ_c from the Hessian inertia against the mesh, relative to the plate \
+                              master curve, with the Richardson-extrapolated converged values."
+                    .into()
+            }
             "master_curves" => "Ground truth of the seed's Figs. 10–11: critical Γ_shell against \
                                 w/L, Kirchhoff plate and Vlasov beam (both weak-axis stiffnesses)."
                 .into(),

@@ -148,7 +148,8 @@ pub(crate) fn run(
     store: &StoreOptions,
 ) -> Result<Option<SensitivityOutput>> {
     study.validate()?;
-    let params = SolverParams::default();
+    // The benchmark's solver settings, as `slender lateral-buckling` (shared store keys).
+    let params = slender_validation::lateral_sweep::solver_params();
     params.validate()?;
     // The grid depends on the set only through ν; the master curve costs ~0.1 s a point.
     let grids: Vec<(&str, Vec<GridPoint>)> = study

@@ -9,10 +9,11 @@ use slender_core::solver::SolverParams;
 use slender_validation::bend_twist::acceptance::bend_twist_checks;
 use slender_validation::bend_twist::sweep::BendTwistSweep;
 use slender_validation::cantilever::{
-    cantilever_checks, log_space, shell_cantilever_checks, CantileverSweep, Check,
-    ShellCantileverSweep,
+    cantilever_checks, shell_cantilever_checks, CantileverSweep, Check, ShellCantileverSweep,
 };
-use slender_validation::lateral_sweep::{lateral_buckling_checks, LateralBucklingSweep};
+use slender_validation::lateral_sweep::{
+    convergence_checks, decision_checks, LateralBucklingSweep,
+};
 use slender_validation::materials::{OMEGA_SHELL, SHELL_SETS};
 
 use crate::output::{write_atomic, write_csv};
@@ -36,21 +37,45 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     let bend_twist_seconds = bt_clock.elapsed().as_secs_f64();
     let lb_clock = Instant::now();
     let lb_dir = out.join("lateral-buckling");
-    let lateral_sweep = LateralBucklingSweep {
-        material: OMEGA_SHELL,
-        n_length: 8,
-        width_ratios: vec![0.05, 0.1, 0.2, 0.5, 1.0],
-        gammas: log_space(8.0, 40.0, 8),
-        sigma: 0.2,
-        load_steps: 5,
-        threshold: 1e-4,
-    };
+    // The protocol on the default grid at n_L = 8 (quick and full) and n_L = 30 (full), and
+    // the convergence of Γ_c at w/L ∈ {0.1, 0.5, 1} (meshes up to 30, or 60 in full).
+    let lateral_sweep = LateralBucklingSweep::default_grid(OMEGA_SHELL, 8);
     let lateral = crate::lateral_sweep_report::run(&lateral_sweep, &lb_dir, store)?;
+    let fine_sweep = LateralBucklingSweep::default_grid(OMEGA_SHELL, 30);
+    let fine_dir = out.join("lateral-buckling-n30");
+    let fine_clock = Instant::now();
+    let fine = if full {
+        Some(crate::lateral_sweep_report::run(
+            &fine_sweep,
+            &fine_dir,
+            store,
+        )?)
+    } else {
+        None
+    };
+    let fine_seconds = fine_clock.elapsed().as_secs_f64();
+    let meshes: &[usize] = if full { &[15, 30, 60] } else { &[8, 15, 30] };
+    let convergence = crate::lateral_sweep_report::run_convergence(
+        OMEGA_SHELL,
+        &[0.1, 0.5, 1.0],
+        meshes,
+        &lb_dir,
+        store,
+    )?;
     let lateral_sweep_seconds = lb_clock.elapsed().as_secs_f64();
-    let (Some(cantilever), Some(bend_twist), Some(lateral)) = (cantilever, bend_twist, lateral)
+    let (Some(cantilever), Some(bend_twist), Some(lateral), Some(convergence)) =
+        (cantilever, bend_twist, lateral, convergence)
     else {
         crate::print_shard_done(store);
         return Ok(true);
+    };
+    let fine = match fine {
+        Some(None) => {
+            crate::print_shard_done(store);
+            return Ok(true);
+        }
+        Some(Some(f)) => Some(f),
+        None => None,
     };
     crate::cantilever_report::print_summary(&cantilever.summary);
     crate::bend_twist_report::print_summary(&bend_twist.summary);
@@ -73,10 +98,21 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     let shell_checks = shell_cantilever_checks(&params)?;
     let shell_seconds = shell_clock.elapsed().as_secs_f64();
     crate::lateral_sweep_report::print_summary(&lateral);
+    crate::lateral_sweep_report::print_convergence(&convergence);
     let lb_clock = Instant::now();
     let mut lateral_checks = crate::lateral_buckling_curves_report::run(&lb_dir)?;
-    lateral_checks.extend(lateral_buckling_checks(&params)?);
-    let lateral_seconds = lateral_sweep_seconds + lb_clock.elapsed().as_secs_f64();
+    let grid = format!(
+        "{} w/L × {} Γ_shell",
+        lateral_sweep.width_ratios.len(),
+        lateral_sweep.gammas.len()
+    );
+    lateral_checks.extend(decision_checks(&OMEGA_SHELL, 8, &grid, &lateral.score));
+    if let Some(f) = &fine {
+        crate::lateral_sweep_report::print_summary(f);
+        lateral_checks.extend(decision_checks(&OMEGA_SHELL, 30, &grid, &f.score));
+    }
+    lateral_checks.extend(convergence_checks(&OMEGA_SHELL, &convergence));
+    let lateral_seconds = lateral_sweep_seconds - fine_seconds + lb_clock.elapsed().as_secs_f64();
     let mut checks = cantilever_checks(&cantilever.records, &params)?;
     checks.extend(shell_checks);
     checks.extend(bend_twist_checks(&bend_twist.summary));
@@ -93,7 +129,7 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
         out,
         &Report {
             checks: &checks,
-            sections: vec![
+            sections: with_fine_section(vec![
                 Section {
                     title: "Cantilever under self-weight (rods)".into(),
                     dir: "cantilever".into(),
@@ -168,7 +204,7 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                             cantilever written as a scene must reproduce the benchmark's Δy/Δx."
                         .into(),
                 },
-            ],
+            ], fine.is_some().then_some(fine_seconds), &fine_sweep),
             preset: if full { "full" } else { "quick" },
             jobs,
             wall_seconds: clock.elapsed().as_secs_f64(),
@@ -182,6 +218,37 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
         page.display()
     );
     Ok(failed == 0)
+}
+
+/// Adds the n_L = 30 lateral-buckling section (full preset) after the n_L = 8 one.
+fn with_fine_section(
+    mut sections: Vec<Section>,
+    seconds: Option<f64>,
+    sweep: &LateralBucklingSweep,
+) -> Vec<Section> {
+    if let Some(wall_seconds) = seconds {
+        let at = sections
+            .iter()
+            .position(|s| s.dir == "lateral-buckling")
+            .map_or(sections.len(), |i| i + 1);
+        sections.insert(
+            at,
+            Section {
+                title: format!("Lateral buckling, n_L = {}", sweep.n_length),
+                dir: "lateral-buckling-n30".into(),
+                wall_seconds,
+                stats: Default::default(),
+                about: format!(
+                    "The seed's protocol on the same {} w/L × {} Γ_shell grid with n_L = {} \
+                     (the seed's Figs. 10–11 resolution).",
+                    sweep.width_ratios.len(),
+                    sweep.gammas.len(),
+                    sweep.n_length
+                ),
+            },
+        );
+    }
+    sections
 }
 
 /// A measured value for tables: fixed point, or scientific when small (a 1e-12 force

@@ -5,8 +5,9 @@
 //! Why sparse: a shell's Hessian couples each face with its three neighbours; ordered along a
 //! strip it is banded, but its band grows with the elements across the width (and a general
 //! mesh has no band at all), while a fill-reducing ordering keeps the factor nearly as sparse
-//! as the matrix. The simplicial LDLᵀ (no pivoting) keeps D explicit, so the inertia is read
-//! off its pivots exactly as for the banded factorization.
+//! as the matrix. The LDLᵀ without pivoting (simplicial or supernodal, as faer judges the
+//! fill) keeps D explicit, so the inertia is read off its pivots exactly as for the banded
+//! factorization.
 
 use std::sync::Arc;
 
@@ -187,8 +188,8 @@ impl SymmetricMatrix for SparseSymmetricMatrix {
     }
 }
 
-/// LDLᵀ of A + σI for a [`SparseSymmetricMatrix`] A, by faer's simplicial factorization
-/// without pivoting (so that D gives the inertia), after a fill-reducing AMD ordering. The
+/// LDLᵀ of A + σI for a [`SparseSymmetricMatrix`] A, by faer's simplicial or supernodal
+/// factorization without pivoting (so that D gives the inertia), after a fill-reducing AMD ordering. The
 /// symbolic analysis is done on the first factorization of a pattern and reused for every
 /// later one with the same pattern (e.g. across Newton iterations).
 #[derive(Clone, Debug, Default)]
@@ -213,6 +214,14 @@ impl SparseLdlt {
         self.symbolic_analyses
     }
 
+    /// Whether faer chose the supernodal variant for the analysed pattern (None before the
+    /// first factorization).
+    pub fn is_supernodal(&self) -> Option<bool> {
+        self.symbolic
+            .as_ref()
+            .map(|s| matches!(s.raw(), SymbolicCholeskyRaw::Supernodal(_)))
+    }
+
     /// Inertia of the last successful factorization.
     pub fn inertia(&self) -> Inertia {
         self.inertia
@@ -224,8 +233,18 @@ impl SparseLdlt {
                 let col_ptr = s.col_ptr();
                 (0..s.nrows()).map(|k| self.l_values[col_ptr[k]]).collect()
             }
-            // Not reached: the analysis forces the simplicial variant.
-            SymbolicCholeskyRaw::Supernodal(_) => vec![f64::NAN; symbolic.nrows()],
+            // Each supernode stores its columns as one dense column-major block whose leading
+            // square part is the diagonal block; D sits on that block's diagonal.
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let mut d = Vec::with_capacity(s.nrows());
+                for k in 0..s.n_supernodes() {
+                    let ncols = s.supernode_end()[k] - s.supernode_begin()[k];
+                    let nrows = ncols + s.supernode(k).pattern().len();
+                    let start = s.col_ptr_for_val()[k];
+                    d.extend((0..ncols).map(|j| self.l_values[start + j * nrows + j]));
+                }
+                d
+            }
         }
     }
 }
@@ -246,8 +265,10 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
             .as_ref()
             .is_some_and(|p| Arc::ptr_eq(p, &a.pattern));
         if !same_pattern || self.symbolic.is_none() {
+            // faer picks simplicial for sparse factors and supernodal (dense blocks) once the
+            // fill makes them pay, e.g. a square 30×30 plate; both keep D explicit.
             let params = CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
+                supernodal_flop_ratio_threshold: SupernodalThreshold::AUTO,
                 ..Default::default()
             };
             let symbolic = factorize_symbolic_cholesky(

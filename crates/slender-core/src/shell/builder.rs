@@ -171,6 +171,7 @@ impl ShellBuilder {
             edge_inertia,
             gravity: self.gravity,
             clamp,
+            load_path: Default::default(),
             grading: self.grading,
         };
         let mut bw = 0;

@@ -17,6 +17,9 @@ pub struct Dual2<const N: usize> {
     pub g: SVector<f64, N>,
     /// Hessian ∂²f/∂x².
     pub h: SMatrix<f64, N, N>,
+    /// True when f is known to be affine (h = 0): the stencil's coordinates and their
+    /// differences. Products of affine factors then skip the Hessian terms of the factors.
+    pub affine: bool,
 }
 
 impl<const N: usize> Dual2<N> {
@@ -26,6 +29,7 @@ impl<const N: usize> Dual2<N> {
             v,
             g: SVector::zeros(),
             h: SMatrix::zeros(),
+            affine: true,
         }
     }
 
@@ -51,6 +55,7 @@ impl<const N: usize> Dual2<N> {
             v: f,
             g: self.g * df,
             h,
+            affine: false,
         }
     }
 
@@ -74,6 +79,7 @@ impl<const N: usize> Dual2<N> {
             v: f,
             g: self.g * fa + o.g * fb,
             h,
+            affine: false,
         }
     }
 
@@ -102,12 +108,34 @@ impl<const N: usize> Dual2<N> {
         self.chain(r, -r * r, 2.0 * r * r * r)
     }
 
+    /// self − o, by reference (no copies of the operands).
+    #[inline]
+    pub fn minus(&self, o: &Self) -> Self {
+        let affine = self.affine && o.affine;
+        Self {
+            v: self.v - o.v,
+            g: self.g - o.g,
+            h: if affine {
+                SMatrix::zeros()
+            } else {
+                self.h - o.h
+            },
+            affine,
+        }
+    }
+
     /// Scales by a constant.
+    #[inline]
     pub fn scale(&self, c: f64) -> Self {
         Self {
             v: self.v * c,
             g: self.g * c,
-            h: self.h * c,
+            h: if self.affine {
+                SMatrix::zeros()
+            } else {
+                self.h * c
+            },
+            affine: self.affine,
         }
     }
 
@@ -131,42 +159,79 @@ impl<const N: usize> Dual2<N> {
 
 impl<const N: usize> std::ops::Add for Dual2<N> {
     type Output = Self;
+    #[inline]
     fn add(self, o: Self) -> Self {
+        let affine = self.affine && o.affine;
         Self {
             v: self.v + o.v,
             g: self.g + o.g,
-            h: self.h + o.h,
+            h: if affine {
+                SMatrix::zeros()
+            } else {
+                self.h + o.h
+            },
+            affine,
         }
     }
 }
 
 impl<const N: usize> std::ops::Sub for Dual2<N> {
     type Output = Self;
+    #[inline]
     fn sub(self, o: Self) -> Self {
+        let affine = self.affine && o.affine;
         Self {
             v: self.v - o.v,
             g: self.g - o.g,
-            h: self.h - o.h,
+            h: if affine {
+                SMatrix::zeros()
+            } else {
+                self.h - o.h
+            },
+            affine,
         }
     }
 }
 
 impl<const N: usize> std::ops::Mul for Dual2<N> {
     type Output = Self;
+    #[inline]
     fn mul(self, o: Self) -> Self {
-        let mut h = SMatrix::<f64, N, N>::zeros();
+        sum_of_products(&[(&self, &o, 1.0)])
+    }
+}
+
+/// Σ_k s_k·a_k·b_k in one pass over the N×N Hessian (the products of a cross or dot product
+/// at once, without temporaries); the factors' own Hessians are skipped when affine.
+#[inline]
+pub fn sum_of_products<const N: usize>(terms: &[(&Dual2<N>, &Dual2<N>, f64)]) -> Dual2<N> {
+    let mut v = 0.0;
+    let mut g = SVector::<f64, N>::zeros();
+    let mut h = SMatrix::<f64, N, N>::zeros();
+    for &(a, b, s) in terms {
+        v += s * a.v * b.v;
+        g += a.g * (s * b.v) + b.g * (s * a.v);
+        if !a.affine {
+            h += a.h * (s * b.v);
+        }
+        if !b.affine {
+            h += b.h * (s * a.v);
+        }
         for j in 0..N {
-            let (aj, bj) = (self.g[j], o.g[j]);
+            let (aj, bj) = (s * a.g[j], s * b.g[j]);
+            if aj == 0.0 && bj == 0.0 {
+                continue;
+            }
             for i in 0..N {
-                h[(i, j)] =
-                    self.h[(i, j)] * o.v + o.h[(i, j)] * self.v + self.g[i] * bj + o.g[i] * aj;
+                h[(i, j)] += a.g[i] * bj + b.g[i] * aj;
             }
         }
-        Self {
-            v: self.v * o.v,
-            g: self.g * o.v + o.g * self.v,
-            h,
-        }
+    }
+    Dual2 {
+        v,
+        g,
+        h,
+        affine: false,
     }
 }
 
@@ -182,35 +247,50 @@ impl<const N: usize> std::ops::Div for Dual2<N> {
 pub type DualVec3<const N: usize> = [Dual2<N>; 3];
 
 /// Point `k` of a stencil whose variables are stored as consecutive triples.
+#[inline]
 pub fn point<const N: usize>(x: &[f64], k: usize) -> DualVec3<N> {
-    std::array::from_fn(|c| Dual2::variable(x[3 * k + c], 3 * k + c))
+    [
+        Dual2::variable(x[3 * k], 3 * k),
+        Dual2::variable(x[3 * k + 1], 3 * k + 1),
+        Dual2::variable(x[3 * k + 2], 3 * k + 2),
+    ]
 }
 
 /// a − b.
+#[inline]
 pub fn sub3<const N: usize>(a: &DualVec3<N>, b: &DualVec3<N>) -> DualVec3<N> {
-    std::array::from_fn(|c| a[c] - b[c])
+    // Written out: `array::from_fn` over by-value subtraction copied the N×N Hessians twice.
+    [a[0].minus(&b[0]), a[1].minus(&b[1]), a[2].minus(&b[2])]
 }
 
 /// a × b.
+#[inline]
 pub fn cross3<const N: usize>(a: &DualVec3<N>, b: &DualVec3<N>) -> DualVec3<N> {
     [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
+        sum_of_products(&[(&a[1], &b[2], 1.0), (&a[2], &b[1], -1.0)]),
+        sum_of_products(&[(&a[2], &b[0], 1.0), (&a[0], &b[2], -1.0)]),
+        sum_of_products(&[(&a[0], &b[1], 1.0), (&a[1], &b[0], -1.0)]),
     ]
 }
 
 /// a · b.
+#[inline]
 pub fn dot3<const N: usize>(a: &DualVec3<N>, b: &DualVec3<N>) -> Dual2<N> {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    sum_of_products(&[
+        (&a[0], &b[0], 1.0),
+        (&a[1], &b[1], 1.0),
+        (&a[2], &b[2], 1.0),
+    ])
 }
 
 /// a · c for a constant vector c.
+#[inline]
 pub fn dot3_const<const N: usize>(a: &DualVec3<N>, c: &[f64; 3]) -> Dual2<N> {
     a[0].scale(c[0]) + a[1].scale(c[1]) + a[2].scale(c[2])
 }
 
 /// a × c for a constant vector c.
+#[inline]
 pub fn cross3_const<const N: usize>(a: &DualVec3<N>, c: &[f64; 3]) -> DualVec3<N> {
     [
         a[1].scale(c[2]) - a[2].scale(c[1]),

@@ -10,6 +10,7 @@ pub mod dofs;
 pub mod dual;
 pub mod equilibrium;
 pub mod gravity;
+pub mod load_path;
 pub mod membrane;
 pub mod mesh;
 pub mod model;
@@ -18,6 +19,7 @@ pub mod state;
 
 pub use builder::ShellBuilder;
 pub use clamp::Clamp;
+pub use load_path::LoadPath;
 pub use mesh::StripMesh;
 pub use model::{Shell, ShellProperties, ShellTerms};
 pub use rod_predictor::rod_predictor;

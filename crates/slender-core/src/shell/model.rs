@@ -1,6 +1,8 @@
 //! The shell model: mesh, material, clamp, gravity, and assembly of energy, gradient and
 //! Hessian over the free DOFs.
 
+use std::borrow::Cow;
+
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use crate::geometry::Vec3;
@@ -12,6 +14,7 @@ use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
 use super::clamp::Clamp;
 use super::dofs::ShellDofs;
 use super::gravity::gravity_energy;
+use super::load_path::LoadPath;
 use super::membrane::{membrane_energy, FaceRest};
 use super::mesh::StripMesh;
 use super::state::ShellState;
@@ -108,6 +111,7 @@ pub struct Shell {
     pub(crate) edge_inertia: Vec<f64>,
     pub(crate) gravity: Vec3,
     pub(crate) clamp: Clamp,
+    pub(crate) load_path: LoadPath,
     pub(crate) grading: Grading,
 }
 
@@ -146,6 +150,18 @@ impl Shell {
     pub fn set_clamp_rotation(&mut self, sigma: f64, state: &mut ShellState) {
         self.clamp = Clamp { sigma };
         self.apply_clamp(state);
+    }
+
+    /// What the load factor drives (gravity by default).
+    pub fn load_path(&self) -> LoadPath {
+        self.load_path
+    }
+
+    /// Sets what the load factor drives. With [`LoadPath::ClampRotation`], call
+    /// [`set_clamp_rotation`](Self::set_clamp_rotation) with the final angle afterwards, so that
+    /// the shell's clamp and the state's clamped vertices agree again.
+    pub fn set_load_path(&mut self, path: LoadPath) {
+        self.load_path = path;
     }
 
     /// Puts the clamped vertices of `state` where the clamp holds them.
@@ -215,16 +231,22 @@ impl Shell {
         idx
     }
 
-    fn directors(&self, f: usize, s: &ShellState) -> [EdgeDirector; 3] {
+    fn directors(
+        &self,
+        f: usize,
+        positions: &[Vec3],
+        s: &ShellState,
+        clamp: Clamp,
+    ) -> [EdgeDirector; 3] {
         std::array::from_fn(|k| {
             let fe = self.mesh.face_edges[f][k];
             if self.mesh.clamp_edges.contains(&fe.edge) {
                 EdgeDirector::Clamped {
-                    normal: self.clamp.normal(),
+                    normal: clamp.normal(),
                 }
             } else if let Some(p) = fe.opposite_vertex {
                 EdgeDirector::Interior {
-                    p: s.positions[p],
+                    p: positions[p],
                     phi: s.angles[fe.edge],
                     sigma: fe.orientation,
                 }
@@ -266,14 +288,23 @@ impl Shell {
         let want_grad = grad.is_some() || abs_grad.is_some();
         let want_hess = hess.is_some();
         let mut info = AssemblyInfo::default();
+        let (gravity_factor, clamp) = self.load_path.at(load, self.clamp);
+        // The clamped vertices follow the clamp of the load path (a copy only while the clamp
+        // turns: on the gravity path the state already holds them).
+        let positions: Cow<[Vec3]> = match self.load_path {
+            LoadPath::Gravity => Cow::Borrowed(&s.positions),
+            LoadPath::ClampRotation { .. } => {
+                let mut p = s.positions.clone();
+                for &v in &self.mesh.clamp_vertices {
+                    p[v] = clamp.position(&self.mesh.rest_positions[v]);
+                }
+                Cow::Owned(p)
+            }
+        };
         let (lambda, mu) = self.properties.lame();
         let h = self.properties.thickness;
         for (f, tri) in self.mesh.faces.iter().enumerate() {
-            let q = [
-                &s.positions[tri[0]],
-                &s.positions[tri[1]],
-                &s.positions[tri[2]],
-            ];
+            let q = [&positions[tri[0]], &positions[tri[1]], &positions[tri[2]]];
             let idx = self.face_stencil(f);
             if terms.membrane {
                 let mut g9 = SVector::<f64, 9>::zeros();
@@ -303,7 +334,7 @@ impl Shell {
                 let mut h21 = SMatrix::<f64, FACE_VARS, FACE_VARS>::zeros();
                 let e = bending_energy(
                     q,
-                    &self.directors(f, s),
+                    &self.directors(f, &positions, s, clamp),
                     &self.rest[f],
                     &self.bbar[f],
                     h,
@@ -325,8 +356,8 @@ impl Shell {
             }
         }
         if terms.gravity {
-            let g = self.gravity * load;
-            let e = gravity_energy(&self.vertex_masses, &s.positions, &g);
+            let g = self.gravity * gravity_factor;
+            let e = gravity_energy(&self.vertex_masses, &positions, &g);
             info.energy += e;
             info.energy_magnitude += e.abs();
             let e_rest = gravity_energy(&self.vertex_masses, &self.mesh.rest_positions, &g);

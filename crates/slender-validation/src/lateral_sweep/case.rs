@@ -4,7 +4,7 @@
 
 use slender_core::geometry::Vec3;
 use slender_core::rod::Grading;
-use slender_core::shell::{Shell, ShellBuilder, ShellState};
+use slender_core::shell::{LoadPath, Shell, ShellBuilder, ShellState};
 use slender_core::solver::{EquilibriumSolver, SolveReport, SolverParams};
 use slender_core::ModelError;
 
@@ -29,7 +29,7 @@ pub struct ProtocolOutcome {
     pub tip_deviation: f64,
     /// Whether every stage converged.
     pub converged: bool,
-    /// Report of the final re-equilibration.
+    /// Report of the first stage that failed, else of the final re-equilibration.
     pub report: SolveReport,
 }
 
@@ -130,38 +130,43 @@ impl LateralBucklingCase {
         shell.set_clamp_rotation(sigma, &mut state);
         let mut solver = EquilibriumSolver::new(&shell, &state, params.clone());
         let m = load_steps as f64;
-        let mut converged = true;
-        let mut report = None;
+        // The first stage that failed, if any: its report is the one returned.
+        let mut failure: Option<SolveReport> = None;
         for k in 0..load_steps {
             let s = solver.solve(&shell, &state, k as f64 / m, (k + 1) as f64 / m);
-            converged &= s.report.converged();
             state = s.state;
-            report = Some(s.report);
-        }
-        // Rotating the clamp back: the whole strip turns rigidly with it as the predictor, and
-        // Newton gets the long budget of a snap (the stiff membrane makes large out-of-plane
-        // corrections slow, design.md §3.3).
-        let back = SolverParams {
-            max_iterations: params.snap_iterations.max(params.max_iterations),
-            ..params.clone()
-        };
-        let mut back_solver = EquilibriumSolver::new(&shell, &state, back);
-        let step = nalgebra::Rotation3::from_axis_angle(&Vec3::x_axis(), -sigma / m);
-        for k in 1..=load_steps {
-            for p in state.positions.iter_mut() {
-                *p = step * *p;
+            if !s.report.converged() {
+                failure.get_or_insert(s.report);
             }
-            shell.set_clamp_rotation(sigma * (1.0 - k as f64 / m), &mut state);
-            let s = back_solver.solve(&shell, &state, 1.0, 1.0);
-            converged &= s.report.converged();
-            state = s.state;
-            report = Some(s.report);
         }
+        // Rotating the clamp back, stage by stage: the clamp angle is the solver's continuation
+        // parameter (LoadPath::ClampRotation), so each stage gets adaptive steps and the
+        // secant predictor like the gravity ramp.
+        for k in 1..=load_steps {
+            let from = sigma * (1.0 - (k - 1) as f64 / m);
+            let to = sigma * (1.0 - k as f64 / m);
+            shell.set_load_path(LoadPath::ClampRotation { from, to });
+            let s = solver.solve(&shell, &state, 0.0, 1.0);
+            state = s.state;
+            shell.set_load_path(LoadPath::Gravity);
+            shell.set_clamp_rotation(to, &mut state);
+            if !s.report.converged() {
+                failure.get_or_insert(s.report);
+                break;
+            }
+        }
+        // Re-equilibrate with the clamp back at 0 (on a converged path this confirms the state
+        // in one assembly and measures its residual and inertia).
+        shell.set_clamp_rotation(0.0, &mut state);
+        let s = solver.solve(&shell, &state, 1.0, 1.0);
+        state = s.state;
+        let converged = failure.is_none() && s.report.converged();
+        let report = failure.unwrap_or(s.report);
         let end = column_centre(&shell, &state.positions, shell.mesh().n_length);
         Ok(ProtocolOutcome {
             tip_deviation: end.y / shell.properties().length,
             converged,
-            report: report.expect("at least one stage"),
+            report,
         })
     }
 }

@@ -8,6 +8,8 @@ use slender_core::solver::SolverParams;
 use slender_core::ModelError;
 
 use super::case::LateralBucklingCase;
+use super::decisions::is_correct;
+use crate::lateral_buckling::{critical_gamma, MasterCurve};
 use crate::materials::ShellMaterialSet;
 
 /// Bracket of the Γ_c bisection (the classical narrow-strip value is ≈ 13.7 for ν = 0.35 and
@@ -59,6 +61,13 @@ pub struct LateralBucklingRecord {
     pub protocol_3d: bool,
     /// Stability verdict: Γ > Γ_c (None if Γ_c is unknown).
     pub stability_3d: Option<bool>,
+    /// Γ_c of the master curve (the clamped Kirchhoff plate) at this w/L (NaN if unavailable).
+    pub master_gamma_c: f64,
+    /// Ground truth: Γ > the master curve's Γ_c (None if unavailable).
+    pub truth_3d: Option<bool>,
+    /// Whether the protocol's verdict equals the truth (a run that did not converge is never
+    /// right; None without a truth).
+    pub correct: Option<bool>,
     /// Whether every protocol stage converged.
     pub converged: bool,
     /// Relative residual of the final state.
@@ -66,6 +75,38 @@ pub struct LateralBucklingRecord {
 }
 
 impl LateralBucklingSweep {
+    /// The default grid of the benchmark: 8 aspect ratios w/L ∈ {0.05, 0.1, 0.15, 0.2, 0.3,
+    /// 0.5, 0.7, 1} and 15 values of Γ_shell log-spaced over [8, 45] (the master curve runs from
+    /// Γ_c ≈ 14 at w/L = 0.05 to 29 at w = L for ν = 0.35), with the seed's protocol σ = 0.2,
+    /// m_ls = 5, ε = 1e-4.
+    pub fn default_grid(material: ShellMaterialSet, n_length: usize) -> Self {
+        let (lo, hi, count) = (8.0_f64, 45.0_f64, 15);
+        Self {
+            material,
+            n_length,
+            width_ratios: vec![0.05, 0.1, 0.15, 0.2, 0.3, 0.5, 0.7, 1.0],
+            gammas: (0..count)
+                .map(|i| lo * (hi / lo).powf(i as f64 / (count - 1) as f64))
+                .collect(),
+            sigma: 0.2,
+            load_steps: 5,
+            threshold: 1e-4,
+        }
+    }
+
+    /// The master curve's Γ_c (clamped Kirchhoff plate, the material's ν) at every aspect
+    /// ratio, as (w/L, Γ_c); NaN where the curve is not available.
+    pub fn master_critical(&self) -> Vec<(f64, f64)> {
+        self.width_ratios
+            .iter()
+            .map(|&w| {
+                let g = critical_gamma(w, self.material.poisson, MasterCurve::KirchhoffPlate)
+                    .unwrap_or(f64::NAN);
+                (w, g)
+            })
+            .collect()
+    }
+
     fn case(&self, width_ratio: f64) -> LateralBucklingCase {
         LateralBucklingCase {
             material: self.material,
@@ -80,16 +121,7 @@ impl LateralBucklingSweep {
         width_ratio: f64,
         params: &SolverParams,
     ) -> Result<CriticalRecord, ModelError> {
-        let c = self.case(width_ratio);
-        let gc = c
-            .critical_gamma(GAMMA_C_BRACKET.0, GAMMA_C_BRACKET.1, 1e-3, params)?
-            .unwrap_or(f64::NAN);
-        Ok(CriticalRecord {
-            width_ratio,
-            n_length: self.n_length,
-            n_width: c.n_width(),
-            gamma_c: gc,
-        })
+        critical_record(self.material, width_ratio, self.n_length, params)
     }
 
     /// Γ_c for every aspect ratio, in parallel.
@@ -131,46 +163,84 @@ impl LateralBucklingSweep {
         })
     }
 
-    /// The record of a protocol point: its verdict by the threshold and by Γ_c of `critical`.
+    /// The record of a protocol point: its verdict by the threshold, by Γ_c of `critical`
+    /// (the shell's own stability) and by the master curve `master` (from
+    /// [`master_critical`](Self::master_critical)).
     pub fn record(
         &self,
         (width_ratio, gamma): (f64, f64),
         point: &ProtocolPoint,
         critical: &[CriticalRecord],
+        master: &[(f64, f64)],
     ) -> LateralBucklingRecord {
+        let master_gamma_c = master
+            .iter()
+            .find(|m| m.0 == width_ratio)
+            .map_or(f64::NAN, |m| m.1);
+        let truth_3d = master_gamma_c.is_finite().then_some(gamma > master_gamma_c);
         let gc = critical
             .iter()
             .find(|c| c.width_ratio == width_ratio)
             .map(|c| c.gamma_c)
             .filter(|x| x.is_finite());
-        LateralBucklingRecord {
+        let mut r = LateralBucklingRecord {
             width_ratio,
             gamma,
             tip_deviation: point.tip_deviation,
             protocol_3d: point.tip_deviation.abs() > self.threshold,
             stability_3d: gc.map(|c| gamma > c),
+            master_gamma_c,
+            truth_3d,
+            correct: None,
             converged: point.converged,
             relative_residual: point.relative_residual,
-        }
+        };
+        r.correct = is_correct(&r);
+        r
     }
 
-    /// Runs the protocol at every (w/L, Γ) and compares with `critical`; records in
-    /// (w/L, Γ) order whatever the thread count. `progress` is called once per point.
+    /// Runs the protocol at every (w/L, Γ) and compares with `critical` and the master curve;
+    /// records in (w/L, Γ) order whatever the thread count. `progress` is called once per point.
     pub fn run(
         &self,
         critical: &[CriticalRecord],
         params: &SolverParams,
         progress: &(dyn Fn() + Sync),
     ) -> Result<Vec<LateralBucklingRecord>, ModelError> {
+        let master = self.master_critical();
         self.points()
             .par_iter()
             .map(|&wg| {
                 let point = self.protocol_at(wg.0, wg.1, params)?;
                 progress();
-                Ok(self.record(wg, &point, critical))
+                Ok(self.record(wg, &point, critical, &master))
             })
             .collect()
     }
+}
+
+/// Γ_c of `material` at `width_ratio` on the mesh with `n_length` elements along the length
+/// (square elements), by bisection on the inertia within [`GAMMA_C_BRACKET`] to 0.1 %.
+pub fn critical_record(
+    material: ShellMaterialSet,
+    width_ratio: f64,
+    n_length: usize,
+    params: &SolverParams,
+) -> Result<CriticalRecord, ModelError> {
+    let c = LateralBucklingCase {
+        material,
+        width_ratio,
+        n_length,
+    };
+    let gc = c
+        .critical_gamma(GAMMA_C_BRACKET.0, GAMMA_C_BRACKET.1, 1e-3, params)?
+        .unwrap_or(f64::NAN);
+    Ok(CriticalRecord {
+        width_ratio,
+        n_length,
+        n_width: c.n_width(),
+        gamma_c: gc,
+    })
 }
 
 /// What the protocol measured at one point (the part of a record that costs a solve).

@@ -1,0 +1,42 @@
+//! What the solver's load factor λ drives on a shell: the gravity ramp, or the clamp's rotation
+//! at full gravity (design.md §4.4: the continuation is parameter-agnostic, λ and the clamp
+//! angle σ are both parameters).
+//!
+//! Why the clamp angle is a continuation parameter rather than a prescribed jump: turning the
+//! clamp of a heavy, deflected strip changes its shape non-rigidly, and a Newton start that
+//! is off by more than about a thickness crawls (linear updates stretch the membrane at second
+//! order). As a parameter, the clamp rotation gets the solver's adaptive steps and secant
+//! predictor, like the gravity ramp.
+
+use super::clamp::Clamp;
+
+/// The meaning of the load factor λ ∈ [0, 1] of a [`Shell`](super::Shell).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum LoadPath {
+    /// Gravity scaled by λ; the clamp stays where [`Shell::set_clamp_rotation`](super::Shell::set_clamp_rotation) put it.
+    #[default]
+    Gravity,
+    /// Full gravity; the clamp turned about x to σ = `from` + λ·(`to` − `from`) (rad). The
+    /// clamped vertices follow σ whatever the state holds for them.
+    ClampRotation {
+        /// σ at λ = 0 (rad).
+        from: f64,
+        /// σ at λ = 1 (rad).
+        to: f64,
+    },
+}
+
+impl LoadPath {
+    /// (gravity factor, clamp) at load factor `load`, with `clamp` the shell's own clamp.
+    pub fn at(&self, load: f64, clamp: Clamp) -> (f64, Clamp) {
+        match *self {
+            LoadPath::Gravity => (load, clamp),
+            LoadPath::ClampRotation { from, to } => (
+                1.0,
+                Clamp {
+                    sigma: from + load * (to - from),
+                },
+            ),
+        }
+    }
+}
