@@ -77,15 +77,16 @@ struct CriticalKey {
 }
 
 /// Everything a protocol point depends on (not the threshold: it is applied afterwards).
+/// Shared with `slender sensitivity`, so the two commands reuse each other's stored points.
 #[derive(Serialize)]
-struct ProtocolKey {
-    material: ShellMaterialSet,
-    n_length: usize,
-    width_ratio: f64,
-    gamma: f64,
-    sigma: f64,
-    load_steps: usize,
-    solver: SolverParams,
+pub(crate) struct ProtocolKey {
+    pub(crate) material: ShellMaterialSet,
+    pub(crate) n_length: usize,
+    pub(crate) width_ratio: f64,
+    pub(crate) gamma: f64,
+    pub(crate) sigma: f64,
+    pub(crate) load_steps: usize,
+    pub(crate) solver: SolverParams,
 }
 
 /// Runs `sweep` through the store, writes `critical.csv`, `results.csv` and

@@ -136,6 +136,12 @@ fn caption(dir: &str, stem: &str) -> String {
                 words(stem)
             }
         }
+        "sensitivity" => {
+            "Counterpart of the seed's Fig. 12: share of correct 2-D/3-D decisions per \
+                          configuration, grouped by shell set Ω, elements n_L, load steps m_ls and \
+                          clamp rotation σ (w = L excluded)."
+                .into()
+        }
         "lateral-buckling" | "lateral-buckling-n30" => match stem {
             "phase_diagram" => "Counterpart of the seed's Figs. 9b–11b: 2-D/3-D decisions of the \
                                 seed's protocol over (w/L, Γ_shell) on the plate master curve's \

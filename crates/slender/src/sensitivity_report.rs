@@ -7,16 +7,14 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use serde::Serialize;
-use slender_core::solver::SolverParams;
 use slender_validation::lateral_sweep::sensitivity::{
     group_scores, median, score, shell_set_by_name, summary_by_elements, Configuration,
     ConfigurationScore, GridPoint, Grouping, SensitivityPoint, SensitivityStudy, StudyError,
     Verdict, SQUARE,
 };
 use slender_validation::lateral_sweep::LateralBucklingSweep;
-use slender_validation::materials::ShellMaterialSet;
 
+use crate::lateral_sweep_report::ProtocolKey;
 use crate::output::write_csv;
 use crate::plot::{plot_boxplots, BoxPanel, BoxSample};
 use crate::store::runner::{run_cases, StoreOptions};
@@ -108,20 +106,6 @@ pub(crate) fn study_from_args(a: &SensitivityArgs) -> Result<SensitivityStudy> {
     }
     s.validate().map_err(as_flag)?;
     Ok(s)
-}
-
-/// Everything a protocol point depends on (not the threshold: it is applied afterwards).
-/// Field for field the key of `slender lateral-buckling` (lateral_sweep_report.rs), under the
-/// same benchmark name, so that the two commands share their stored protocol points.
-#[derive(Serialize)]
-struct ProtocolKey {
-    material: ShellMaterialSet,
-    n_length: usize,
-    width_ratio: f64,
-    gamma: f64,
-    sigma: f64,
-    load_steps: usize,
-    solver: SolverParams,
 }
 
 /// The store benchmark of protocol points (shared with `slender lateral-buckling`).

@@ -11,8 +11,9 @@ use slender_validation::bend_twist::sweep::BendTwistSweep;
 use slender_validation::cantilever::{
     cantilever_checks, shell_cantilever_checks, CantileverSweep, Check, ShellCantileverSweep,
 };
+use slender_validation::lateral_sweep::sensitivity::SensitivityStudy;
 use slender_validation::lateral_sweep::{
-    convergence_checks, decision_checks, LateralBucklingSweep,
+    convergence_checks, decision_checks, sensitivity_checks, LateralBucklingSweep,
 };
 use slender_validation::materials::{OMEGA_SHELL, SHELL_SETS};
 
@@ -63,8 +64,17 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
         store,
     )?;
     let lateral_sweep_seconds = lb_clock.elapsed().as_secs_f64();
-    let (Some(cantilever), Some(bend_twist), Some(lateral), Some(convergence)) =
-        (cantilever, bend_twist, lateral, convergence)
+    // The seed's §5.3 sensitivity study: a subset in quick, the 216 configurations in full.
+    let study = if full {
+        SensitivityStudy::full()
+    } else {
+        SensitivityStudy::quick()
+    };
+    let sens_clock = Instant::now();
+    let sensitivity = crate::sensitivity_report::run(&study, &out.join("sensitivity"), store)?;
+    let sensitivity_seconds = sens_clock.elapsed().as_secs_f64();
+    let (Some(cantilever), Some(bend_twist), Some(lateral), Some(convergence), Some(sensitivity)) =
+        (cantilever, bend_twist, lateral, convergence, sensitivity)
     else {
         crate::print_shard_done(store);
         return Ok(true);
@@ -112,6 +122,8 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
         lateral_checks.extend(decision_checks(&OMEGA_SHELL, 30, &grid, &f.score));
     }
     lateral_checks.extend(convergence_checks(&OMEGA_SHELL, &convergence));
+    crate::sensitivity_report::print_summary(&sensitivity);
+    lateral_checks.extend(sensitivity_checks(&sensitivity.scores));
     let lateral_seconds = lateral_sweep_seconds - fine_seconds + lb_clock.elapsed().as_secs_f64();
     let mut checks = cantilever_checks(&cantilever.records, &params)?;
     checks.extend(shell_checks);
@@ -192,6 +204,22 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                         lateral_sweep.sigma,
                         lateral_sweep.load_steps,
                         lateral_sweep.threshold
+                    ),
+                },
+                Section {
+                    title: "Sensitivity of the lateral-buckling protocol".into(),
+                    dir: "sensitivity".into(),
+                    wall_seconds: sensitivity_seconds,
+                    stats: Default::default(),
+                    about: format!(
+                        "The seed's §5.3 study (Fig. 12): the share of correct 2-D/3-D decisions of \
+                         the protocol over a (w/L, Γ/Γ_c) grid placed on the plate master curve, for \
+                         {} configurations (Ω × n_L {:?} × m_ls {:?} × σ {:?}); w = L excluded from \
+                         the score as in the seed.",
+                        study.configurations().len(),
+                        study.elements,
+                        study.load_steps,
+                        study.sigmas
                     ),
                 },
                 Section {

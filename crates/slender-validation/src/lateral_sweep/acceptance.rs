@@ -136,3 +136,69 @@ pub fn decision_checks(
         ),
     ]
 }
+
+/// Checks of the sensitivity study (seed §5.3) from its scores (w < L): every protocol run
+/// converged; the median score at every n_L ≥ 30 present, or else at the finest n_L, is at
+/// least 90 % (the seed's IPS from n_L = 30 on); the finest mesh scores no worse than the
+/// coarsest; and, for comparison with the seed's ≈ 70 %, the median at n_L = 8.
+pub fn sensitivity_checks(scores: &[super::sensitivity::ConfigurationScore]) -> Vec<Check> {
+    use super::sensitivity::summary_by_elements;
+    let mut checks = Vec::new();
+    let summary = summary_by_elements(scores);
+    let (Some(first), Some(last)) = (summary.first(), summary.last()) else {
+        return checks;
+    };
+    let not_converged: usize = scores.iter().map(|s| s.not_converged).sum();
+    let points: usize = scores.iter().map(|s| s.points).sum();
+    let mut c = check(
+        format!(
+            "sensitivity study, {} configurations: protocol runs not converged (of {points}, w < L)",
+            scores.len()
+        ),
+        not_converged as f64,
+        "= 0",
+        not_converged == 0,
+    );
+    c.benchmark = "sensitivity".into();
+    checks.push(c);
+    let fine: Vec<_> = summary.iter().filter(|s| s.n_length >= 30).collect();
+    let fine = if fine.is_empty() { vec![last] } else { fine };
+    for s in fine {
+        let mut c = check(
+            format!(
+                "sensitivity study, n_L = {}: median share of correct decisions over {} configurations (%), min {:.1}",
+                s.n_length, s.configurations, s.min
+            ),
+            s.median,
+            "≥ 90 %",
+            s.median >= 90.0,
+        );
+        c.benchmark = "sensitivity".into();
+        checks.push(c);
+    }
+    let mut c = check(
+        format!(
+            "sensitivity study: median at n_L = {} minus median at n_L = {} (points of %; refinement must not hurt)",
+            last.n_length, first.n_length
+        ),
+        last.median - first.median,
+        "≥ 0",
+        last.median >= first.median,
+    );
+    c.benchmark = "sensitivity".into();
+    checks.push(c);
+    if let Some(s8) = summary.iter().find(|s| s.n_length == 8) {
+        let mut c = check(
+            format!(
+                "sensitivity study, n_L = 8: median share of correct decisions (%), min {:.1} (the seed's IPS: about 70 %)",
+                s8.min
+            ),
+            s8.median,
+            "≥ 70 %",
+            s8.median >= 70.0,
+        );
+        c.benchmark = "sensitivity".into();
+        checks.push(c);
+    }
+    checks
+}

@@ -10,7 +10,7 @@ pub mod decisions;
 pub mod sensitivity;
 pub mod sweep;
 
-pub use acceptance::{convergence_checks, decision_checks, decision_target};
+pub use acceptance::{convergence_checks, decision_checks, decision_target, sensitivity_checks};
 pub use case::{LateralBucklingCase, ProtocolOutcome};
 pub use convergence::{richardson, CriticalConvergence, Extrapolation};
 pub use decisions::{score_decisions, DecisionScore, UNDECIDABLE_BAND};
