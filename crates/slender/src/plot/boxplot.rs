@@ -1,14 +1,15 @@
 //! Box plots side by side, one panel per grouping (counterpart of the seed's Fig. 12: the
 //! percentage of correct 2-D/3-D decisions grouped by each design parameter).
 //!
-//! Quartiles come from plotters' `Quartiles` (linear interpolation); whiskers reach the most
-//! extreme values within 1.5 IQR of the box, values beyond are drawn as points.
+//! Quartiles by linear interpolation between order statistics (the method of plotters'
+//! `Quartiles`, computed here in f64: `Quartiles::values` rounds to f32, which turned every
+//! value of a zero-width box into an "outlier"); whiskers reach the most extreme values within
+//! 1.5 IQR of the box, values beyond are drawn as points.
 
 use std::path::Path;
 
 use anyhow::Result;
 use plotters::coord::Shift;
-use plotters::data::Quartiles;
 use plotters::prelude::*;
 
 use super::{render, style, titled_area, Figure, TextFix};
@@ -61,7 +62,8 @@ struct BoxFigure<'a> {
 /// Box statistics: quartiles, whisker ends and outliers.
 #[derive(Clone, Debug)]
 struct BoxStats {
-    quartiles: Quartiles,
+    /// Lower quartile, median, upper quartile.
+    quartiles: [f64; 3],
     whiskers: (f64, f64),
     outliers: Vec<f64>,
 }
@@ -71,9 +73,10 @@ fn box_stats(values: &[f64]) -> Option<BoxStats> {
     if v.is_empty() {
         return None;
     }
-    let quartiles = Quartiles::new(&v);
-    let [_, q1, _, q3, _] = quartiles.values();
-    let (q1, q3) = (f64::from(q1), f64::from(q3));
+    let mut sorted = v.clone();
+    sorted.sort_by(f64::total_cmp);
+    let quartiles = [0.25, 0.5, 0.75].map(|p| percentile(&sorted, p));
+    let [q1, _, q3] = quartiles;
     let iqr = q3 - q1;
     let (lo_fence, hi_fence) = (q1 - 1.5 * iqr, q3 + 1.5 * iqr);
     let inside = v
@@ -94,6 +97,18 @@ fn box_stats(values: &[f64]) -> Option<BoxStats> {
         whiskers,
         outliers,
     })
+}
+
+/// The `p`-quantile (0 ≤ p ≤ 1) of non-empty ascending `sorted`, interpolated linearly
+/// between the order statistics at rank p·(n − 1).
+fn percentile(sorted: &[f64], p: f64) -> f64 {
+    let rank = p * (sorted.len() - 1) as f64;
+    let i = rank.floor() as usize;
+    let d = rank - i as f64;
+    match sorted.get(i + 1) {
+        Some(next) => sorted[i] + (next - sorted[i]) * d,
+        None => sorted[i],
+    }
 }
 
 impl Figure for BoxFigure<'_> {
@@ -153,8 +168,7 @@ impl Figure for BoxFigure<'_> {
                 };
                 let c = i as f64 + 0.5;
                 let half = 0.25;
-                let [_, q1, med, q3, _] = s.quartiles.values();
-                let (q1, med, q3) = (f64::from(q1), f64::from(med), f64::from(q3));
+                let [q1, med, q3] = s.quartiles;
                 let color = style::series_color(k);
                 chart.draw_series(std::iter::once(Rectangle::new(
                     [(c - half, q1), (c + half, q3)],
@@ -207,6 +221,14 @@ mod tests {
         assert_eq!(s.outliers, vec![100.0]);
         assert_eq!(s.whiskers, (1.0, 9.0));
         assert!(box_stats(&[f64::NAN]).is_none());
+        // A zero-width box (every configuration scored the same) has no outliers and its
+        // whiskers on the box.
+        let s = box_stats(&[88.88888888888889; 4]).unwrap();
+        assert!(s.outliers.is_empty());
+        assert_eq!(s.whiskers, (88.88888888888889, 88.88888888888889));
+        // plotters' documented example: quartiles 20.25, 37.5, 39.75.
+        let s = box_stats(&[7.0, 15.0, 36.0, 39.0, 40.0, 41.0]).unwrap();
+        assert_eq!(s.quartiles, [20.25, 37.5, 39.75]);
     }
 
     #[test]
