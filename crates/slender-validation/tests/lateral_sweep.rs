@@ -127,3 +127,31 @@ fn vlasov_band_matches_design_table_and_exists_over_the_aspect_ratios() {
         assert!(band.is_some_and(|(b, p)| b < p), "w/L = {w}: {band:?}");
     }
 }
+
+/// The stability route's branch switch: above Γ_c the planar strip is unstable and the kick
+/// along its lowest mode lands on a stable, laterally buckled state of lower energy (|y_tip|
+/// well above the protocol's ε); below Γ_c there is nothing to switch to. Checked at
+/// w/L = 0.1 and at w = L (n_L = 8).
+#[test]
+fn branch_switching_lands_on_a_stable_buckled_state_above_the_critical_gamma() {
+    let params = slender_validation::lateral_sweep::solver_params();
+    for w in [0.1, 1.0] {
+        let c = case(w, 8);
+        let gc = c
+            .critical_gamma(5.0, 60.0, 1e-3, &params)
+            .expect("valid")
+            .expect("bracketed");
+        assert!(c.branch_switch(0.9 * gc, &params).expect("valid").is_none());
+        let b = c
+            .branch_switch(1.2 * gc, &params)
+            .expect("valid")
+            .expect("unstable planar state, a converged switch");
+        eprintln!(
+            "w/L = {w}: Γ_c = {gc:.3}; at 1.2 Γ_c: y_tip/L = {:.3e}, stable {:?}, energy drop {:.3e} J",
+            b.tip_deviation, b.stable, b.energy_drop
+        );
+        assert_eq!(b.stable, Some(true));
+        assert!(b.energy_drop < 0.0);
+        assert!(b.tip_deviation.abs() > 1e-3);
+    }
+}

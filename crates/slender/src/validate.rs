@@ -13,7 +13,8 @@ use slender_validation::cantilever::{
 };
 use slender_validation::lateral_sweep::sensitivity::SensitivityStudy;
 use slender_validation::lateral_sweep::{
-    convergence_checks, decision_checks, sensitivity_checks, LateralBucklingSweep,
+    branch_switch_checks, convergence_checks, decision_checks, sensitivity_checks,
+    LateralBucklingSweep,
 };
 use slender_validation::materials::{OMEGA_SHELL, SHELL_SETS};
 
@@ -122,6 +123,11 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
         lateral_checks.extend(decision_checks(&OMEGA_SHELL, 30, &grid, &f.score));
     }
     lateral_checks.extend(convergence_checks(&OMEGA_SHELL, &convergence));
+    lateral_checks.extend(branch_switch_checks(
+        OMEGA_SHELL,
+        &lateral.critical,
+        &slender_validation::lateral_sweep::solver_params(),
+    )?);
     crate::sensitivity_report::print_summary(&sensitivity);
     lateral_checks.extend(sensitivity_checks(&sensitivity.scores));
     let lateral_seconds = lateral_sweep_seconds - fine_seconds + lb_clock.elapsed().as_secs_f64();

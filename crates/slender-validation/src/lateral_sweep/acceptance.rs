@@ -202,3 +202,50 @@ pub fn sensitivity_checks(scores: &[super::sensitivity::ConfigurationScore]) -> 
     }
     checks
 }
+
+/// The stability route's branch switch (design.md §4.5) at 1.2 Γ_c for w/L = 0.1 and w = L on
+/// the mesh of `critical`: the kick along the unstable mode must land on a stable equilibrium
+/// of lower energy whose free end has left the plane (|y_tip|/L > 1e-3).
+pub fn branch_switch_checks(
+    material: ShellMaterialSet,
+    critical: &[super::CriticalRecord],
+    params: &slender_core::solver::SolverParams,
+) -> Result<Vec<Check>, slender_core::ModelError> {
+    let mut checks = Vec::new();
+    for w in [0.1, 1.0] {
+        let Some(c) = critical
+            .iter()
+            .find(|c| c.width_ratio == w && c.gamma_c.is_finite())
+        else {
+            continue;
+        };
+        let case = super::LateralBucklingCase {
+            material,
+            width_ratio: w,
+            n_length: c.n_length,
+        };
+        let gamma = 1.2 * c.gamma_c;
+        let b = case.branch_switch(gamma, params)?;
+        let (tip, ok, about) = match &b {
+            Some(b) => (
+                b.tip_deviation.abs(),
+                b.stable == Some(true) && b.energy_drop < 0.0 && b.tip_deviation.abs() > 1e-3,
+                format!(
+                    "stable {:?}, energy change {:.3e} J",
+                    b.stable, b.energy_drop
+                ),
+            ),
+            None => (f64::NAN, false, "no converged switch".into()),
+        };
+        checks.push(check(
+            format!(
+                "{}, w/L = {w}, n_L = {}: branch switch at 1.2 Γ_c = {gamma:.3} from the unstable planar state, |y_tip|/L of the buckled state ({about})",
+                material.label, c.n_length
+            ),
+            tip,
+            "> 1e-3, stable, lower energy",
+            ok,
+        ));
+    }
+    Ok(checks)
+}

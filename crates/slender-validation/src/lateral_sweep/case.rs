@@ -5,7 +5,7 @@
 use slender_core::geometry::Vec3;
 use slender_core::rod::Grading;
 use slender_core::shell::{LoadPath, Shell, ShellBuilder, ShellState};
-use slender_core::solver::{EquilibriumSolver, SolveReport, SolverParams};
+use slender_core::solver::{EquilibriumProblem, EquilibriumSolver, SolveReport, SolverParams};
 use slender_core::ModelError;
 
 use crate::cantilever::shell_case::column_centre;
@@ -32,6 +32,23 @@ pub struct ProtocolOutcome {
     /// Report of the first stage that failed, else of the final re-equilibration.
     pub report: SolveReport,
 }
+
+/// The buckled state the stability route's branch switch lands on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BuckledState {
+    /// y of the free end's centre / L (signed).
+    pub tip_deviation: f64,
+    /// Whether the buckled equilibrium is stable (no negative Hessian eigenvalue).
+    pub stable: Option<bool>,
+    /// Its energy minus the planar state's (J; negative: the buckled state is preferred).
+    pub energy_drop: f64,
+}
+
+/// Largest vertex displacement of the branch-switching kick, relative to L.
+const SWITCH_AMPLITUDE: f64 = 1e-2;
+
+/// Newton iterations allowed from the kick to the buckled state.
+const BRANCH_SWITCH_ITERATIONS: usize = 3000;
 
 impl LateralBucklingCase {
     /// Elements across the width: square elements, as in the seed (at least 1).
@@ -103,6 +120,65 @@ impl LateralBucklingCase {
             }
         }
         Ok(Some((lo * hi).sqrt()))
+    }
+
+    /// The stability route's branch switch at Γ (design.md §4.5): if the planar equilibrium is
+    /// unstable, kick it along its lowest mode (largest vertex displacement 1e-2·L, both
+    /// signs) and re-equilibrate; returns the lower-energy result. `None` if the planar state
+    /// is stable, did not converge, or no kicked solve converged.
+    pub fn branch_switch(
+        &self,
+        gamma: f64,
+        params: &SolverParams,
+    ) -> Result<Option<BuckledState>, ModelError> {
+        let shell = self.build(gamma)?;
+        let flat = shell.rest_state();
+        let params = SolverParams {
+            compute_lambda_min: true,
+            ..params.clone()
+        };
+        let mut solver = EquilibriumSolver::new(&shell, &flat, params);
+        let planar = solver.solve(&shell, &flat, 0.0, 1.0);
+        let (true, Some(false), Some(mode)) = (
+            planar.report.converged(),
+            planar.report.stable(),
+            planar.lowest_mode.as_ref(),
+        ) else {
+            return Ok(None);
+        };
+        let dofs = shell.dofs();
+        let max_disp = (0..mode.shape.len())
+            .filter(|&i| !dofs.is_angle(i))
+            .map(|i| mode.shape[i].abs())
+            .fold(0.0, f64::max);
+        if !(max_disp > 0.0) {
+            return Ok(None);
+        }
+        let scale = SWITCH_AMPLITUDE * shell.properties().length / max_disp;
+        let planar_energy = shell.energy(&planar.state, 1.0);
+        let mut best: Option<BuckledState> = None;
+        let mut kicked = planar.state.clone();
+        // From the kick to the buckled state is a long way (|y_tip| grows from 1e-2·L to tenths
+        // of L) in steps of about a thickness: a long minimization (≈ 340 iterations measured
+        // at n_L = 8, w/L = 0.1, 1.2 Γ_c).
+        solver.params.max_iterations = BRANCH_SWITCH_ITERATIONS.max(solver.params.max_iterations);
+        for sign in [1.0, -1.0] {
+            shell.displace(&planar.state, &mode.shape, sign * scale, &mut kicked);
+            let s = solver.solve(&shell, &kicked, 1.0, 1.0);
+            if !s.report.converged() {
+                continue;
+            }
+            let drop = shell.energy(&s.state, 1.0) - planar_energy;
+            if best.as_ref().is_none_or(|b| drop < b.energy_drop) {
+                let end = column_centre(&shell, &s.state.positions, shell.mesh().n_length);
+                best = Some(BuckledState {
+                    tip_deviation: end.y / shell.properties().length,
+                    stable: s.report.stable(),
+                    energy_drop: drop,
+                });
+            }
+        }
+        Ok(best)
     }
 
     /// The seed's protocol at Γ: rotate the clamp about x by `sigma` (rad; the unloaded strip

@@ -10,8 +10,10 @@ pub mod decisions;
 pub mod sensitivity;
 pub mod sweep;
 
-pub use acceptance::{convergence_checks, decision_checks, decision_target, sensitivity_checks};
-pub use case::{LateralBucklingCase, ProtocolOutcome};
+pub use acceptance::{
+    branch_switch_checks, convergence_checks, decision_checks, decision_target, sensitivity_checks,
+};
+pub use case::{BuckledState, LateralBucklingCase, ProtocolOutcome};
 pub use convergence::{richardson, CriticalConvergence, Extrapolation};
 pub use decisions::{score_decisions, DecisionScore, UNDECIDABLE_BAND};
 pub use sweep::{
