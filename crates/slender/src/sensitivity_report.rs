@@ -208,9 +208,10 @@ pub(crate) fn run(
     write_csv(&out.join("points.csv"), &points)?;
     write_csv(&out.join("scores.csv"), &scores)?;
 
+    // The panel is titled Ω already; "Ω_combined" and its neighbours overlapped under a box.
     let label_of = |name: &str| {
         shell_set_by_name(name)
-            .map(|m| m.label.to_string())
+            .map(|m| m.label.trim_start_matches("Ω_").to_string())
             .unwrap_or_else(|_| name.to_string())
     };
     let panels: Vec<BoxPanel> = Grouping::ALL
