@@ -179,17 +179,7 @@ impl<const N: usize> std::ops::Sub for Dual2<N> {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
-        let affine = self.affine && o.affine;
-        Self {
-            v: self.v - o.v,
-            g: self.g - o.g,
-            h: if affine {
-                SMatrix::zeros()
-            } else {
-                self.h - o.h
-            },
-            affine,
-        }
+        self.minus(&o)
     }
 }
 
