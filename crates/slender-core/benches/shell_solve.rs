@@ -12,10 +12,11 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use slender_core::assembly::TermSet;
 use slender_core::geometry::Vec3;
 use slender_core::linalg::{SparseLdlt, SymmetricFactor};
 use slender_core::rod::Grading;
-use slender_core::shell::{rod_predictor, Shell, ShellBuilder, ShellProperties, ShellTerms};
+use slender_core::shell::{rod_predictor, Shell, ShellBuilder, ShellProperties};
 use slender_core::solver::{EquilibriumProblem, EquilibriumSolver, Solution, SolverParams};
 
 const GAMMA: f64 = 61.3;
@@ -98,7 +99,7 @@ fn kernels(c: &mut Criterion) {
             shell.assemble_terms(
                 black_box(&sol.state),
                 1.0,
-                ShellTerms::ALL,
+                TermSet::ALL,
                 Some(&mut g),
                 Some(&mut h),
                 None,

@@ -10,6 +10,7 @@
 // `!(x > 0.0)` is used on purpose: unlike `x <= 0.0` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod assembly;
 pub mod error;
 pub mod geometry;
 pub mod linalg;
@@ -17,5 +18,7 @@ pub mod rod;
 pub mod scene;
 pub mod shell;
 pub mod solver;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 pub use error::ModelError;

@@ -1,27 +1,16 @@
-//! Every energy term's gradient and Hessian against central finite differences, at random
-//! non-trivial states (twisted, anisotropic, naturally curved, both clamps), with the error
-//! falling like O(ε²).
+//! The rod against the generic derivative checker (`slender_core::testing`): every term group's
+//! gradient and Hessian against central finite differences at random non-trivial states
+//! (twisted, anisotropic, naturally curved, both clamps, pins), with the error falling like
+//! O(ε²); rigid-motion invariance; zero gradient at the rest shapes.
 
-use nalgebra::{Rotation3, Vector3};
-use slender_core::linalg::SymmetricBandMatrix;
-use slender_core::rod::{
-    RestCurve, Rod, RodBuilder, RodProperties, RodState, SectionStiffness, Terms,
+use nalgebra::{SMatrix, SVector, Vector3};
+use slender_core::assembly::{Assembler, TermGroup, TermSet};
+use slender_core::linalg::{SymmetricBandMatrix, SymmetricMatrix};
+use slender_core::rod::{RestCurve, Rod, RodBuilder, RodProperties, RodState, SectionStiffness};
+use slender_core::solver::{EquilibriumProblem, MassMetric};
+use slender_core::testing::{
+    check_derivatives, check_model, check_rest, check_rigid_invariance, Rng,
 };
-use slender_core::solver::EquilibriumProblem;
-
-/// Deterministic xorshift generator: tests must not depend on a seed from the environment.
-struct Rng(u64);
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-    fn vector(&mut self, n: usize) -> Vec<f64> {
-        (0..n).map(|_| self.uniform()).collect()
-    }
-}
 
 fn properties() -> RodProperties {
     RodProperties {
@@ -94,164 +83,133 @@ fn random_state(rod: &Rod, rng: &mut Rng) -> RodState {
     s
 }
 
-fn assemble(rod: &Rod, s: &RodState, terms: Terms) -> (f64, Vec<f64>, SymmetricBandMatrix) {
-    let n = rod.n_free();
-    let mut g = vec![0.0; n];
-    let mut h = SymmetricBandMatrix::new(n, rod.half_bandwidth());
-    let e = rod
-        .assemble_terms(s, 1.0, terms, Some(&mut g), Some(&mut h), None)
-        .energy;
-    (e, g, h)
+/// Direction scale of the finite differences (unit steps in m and rad; ε scales them).
+fn scale(_rod: &Rod) -> impl Fn(usize) -> f64 + Copy {
+    |_| 1.0
 }
 
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-/// Returns (gradient errors, Hessian errors) over a range of ε, relative to the size of the
-/// exact derivatives.
-///
-/// Both use *energy* differences with every trial state's frames transported from `s`: that
-/// is the function whose derivatives the model claims (time-parallel frames). Differencing
-/// gradients at displaced states instead would mix energies with different source frames,
-/// which agree only to first order (transport has holonomy).
-fn fd_errors(rod: &Rod, s: &RodState, terms: Terms, u: &[f64], v: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let (_, g, h) = assemble(rod, s, terms);
-    let mut hv = vec![0.0; v.len()];
-    h.mul_vec(v, &mut hv);
-    let gv: f64 = g.iter().zip(v).map(|(a, b)| a * b).sum();
-    let uhv: f64 = u.iter().zip(&hv).map(|(a, b)| a * b).sum();
-    let scale_g = gv.abs().max(norm(&g) * norm(v) * 1e-3).max(1e-300);
-    let mut hu = vec![0.0; u.len()];
-    h.mul_vec(u, &mut hu);
-    let scale_h = uhv.abs().max(norm(&hu) * norm(v) * 1e-3).max(1e-300);
-    let mut err_g = Vec::new();
-    let mut err_h = Vec::new();
-    let mut trial = s.clone();
-    let mut energy_at = |a: f64, b: f64| {
-        let w: Vec<f64> = u.iter().zip(v).map(|(x, y)| a * x + b * y).collect();
-        rod.displace_linear(s, &w, 1.0, &mut trial);
-        rod.energy_terms(&trial, 1.0, terms)
-    };
-    for eps in [2e-3, 6e-4, 2e-4, 6e-5, 2e-5] {
-        let d1 = (energy_at(0.0, eps) - energy_at(0.0, -eps)) / (2.0 * eps);
-        err_g.push((d1 - gv).abs() / scale_g);
-        let d2 = (energy_at(eps, eps) - energy_at(eps, -eps) - energy_at(-eps, eps)
-            + energy_at(-eps, -eps))
-            / (4.0 * eps * eps);
-        err_h.push((d2 - uhv).abs() / scale_h);
-    }
-    (err_g, err_h)
-}
-
-fn assert_second_order(errors: &[f64], what: &str) {
-    // Over a decade of ε the error must fall by ~100 (allow 30) until it reaches round-off.
-    let e0 = errors[0];
-    let e2 = errors[2];
-    assert!(
-        e2 < e0 / 30.0 || e2 < 1e-9,
-        "{what}: not O(ε²): errors {errors:?}"
-    );
-    assert!(
-        errors.iter().cloned().fold(f64::INFINITY, f64::min) < 1e-5,
-        "{what}: {errors:?}"
-    );
-}
-
-fn check(terms: Terms, name: &str) {
+#[test]
+fn every_term_passes_the_derivative_checker() {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for (r, rod) in rods().iter().enumerate() {
-        for trial in 0..3 {
-            let s = random_state(rod, &mut rng);
-            let u = rng.vector(rod.n_free());
-            let v = rng.vector(rod.n_free());
-            let (eg, eh) = fd_errors(rod, &s, terms, &u, &v);
-            assert_second_order(&eg, &format!("{name} gradient, rod {r}, trial {trial}"));
-            assert_second_order(&eh, &format!("{name} Hessian, rod {r}, trial {trial}"));
-        }
+        let states: Vec<RodState> = (0..3).map(|_| random_state(rod, &mut rng)).collect();
+        check_model(
+            rod,
+            &states,
+            1.0,
+            &mut rng,
+            scale(rod),
+            1.0,
+            &format!("rod {r}"),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+    }
+}
+
+/// The rod with a deliberate error in its derivatives: an extra gradient or Hessian entry on
+/// the first free DOF that no energy accounts for.
+struct Faulty<'a> {
+    rod: &'a Rod,
+    gradient_error: f64,
+    hessian_error: f64,
+}
+
+impl MassMetric for Faulty<'_> {
+    fn inertia_metric(&self, i: usize) -> f64 {
+        self.rod.inertia_metric(i)
+    }
+    fn eigenvalue_scale(&self) -> f64 {
+        self.rod.eigenvalue_scale()
+    }
+}
+
+impl EquilibriumProblem for Faulty<'_> {
+    type State = RodState;
+    type Hessian = SymmetricBandMatrix;
+    fn n_free(&self) -> usize {
+        self.rod.n_free()
+    }
+    fn new_hessian(&self) -> SymmetricBandMatrix {
+        self.rod.new_hessian()
+    }
+    fn term_groups(&self) -> &[TermGroup] {
+        self.rod.term_groups()
+    }
+    fn assemble_selected<M: SymmetricMatrix>(
+        &self,
+        state: &RodState,
+        load: f64,
+        asm: &mut Assembler<'_, M>,
+    ) {
+        self.rod.assemble_selected(state, load, asm);
+        let g = SVector::<f64, 1>::new(self.gradient_error);
+        let h = SMatrix::<f64, 1, 1>::new(self.hessian_error);
+        asm.local(&[0], 0.0, 0.0, &g, &h);
+    }
+    fn difference(&self, a: &RodState, b: &RodState, out: &mut [f64]) {
+        self.rod.difference(a, b, out)
+    }
+    fn displace(&self, s: &RodState, dx: &[f64], alpha: f64, out: &mut RodState) {
+        self.rod.displace(s, dx, alpha, out)
+    }
+    fn chart(&self, s: &RodState, dx: &[f64], out: &mut RodState) {
+        self.rod.chart(s, dx, out)
+    }
+    fn max_step(&self, s: &RodState, dx: &[f64]) -> f64 {
+        self.rod.max_step(s, dx)
+    }
+    fn force_length(&self, i: usize) -> f64 {
+        self.rod.force_length(i)
+    }
+    fn dof_magnitude(&self, s: &RodState, i: usize) -> f64 {
+        self.rod.dof_magnitude(s, i)
     }
 }
 
 #[test]
-fn stretching_derivatives_match_finite_differences() {
-    check(
-        Terms {
-            stretching: true,
-            ..Terms::NONE
-        },
-        "stretching",
-    );
-}
-
-#[test]
-fn bending_derivatives_match_finite_differences() {
-    check(
-        Terms {
-            bending: true,
-            ..Terms::NONE
-        },
-        "bending",
-    );
-}
-
-#[test]
-fn twisting_derivatives_match_finite_differences() {
-    check(
-        Terms {
-            twisting: true,
-            ..Terms::NONE
-        },
-        "twisting",
-    );
-}
-
-#[test]
-fn external_load_derivatives_match_finite_differences() {
-    // Gravity and point forces are linear; point moments are not (see `rod/moment.rs`).
-    check(
-        Terms {
-            external: true,
-            ..Terms::NONE
-        },
-        "external",
-    );
-}
-
-#[test]
-fn all_terms_together_match_finite_differences() {
-    check(Terms::ALL, "total");
+fn the_checker_catches_wrong_gradients_and_hessians() {
+    // A check that cannot fail proves nothing.
+    let rods = rods();
+    let rod = &rods[0];
+    let mut rng = Rng(7);
+    let s = random_state(rod, &mut rng);
+    let sc = scale(rod);
+    let exact = Faulty {
+        rod,
+        gradient_error: 0.0,
+        hessian_error: 0.0,
+    };
+    check_derivatives(&exact, &s, 1.0, TermSet::ALL, &mut rng, sc, "exact")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let wrong_gradient = Faulty {
+        rod,
+        gradient_error: 0.05,
+        hessian_error: 0.0,
+    };
+    let e = check_derivatives(&wrong_gradient, &s, 1.0, TermSet::ALL, &mut rng, sc, "g");
+    assert!(e.is_err_and(|m| m.contains("gradient")));
+    let wrong_hessian = Faulty {
+        rod,
+        gradient_error: 0.0,
+        hessian_error: 5.0,
+    };
+    let e = check_derivatives(&wrong_hessian, &s, 1.0, TermSet::ALL, &mut rng, sc, "h");
+    assert!(e.is_err_and(|m| m.contains("Hessian")));
 }
 
 #[test]
 fn rigid_motions_change_no_internal_energy() {
-    let internal = Terms {
-        external: false,
-        ..Terms::ALL
-    };
     let mut rng = Rng(42);
-    for rod in rods() {
-        let s = random_state(&rod, &mut rng);
-        let e0 = rod.energy_terms(&s, 1.0, internal);
-        assert!(e0 > 1e-6, "state must be deformed");
-        for _ in 0..5 {
-            let axis = Vector3::new(rng.uniform(), rng.uniform(), rng.uniform());
-            let rot = Rotation3::new(axis * 3.0);
-            let moved = s.rigidly_transformed(&rot, &Vector3::new(rng.uniform(), 2.0, -1.0));
-            let e1 = rod.energy_terms(&moved, 1.0, internal);
-            assert!((e1 - e0).abs() <= 1e-12 * e0, "{e0} vs {e1}");
-        }
+    for (r, rod) in rods().iter().enumerate() {
+        let states = vec![random_state(rod, &mut rng)];
+        check_rigid_invariance(rod, &states, &mut rng, &format!("rod {r}"))
+            .unwrap_or_else(|e| panic!("{e}"));
     }
 }
 
 #[test]
 fn rest_shapes_have_zero_gradient() {
-    let internal = Terms {
-        external: false,
-        ..Terms::ALL
-    };
-    for rod in rods() {
-        let (e, g, _) = assemble(&rod, rod.rest_state(), internal);
-        assert!(e.abs() < 1e-28, "rest energy {e}");
-        assert!(g.iter().all(|x| x.abs() < 1e-13), "rest gradient {g:?}");
+    for (r, rod) in rods().iter().enumerate() {
+        check_rest(rod, 1.0, &format!("rod {r}")).unwrap_or_else(|e| panic!("{e}"));
     }
 }

@@ -384,7 +384,7 @@ fn reactions_are_the_energy_derivatives_with_respect_to_the_support_motion() {
             .unwrap();
         let sol = solver.solve(&rod, &moved, 1.0, 1.0);
         assert!(sol.report.converged());
-        rod.energy_terms(&sol.state, 1.0, slender_core::rod::Terms::ALL)
+        rod.energy_terms(&sol.state, 1.0, slender_core::assembly::TermSet::ALL)
     };
     let eps = 1e-5;
     for k in 0..3 {

@@ -7,13 +7,15 @@ use super::bending::{material_curvature, BendingHinge};
 use super::dofs::DofMap;
 use super::frames::{updated_ref_twist, EdgeFrame, EdgeId, GhostEdge, ReferenceFrames};
 use super::gravity::lumped_vertex_masses;
+use super::hinge::Hinge;
 use super::hinge::HingeFrame;
 use super::mesh::Grading;
-use super::model::{Hinge, Rod};
+use super::model::Rod;
 use super::moment::MomentLoad;
 use super::rest_curve::RestCurve;
 use super::section::RodProperties;
 use super::state::RodState;
+use super::stretching::StretchTerm;
 use super::twisting::TwistingHinge;
 
 /// Where a rod is held.
@@ -423,11 +425,18 @@ impl RodBuilder {
             load_angles: vec![0.0; moments.len()],
         };
 
+        let polygon_arclengths: Vec<f64> = std::iter::once(0.0)
+            .chain(rest_lengths.iter().scan(0.0, |s, l| {
+                *s += l;
+                Some(*s)
+            }))
+            .collect();
         let stiffness = self.properties.stiffness;
         let mut rod = Rod {
             properties: self.properties,
             rest_lengths,
             length: total,
+            stretch_terms: Vec::new(),
             hinges: Vec::with_capacity(topology.len()),
             hinge_edges,
             vertex_masses: Vec::new(),
@@ -442,7 +451,17 @@ impl RodBuilder {
             },
             gravity: self.gravity,
             rest: rest.clone(),
+            arclengths: polygon_arclengths,
+            load_path: Default::default(),
         };
+        rod.stretch_terms = (0..n)
+            .map(|j| StretchTerm {
+                edge: j,
+                dofs: rod.edge_dofs(j),
+                rest_length: rod.rest_lengths[j],
+                ea: stiffness.ea,
+            })
+            .collect();
         rod.vertex_masses = lumped_vertex_masses(&rod.rest_lengths, self.properties.linear_density);
         rod.nodal_forces = rod
             .vertex_masses
@@ -459,6 +478,7 @@ impl RodBuilder {
             .collect();
         for (k, &(vertex, l, r, voronoi)) in topology.iter().enumerate() {
             let mut hinge = Hinge {
+                index: k,
                 vertex,
                 edges: (l, r),
                 dofs: rod.hinge_dofs(vertex, l, r),
@@ -475,7 +495,7 @@ impl RodBuilder {
             };
             // Rest strains are evaluated by the same code as deformed ones, so the rest state
             // has exactly zero bending and twisting energy and gradient.
-            let hs = rod.hinge_state(&rest, &hinge, k);
+            let hs = rod.hinge_state(&rest, &hinge);
             hinge.bending.rest_kappa = material_curvature(&HingeFrame::new(&hs));
             hinge.twisting.rest_twist = hs.twist();
             rod.hinges.push(hinge);

@@ -1,11 +1,13 @@
 //! The rod as an [`EquilibriumProblem`]: what the Newton solver sees, including step caps,
 //! scales and the mass metric.
 
-use crate::linalg::SymmetricBandMatrix;
-use crate::solver::problem::{AssemblyInfo, EquilibriumProblem};
+use crate::assembly::{Assembler, TermGroup};
+use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
+use crate::solver::problem::{EquilibriumProblem, MassMetric};
 
 use super::dofs::ROD_HALF_BANDWIDTH;
-use super::model::{Rod, Terms};
+use super::groups::ALL_GROUPS;
+use super::model::Rod;
 use super::state::RodState;
 
 /// Largest rotation (rad) of an edge direction allowed in one Newton step.
@@ -20,56 +22,68 @@ impl Rod {
     pub fn half_bandwidth(&self) -> usize {
         ROD_HALF_BANDWIDTH
     }
+
+    /// Value of free DOF `i` of `state` (m or rad).
+    pub fn dof_value(&self, state: &RodState, i: usize) -> f64 {
+        let f = self.dofs.full_index(i);
+        if f % 4 == 3 {
+            state.thetas[f / 4]
+        } else {
+            state.positions[f / 4][f % 4]
+        }
+    }
+
+    /// Values of the free DOFs of `state` (m or rad) into `out`.
+    pub fn dof_values(&self, state: &RodState, out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.dof_value(state, i);
+        }
+    }
 }
 
 impl EquilibriumProblem for Rod {
     type State = RodState;
+    type Hessian = SymmetricBandMatrix;
 
     fn n_free(&self) -> usize {
         self.dofs.n_free()
     }
 
-    type Hessian = SymmetricBandMatrix;
-
     fn new_hessian(&self) -> SymmetricBandMatrix {
         SymmetricBandMatrix::new(self.n_free(), ROD_HALF_BANDWIDTH)
     }
 
-    fn energy(&self, state: &RodState, load: f64) -> f64 {
-        self.energy_terms(state, load, Terms::ALL)
+    fn term_groups(&self) -> &[TermGroup] {
+        &ALL_GROUPS
     }
 
-    fn assemble(
+    fn assemble_selected<M: SymmetricMatrix>(
         &self,
         state: &RodState,
         load: f64,
-        grad: &mut [f64],
-        hess: &mut SymmetricBandMatrix,
-        abs_grad: &mut [f64],
-    ) -> AssemblyInfo {
-        self.assemble_terms(
-            state,
-            load,
-            Terms::ALL,
-            Some(grad),
-            Some(hess),
-            Some(abs_grad),
-        )
+        asm: &mut Assembler<'_, M>,
+    ) {
+        self.assemble_into(state, load, asm);
     }
 
-    fn dof_values(&self, state: &RodState, out: &mut [f64]) {
+    fn difference(&self, a: &RodState, b: &RodState, out: &mut [f64]) {
+        // Coordinates and edge angles are plain numbers (the angles are measured from frames
+        // transported along with the positions), so the difference is a subtraction.
         for (i, o) in out.iter_mut().enumerate() {
-            let f = self.dofs.full_index(i);
-            *o = if f % 4 == 3 {
-                state.thetas[f / 4]
-            } else {
-                state.positions[f / 4][f % 4]
-            };
+            *o = self.dof_value(a, i) - self.dof_value(b, i);
         }
+    }
+
+    fn chart(&self, state: &RodState, dx: &[f64], out: &mut RodState) {
+        self.displace_linear(state, dx, 1.0, out);
     }
 
     fn displace(&self, state: &RodState, dx: &[f64], alpha: f64, out: &mut RodState) {
         self.retract(state, dx, alpha, out);
+    }
+
+    fn impose_load(&self, state: &mut RodState, from: f64, to: f64, guess: bool) {
+        self.impose_path(state, from, to, guess);
     }
 
     fn max_step(&self, state: &RodState, dx: &[f64]) -> f64 {
@@ -107,7 +121,9 @@ impl EquilibriumProblem for Rod {
             state.positions[f / 4].amax().max(self.length)
         }
     }
+}
 
+impl MassMetric for Rod {
     fn inertia_metric(&self, i: usize) -> f64 {
         let f = self.dofs.full_index(i);
         if f % 4 == 3 {
@@ -122,5 +138,25 @@ impl EquilibriumProblem for Rod {
 
     fn eigenvalue_scale(&self) -> f64 {
         self.properties.stiffness.ei_min() / (self.properties.linear_density * self.length.powi(4))
+    }
+}
+
+#[cfg(feature = "testing")]
+impl crate::testing::RigidMotion for Rod {
+    fn rigidly_moved(
+        &self,
+        state: &RodState,
+        rotation: &nalgebra::Rotation3<f64>,
+        offset: &crate::geometry::Vec3,
+    ) -> RodState {
+        state.rigidly_transformed(rotation, offset)
+    }
+
+    fn rest(&self) -> RodState {
+        self.rest.clone()
+    }
+
+    fn internal_terms(&self) -> crate::assembly::TermSet {
+        super::groups::INTERNAL
     }
 }

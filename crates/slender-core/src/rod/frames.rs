@@ -114,6 +114,21 @@ impl ReferenceFrames {
     }
 }
 
+impl ReferenceFrames {
+    /// As [`transport_into`](Self::transport_into), in place: each edge frame is transported
+    /// to its new tangent and each reference twist continued from its previous value (both
+    /// only need the new frames and the old twist).
+    pub(crate) fn transport_in_place(&mut self, positions: &[Vec3], hinges: &[(EdgeId, EdgeId)]) {
+        for (j, f) in self.edges.iter_mut().enumerate() {
+            let t = (positions[j + 1] - positions[j]).normalize();
+            *f = f.transported_to(&t);
+        }
+        for (k, &(l, r)) in hinges.iter().enumerate() {
+            self.ref_twist[k] = updated_ref_twist(&self.edge(l), &self.edge(r), self.ref_twist[k]);
+        }
+    }
+}
+
 /// Reference twist between frames `left` and `right`, continued from `previous`: the transport
 /// of left's a₁ onto right's tangent, rotated by the previous twist, is compared with right's
 /// a₁; the small signed difference is added. This never wraps as long as each update turns

@@ -178,3 +178,69 @@ impl EdgeHessian {
         }
     }
 }
+
+/// A hinge of the rod, one term of the bending and twisting groups: its vertex, the two edges
+/// it joins (a clamp's ghost edge on one side at a clamp), its stencil and its stiffness data.
+#[derive(Clone, Debug)]
+pub struct Hinge {
+    /// Position in the rod's hinge list (indexes the reference twists).
+    pub(super) index: usize,
+    /// The shared vertex.
+    pub(super) vertex: usize,
+    /// The two edges, in the direction of the rod.
+    pub(super) edges: (super::frames::EdgeId, super::frames::EdgeId),
+    /// Free DOF of each stencil slot.
+    pub(super) dofs: crate::assembly::Stencil<HINGE_DOFS>,
+    /// Bending stiffness and rest curvature.
+    pub(super) bending: super::bending::BendingHinge,
+    /// Torsional stiffness and rest twist.
+    pub(super) twisting: super::twisting::TwistingHinge,
+}
+
+impl<'a> crate::assembly::StencilTerm<super::model::RodContext<'a>, HINGE_DOFS> for Hinge {
+    fn groups(&self) -> crate::assembly::TermSet {
+        super::groups::BENDING
+            .set()
+            .with(super::groups::TWISTING.set())
+    }
+
+    fn stencil(&self) -> &crate::assembly::Stencil<HINGE_DOFS> {
+        &self.dofs
+    }
+
+    fn evaluate(
+        &self,
+        ctx: &super::model::RodContext<'a>,
+        selected: crate::assembly::TermSet,
+        out: &mut crate::assembly::LocalDerivatives<'_, HINGE_DOFS>,
+    ) {
+        let hs = ctx.rod.hinge_state(ctx.state, self);
+        let frame = HingeFrame::new(&hs);
+        // Curvature and twist second derivatives are gathered in edge space and chained to the
+        // stencil once for both terms.
+        let mut edge = EdgeHessian::default();
+        let want_hess = out.hess.is_some();
+        if selected.contains(super::groups::BENDING) {
+            let e = self.bending.energy(
+                &frame,
+                out.grad.as_deref_mut(),
+                out.hess.as_deref_mut().map(|h| (h, &mut edge)),
+            );
+            out.add_energy(e);
+        }
+        if selected.contains(super::groups::TWISTING) {
+            let e = self.twisting.energy(
+                &frame,
+                hs.twist(),
+                out.grad.as_deref_mut(),
+                out.hess.as_deref_mut().map(|h| (h, &mut edge)),
+            );
+            out.add_energy(e);
+        }
+        if want_hess {
+            if let Some(h) = out.hess.as_deref_mut() {
+                edge.scatter_into(h);
+            }
+        }
+    }
+}

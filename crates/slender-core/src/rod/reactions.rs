@@ -65,8 +65,8 @@ impl Rod {
             g[j + 1] += g6.fixed_rows::<3>(3);
         }
         let mut gh = HingeVector::zeros();
-        for (k, hinge) in self.hinges.iter().enumerate() {
-            let hs = self.hinge_state(s, hinge, k);
+        for hinge in &self.hinges {
+            let hs = self.hinge_state(s, hinge);
             let frame = HingeFrame::new(&hs);
             gh.fill(0.0);
             hinge

@@ -28,9 +28,8 @@ impl Rod {
     pub fn hinge_strains(&self, s: &RodState) -> Vec<HingeStrain> {
         self.hinges
             .iter()
-            .enumerate()
-            .map(|(k, hinge)| {
-                let hs = self.hinge_state(s, hinge, k);
+            .map(|hinge| {
+                let hs = self.hinge_state(s, hinge);
                 let kappa = material_curvature(&HingeFrame::new(&hs));
                 let l = hinge.bending.voronoi_length;
                 HingeStrain {

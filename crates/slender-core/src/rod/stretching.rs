@@ -37,3 +37,45 @@ pub fn stretching_energy(
 }
 
 use std::ops::{AddAssign, SubAssign};
+
+/// Stretching of one edge: a term of the [`STRETCHING`](super::groups::STRETCHING) group on
+/// the stencil [x_j (3), x_{j+1} (3)].
+#[derive(Clone, Debug)]
+pub struct StretchTerm {
+    /// The edge j.
+    pub(super) edge: usize,
+    /// Free DOFs of x_j and x_{j+1}.
+    pub(super) dofs: crate::assembly::Stencil<6>,
+    /// Rest length |ē| (m).
+    pub(super) rest_length: f64,
+    /// EA (N).
+    pub(super) ea: f64,
+}
+
+impl<'a> crate::assembly::StencilTerm<super::model::RodContext<'a>, 6> for StretchTerm {
+    fn groups(&self) -> crate::assembly::TermSet {
+        super::groups::STRETCHING.set()
+    }
+
+    fn stencil(&self) -> &crate::assembly::Stencil<6> {
+        &self.dofs
+    }
+
+    fn evaluate(
+        &self,
+        ctx: &super::model::RodContext<'a>,
+        _selected: crate::assembly::TermSet,
+        out: &mut crate::assembly::LocalDerivatives<'_, 6>,
+    ) {
+        let x = &ctx.state.positions;
+        let e = stretching_energy(
+            &x[self.edge],
+            &x[self.edge + 1],
+            self.rest_length,
+            self.ea,
+            out.grad.as_deref_mut(),
+            out.hess.as_deref_mut(),
+        );
+        out.add_energy(e);
+    }
+}

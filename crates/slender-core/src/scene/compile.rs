@@ -372,11 +372,15 @@ impl Scene {
             names.push(shell.name.clone());
             shells.push(shell);
         }
+        let mut solver = self.solver;
+        solver
+            .polish_iterations
+            .get_or_insert(super::solve::SCENE_POLISH_ITERATIONS);
         Ok(CompiledScene {
             rods,
             shells,
             motion: self.motion.clone(),
-            solver: self.solver.clone(),
+            solver,
             gravity: self.gravity,
         })
     }

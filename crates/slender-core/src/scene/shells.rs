@@ -6,8 +6,9 @@
 
 use serde::Serialize;
 
+use crate::assembly::TermSet;
 use crate::geometry::Vec3;
-use crate::shell::{rod_predictor, Shell, ShellBuilder, ShellProperties, ShellState, ShellTerms};
+use crate::shell::{rod_predictor, Shell, ShellBuilder, ShellProperties, ShellState};
 use crate::solver::{EquilibriumSolver, SolveReport, SolverParams};
 
 use super::error::SceneError;
@@ -223,9 +224,9 @@ fn clamp_force(shell: &Shell, state: &ShellState) -> Vec3 {
             let x = s.positions[v][c];
             let mut central = |step: f64| {
                 s.positions[v][c] = x + step;
-                let up = shell.energy_terms(&s, 1.0, ShellTerms::ALL);
+                let up = shell.energy_terms(&s, 1.0, TermSet::ALL);
                 s.positions[v][c] = x - step;
-                let down = shell.energy_terms(&s, 1.0, ShellTerms::ALL);
+                let down = shell.energy_terms(&s, 1.0, TermSet::ALL);
                 s.positions[v][c] = x;
                 (up - down) / (2.0 * step)
             };

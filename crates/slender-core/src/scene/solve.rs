@@ -4,71 +4,19 @@
 use serde::Serialize;
 
 use crate::geometry::Vec3;
-use crate::linalg::{BandLdlt, SymmetricBandMatrix};
-use crate::rod::Terms;
-use crate::rod::{Rod, RodState, SupportMotion};
-use crate::solver::{
-    EquilibriumProblem, EquilibriumSolver, SolveReport, SolveStatus, SolverParams,
-};
+use crate::rod::{Rod, RodLoadPath, RodState, SupportMotion};
+use crate::solver::{EquilibriumSolver, SolveReport, SolveStatus};
 
 use super::compile::{CompiledRod, CompiledScene};
 use super::spec::{MotionStage, SupportKind};
 
-/// Largest rotation (rad) of a support per solved piece of a motion step.
+/// Largest rotation (rad) of a support per load step of a motion step.
 pub(super) const MAX_PIECE_ROTATION: f64 = 0.2;
-/// Largest translation per solved piece, as a fraction of the moving segment's length.
+/// Largest translation per load step, as a fraction of the moving segment's length.
 pub(super) const MAX_PIECE_TRANSLATION: f64 = 0.05;
-/// Smallest piece of a motion step, relative to the first piece tried, before giving up.
-const MIN_PIECE: f64 = 1.0 / 1024.0;
-/// Newton iterations run past convergence to bring the residual down to round-off.
-const POLISH_ITERATIONS: usize = 3;
-
-/// Largest residual force (N; generalized forces of angles divided by the rod length).
-fn max_residual(rod: &Rod, s: &RodState) -> f64 {
-    let mut g = vec![0.0; rod.n_free()];
-    rod.assemble_terms(s, 1.0, Terms::ALL, Some(&mut g), None, None);
-    (0..g.len())
-        .map(|i| g[i].abs() / rod.force_length(i))
-        .fold(0.0, f64::max)
-}
-
-/// A few full Newton steps past convergence, each kept only if it lowers the residual. The
-/// reactions balance the loads up to the sum of the free DOFs' residuals, so the balance is
-/// only as good as the residual; the solver's own test stops at a conservative round-off
-/// floor, and its line search cannot see energy changes below round-off.
-fn polish(rod: &Rod, state: &mut RodState, report: &mut SolveReport) {
-    if !report.converged() {
-        return;
-    }
-    let n = rod.n_free();
-    let mut g = vec![0.0; n];
-    let mut h = SymmetricBandMatrix::new(n, rod.half_bandwidth());
-    let mut ldlt = BandLdlt::new();
-    let mut trial = state.clone();
-    let before = max_residual(rod, state);
-    let mut best = before;
-    for _ in 0..POLISH_ITERATIONS {
-        rod.assemble_terms(state, 1.0, Terms::ALL, Some(&mut g), Some(&mut h), None);
-        if ldlt.factorize(&h, 0.0).is_err() {
-            break;
-        }
-        let mut dx: Vec<f64> = g.iter().map(|x| -x).collect();
-        ldlt.solve_in_place(&mut dx);
-        rod.displace(state, &dx, 1.0, &mut trial);
-        let r = max_residual(rod, &trial);
-        if !(r < best) {
-            break;
-        }
-        best = r;
-        std::mem::swap(state, &mut trial);
-    }
-    if best < before {
-        report.residual = best;
-        if report.relative_residual > 0.0 {
-            report.relative_residual *= best / before;
-        }
-    }
-}
+/// Newton steps past convergence that bring the residual of a scene down to round-off, so
+/// that the reactions balance the loads (the default of `solver.polish_iterations` in scenes).
+pub const SCENE_POLISH_ITERATIONS: usize = 3;
 
 /// The reaction of one support.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -146,6 +94,8 @@ pub struct SceneStep {
 /// The solving state of a scene: one equilibrium state per rod segment.
 pub struct SceneSolver<'a> {
     scene: &'a CompiledScene,
+    /// The segments' rods (own copies: support motion sets their load paths).
+    rods: Vec<Vec<Rod>>,
     states: Vec<Vec<RodState>>,
     reports: Vec<Vec<SolveReport>>,
     solvers: Vec<Vec<EquilibriumSolver<RodState>>>,
@@ -155,6 +105,7 @@ pub struct SceneSolver<'a> {
 impl<'a> SceneSolver<'a> {
     /// Solves the loaded scene (step 0) from the rest state, ramping the loads.
     pub fn new(scene: &'a CompiledScene) -> (Self, SceneStep) {
+        let mut rods = Vec::new();
         let mut states = Vec::new();
         let mut reports = Vec::new();
         let mut solvers = Vec::new();
@@ -163,14 +114,14 @@ impl<'a> SceneSolver<'a> {
             let mut rep = Vec::new();
             let mut sol = Vec::new();
             for seg in &rod.segments {
-                let rest = seg.rod.rest_state().clone();
-                let mut solver = EquilibriumSolver::new(&seg.rod, &rest, scene.solver.clone());
-                let mut s = solver.solve(&seg.rod, &rest, 0.0, 1.0);
-                polish(&seg.rod, &mut s.state, &mut s.report);
-                st.push(s.state);
-                rep.push(s.report);
+                let mut state = seg.rod.rest_state().clone();
+                let mut solver = EquilibriumSolver::new(&seg.rod, &state, scene.solver);
+                let report = solver.solve_in_place(&seg.rod, &mut state, 0.0, 1.0);
+                st.push(state);
+                rep.push(report);
                 sol.push(solver);
             }
+            rods.push(rod.segments.iter().map(|s| s.rod.clone()).collect());
             states.push(st);
             reports.push(rep);
             solvers.push(sol);
@@ -182,6 +133,7 @@ impl<'a> SceneSolver<'a> {
             .collect();
         let me = Self {
             scene,
+            rods,
             states,
             reports,
             solvers,
@@ -220,27 +172,45 @@ impl<'a> SceneSolver<'a> {
             if held.is_empty() {
                 continue;
             }
-            // The pivot is the support's vertex; for a clip it is on this segment.
+            // The pivot is the support's vertex; for a clip it is on this segment. The step is
+            // a load path of the segment (λ from 0 to 1 moves the support), solved by the
+            // solver's continuation in steps no larger than MAX_PIECE_*.
             let pivot_local = support.vertex - seg.first_vertex;
             let length = seg.rod.length();
             let first = ((rotation.norm() / MAX_PIECE_ROTATION)
                 .max(translation.norm() / (MAX_PIECE_TRANSLATION * length))
                 .ceil() as usize)
                 .max(1);
-            let (state, report, n) = advance(
-                &seg.rod,
-                &mut self.solvers[stage.rod][si],
-                &self.states[stage.rod][si],
-                &held,
-                pivot_local,
+            let rod = &mut self.rods[stage.rod][si];
+            let state = &mut self.states[stage.rod][si];
+            let motion = SupportMotion {
+                vertices: held,
+                pivot: state.positions()[pivot_local],
                 rotation,
                 translation,
-                first,
-            );
-            pieces += n;
-            let (mut state, mut report) = (state, report);
-            polish(&seg.rod, &mut state, &mut report);
-            self.states[stage.rod][si] = state;
+            };
+            let report = match rod.set_load_path(RodLoadPath::support_motion(vec![motion])) {
+                Ok(()) => {
+                    let solver = &mut self.solvers[stage.rod][si];
+                    let user = solver.params;
+                    let piece = 1.0 / first as f64;
+                    solver.params.initial_load_step = user.initial_load_step.min(piece);
+                    solver.params.max_load_step = user.max_load_step.min(piece);
+                    let report = solver.solve_in_place(rod, state, 0.0, 1.0);
+                    solver.params = user;
+                    report
+                }
+                Err(e) => {
+                    let mut r = self.reports[stage.rod][si].clone();
+                    r.status = SolveStatus::NotConverged {
+                        reason: e.to_string(),
+                    };
+                    r
+                }
+            };
+            // Back to the plain load ramp; the state holds the moved supports.
+            let _ = rod.set_load_path(RodLoadPath::default());
+            pieces += report.load_steps;
             self.reports[stage.rod][si] = report;
         }
         self.snapshot(step, Some(stage_index), (k + 1) as f64 * inv, pieces)
@@ -278,89 +248,6 @@ impl<'a> SceneSolver<'a> {
             converged,
         }
     }
-}
-
-/// Moves a support of `rod` by (rotation, translation) in pieces, solving after each; halves
-/// a piece that does not converge. Returns the final state, the last report and the pieces.
-#[allow(clippy::too_many_arguments)]
-fn advance(
-    rod: &Rod,
-    solver: &mut EquilibriumSolver<RodState>,
-    start: &RodState,
-    held: &[usize],
-    pivot_vertex: usize,
-    rotation: Vec3,
-    translation: Vec3,
-    first_pieces: usize,
-) -> (RodState, SolveReport, usize) {
-    let mut current = start.clone();
-    let mut done = 0.0;
-    let mut piece = 1.0 / first_pieces as f64;
-    let mut pieces = 0;
-    let mut iterations = 0;
-    loop {
-        let f = piece.min(1.0 - done);
-        let motion = SupportMotion {
-            vertices: held.to_vec(),
-            pivot: current.positions()[pivot_vertex],
-            rotation: rotation * f,
-            translation: translation * f,
-        };
-        let guess = match rod.with_support_moved(&current, &motion) {
-            Ok(g) => g,
-            Err(e) => return (current, failed(rod, solver, start, e.to_string()), pieces),
-        };
-        let sol = solver.solve(rod, &guess, 1.0, 1.0);
-        iterations += sol.report.iterations;
-        if sol.report.converged() {
-            current = sol.state;
-            done += f;
-            pieces += 1;
-            if done >= 1.0 - 1e-12 {
-                let mut report = sol.report;
-                report.iterations = iterations;
-                report.load_steps = pieces;
-                return (current, report, pieces);
-            }
-            if sol.report.iterations <= solver.params.fast_iterations {
-                piece = (piece * 2.0).min(1.0 / first_pieces as f64);
-            }
-        } else {
-            piece *= 0.5;
-            if piece < MIN_PIECE / first_pieces as f64 {
-                let reason = format!(
-                    "support motion: piece fell below {:.3e} of the step at {:.4} of it; last Newton: {}",
-                    MIN_PIECE / first_pieces as f64,
-                    done,
-                    match &sol.report.status {
-                        SolveStatus::NotConverged { reason } => reason.as_str(),
-                        SolveStatus::Converged => "",
-                    }
-                );
-                let mut report = sol.report;
-                report.status = SolveStatus::NotConverged { reason };
-                report.iterations = iterations;
-                return (current, report, pieces);
-            }
-        }
-    }
-}
-
-fn failed(
-    rod: &Rod,
-    solver: &mut EquilibriumSolver<RodState>,
-    state: &RodState,
-    reason: String,
-) -> SolveReport {
-    let p = SolverParams {
-        max_iterations: 1,
-        ..solver.params.clone()
-    };
-    let saved = std::mem::replace(&mut solver.params, p);
-    let mut r = solver.solve(rod, state, 1.0, 1.0).report;
-    solver.params = saved;
-    r.status = SolveStatus::NotConverged { reason };
-    r
 }
 
 fn arr(v: Vec3) -> [f64; 3] {

@@ -12,6 +12,9 @@ use super::dofs::ShellDofs;
 use super::gravity::lumped_vertex_masses;
 use super::membrane::FaceRest;
 use super::mesh::StripMesh;
+use crate::assembly::FIXED;
+
+use super::model::FaceTerm;
 use super::model::{Shell, ShellProperties};
 
 /// Builds a [`Shell`]: a flat rectangular strip (length along x, width along z, rest normal
@@ -164,16 +167,22 @@ impl ShellBuilder {
             mesh,
             properties: p,
             rest,
+            faces: Vec::new(),
             bbar,
             dofs,
             half_bandwidth: 0,
             vertex_masses,
             edge_inertia,
             gravity: self.gravity,
-            clamp,
             load_path: Default::default(),
             grading: self.grading,
         };
+        shell.faces = (0..shell.mesh.faces.len())
+            .map(|f| FaceTerm {
+                face: f,
+                dofs: shell.face_stencil(f).map(|i| i.unwrap_or(FIXED)),
+            })
+            .collect();
         let mut bw = 0;
         for f in 0..shell.mesh.faces.len() {
             let idx: Vec<usize> = shell.face_stencil(f).iter().flatten().copied().collect();

@@ -1,10 +1,12 @@
 //! The shell as an [`EquilibriumProblem`]: step caps, scales and the mass metric.
 
-use crate::linalg::SparseSymmetricMatrix;
-use crate::solver::problem::{AssemblyInfo, EquilibriumProblem};
+use crate::assembly::{Assembler, TermGroup};
+use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
+use crate::solver::problem::{EquilibriumProblem, MassMetric};
 
 use super::dofs::DofKind;
-use super::model::{Shell, ShellTerms};
+use super::groups::ALL_GROUPS;
+use super::model::Shell;
 use super::state::ShellState;
 
 /// Largest change of an edge angle φ (rad) in one Newton step: keeps α = θ/2 ± φ away from
@@ -15,44 +17,34 @@ const MAX_EDGE_CHANGE: f64 = 0.5;
 
 impl EquilibriumProblem for Shell {
     type State = ShellState;
+    type Hessian = SparseSymmetricMatrix;
 
     fn n_free(&self) -> usize {
         self.dofs.n_free()
     }
 
-    type Hessian = SparseSymmetricMatrix;
-
     fn new_hessian(&self) -> SparseSymmetricMatrix {
         self.sparse_hessian()
     }
 
-    fn energy(&self, state: &ShellState, load: f64) -> f64 {
-        self.energy_terms(state, load, ShellTerms::ALL)
+    fn term_groups(&self) -> &[TermGroup] {
+        &ALL_GROUPS
     }
 
-    fn assemble(
+    fn assemble_selected<M: SymmetricMatrix>(
         &self,
         state: &ShellState,
         load: f64,
-        grad: &mut [f64],
-        hess: &mut SparseSymmetricMatrix,
-        abs_grad: &mut [f64],
-    ) -> AssemblyInfo {
-        self.assemble_terms(
-            state,
-            load,
-            ShellTerms::ALL,
-            Some(grad),
-            Some(hess),
-            Some(abs_grad),
-        )
+        asm: &mut Assembler<'_, M>,
+    ) {
+        self.assemble_into(state, load, asm);
     }
 
-    fn dof_values(&self, state: &ShellState, out: &mut [f64]) {
+    fn difference(&self, a: &ShellState, b: &ShellState, out: &mut [f64]) {
         for (i, o) in out.iter_mut().enumerate() {
             *o = match self.dofs.split(self.dofs.full(i)) {
-                DofKind::Position(v, c) => state.positions[v][c],
-                DofKind::Angle(e) => state.angles[e],
+                DofKind::Position(v, c) => a.positions[v][c] - b.positions[v][c],
+                DofKind::Angle(e) => a.angles[e] - b.angles[e],
             };
         }
     }
@@ -64,6 +56,12 @@ impl EquilibriumProblem for Shell {
                 DofKind::Position(v, c) => out.positions[v][c] += alpha * d,
                 DofKind::Angle(e) => out.angles[e] += alpha * d,
             }
+        }
+    }
+
+    fn impose_load(&self, state: &mut ShellState, _from: f64, to: f64, _guess: bool) {
+        if let Some(clamp) = self.load_path.clamp_at(to) {
+            self.set_clamp(clamp, state);
         }
     }
 
@@ -109,7 +107,9 @@ impl EquilibriumProblem for Shell {
             DofKind::Angle(e) => state.angles[e].abs().max(std::f64::consts::PI),
         }
     }
+}
 
+impl MassMetric for Shell {
     fn inertia_metric(&self, i: usize) -> f64 {
         match self.dofs.split(self.dofs.full(i)) {
             DofKind::Position(v, _) => self.vertex_masses[v],
@@ -120,5 +120,33 @@ impl EquilibriumProblem for Shell {
     fn eigenvalue_scale(&self) -> f64 {
         let p = &self.properties;
         p.bending_stiffness() / (p.density * p.thickness * p.length.powi(4))
+    }
+}
+
+#[cfg(feature = "testing")]
+impl crate::testing::RigidMotion for Shell {
+    fn rigidly_moved(
+        &self,
+        state: &ShellState,
+        rotation: &nalgebra::Rotation3<f64>,
+        offset: &crate::geometry::Vec3,
+    ) -> ShellState {
+        ShellState {
+            positions: state
+                .positions
+                .iter()
+                .map(|x| rotation * x + offset)
+                .collect(),
+            angles: state.angles.clone(),
+            clamp: state.clamp.moved(rotation, offset),
+        }
+    }
+
+    fn rest(&self) -> ShellState {
+        self.rest_state()
+    }
+
+    fn internal_terms(&self) -> crate::assembly::TermSet {
+        super::groups::INTERNAL
     }
 }

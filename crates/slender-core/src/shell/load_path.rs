@@ -13,11 +13,11 @@ use super::clamp::Clamp;
 /// The meaning of the load factor λ ∈ [0, 1] of a [`Shell`](super::Shell).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum LoadPath {
-    /// Gravity scaled by λ; the clamp stays where [`Shell::set_clamp_rotation`](super::Shell::set_clamp_rotation) put it.
+    /// Gravity scaled by λ; the clamp stays where the state has it.
     #[default]
     Gravity,
-    /// Full gravity; the clamp turned about x to σ = `from` + λ·(`to` − `from`) (rad). The
-    /// clamped vertices follow σ whatever the state holds for them.
+    /// Full gravity; the clamp turned about x to σ = `from` + λ·(`to` − `from`) (rad): the solver
+    /// moves the state's clamp there before each step (`EquilibriumProblem::impose_load`).
     ClampRotation {
         /// σ at λ = 0 (rad).
         from: f64,
@@ -27,16 +27,19 @@ pub enum LoadPath {
 }
 
 impl LoadPath {
-    /// (gravity factor, clamp) at load factor `load`, with `clamp` the shell's own clamp.
-    pub fn at(&self, load: f64, clamp: Clamp) -> (f64, Clamp) {
+    /// Factor on gravity at load factor `load`.
+    pub fn gravity_factor(&self, load: f64) -> f64 {
         match *self {
-            LoadPath::Gravity => (load, clamp),
-            LoadPath::ClampRotation { from, to } => (
-                1.0,
-                Clamp {
-                    sigma: from + load * (to - from),
-                },
-            ),
+            LoadPath::Gravity => load,
+            LoadPath::ClampRotation { .. } => 1.0,
+        }
+    }
+
+    /// The clamp at load factor `load`, or `None` if the path does not move it.
+    pub fn clamp_at(&self, load: f64) -> Option<Clamp> {
+        match *self {
+            LoadPath::Gravity => None,
+            LoadPath::ClampRotation { from, to } => Some(Clamp::about_x(from + load * (to - from))),
         }
     }
 }

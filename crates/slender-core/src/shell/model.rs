@@ -1,10 +1,11 @@
 //! The shell model: mesh, material, clamp, gravity, and assembly of energy, gradient and
 //! Hessian over the free DOFs.
 
-use std::borrow::Cow;
+use std::ops::AddAssign;
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
+use crate::assembly::{Assembler, LocalDerivatives, Stencil, StencilTerm, TermSet};
 use crate::geometry::Vec3;
 use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
 use crate::rod::Grading;
@@ -14,48 +15,11 @@ use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
 use super::clamp::Clamp;
 use super::dofs::ShellDofs;
 use super::gravity::gravity_energy;
+use super::groups;
 use super::load_path::LoadPath;
 use super::membrane::{membrane_energy, FaceRest};
 use super::mesh::StripMesh;
 use super::state::ShellState;
-
-/// Which energy terms to include (for tests of single terms).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ShellTerms {
-    /// St-Venant–Kirchhoff membrane.
-    pub membrane: bool,
-    /// Mid-edge bending (including the clamp's director term).
-    pub bending: bool,
-    /// Self-weight.
-    pub gravity: bool,
-}
-
-impl ShellTerms {
-    /// Every term.
-    pub const ALL: Self = Self {
-        membrane: true,
-        bending: true,
-        gravity: true,
-    };
-    /// Membrane only.
-    pub const MEMBRANE: Self = Self {
-        membrane: true,
-        bending: false,
-        gravity: false,
-    };
-    /// Bending only.
-    pub const BENDING: Self = Self {
-        membrane: false,
-        bending: true,
-        gravity: false,
-    };
-    /// Gravity only.
-    pub const GRAVITY: Self = Self {
-        membrane: false,
-        bending: false,
-        gravity: true,
-    };
-}
 
 /// Material and geometry of a built shell (SI units).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,13 +68,13 @@ pub struct Shell {
     pub(crate) mesh: StripMesh,
     pub(crate) properties: ShellProperties,
     pub(crate) rest: Vec<FaceRest>,
+    pub(crate) faces: Vec<FaceTerm>,
     pub(crate) bbar: Vec<Vector3<f64>>,
     pub(crate) dofs: ShellDofs,
     pub(crate) half_bandwidth: usize,
     pub(crate) vertex_masses: Vec<f64>,
     pub(crate) edge_inertia: Vec<f64>,
     pub(crate) gravity: Vec3,
-    pub(crate) clamp: Clamp,
     pub(crate) load_path: LoadPath,
     pub(crate) grading: Grading,
 }
@@ -141,14 +105,14 @@ impl Shell {
         self.grading
     }
 
-    /// The clamp.
-    pub fn clamp(&self) -> Clamp {
-        self.clamp
+    /// Turns the clamp of `state` about x to `sigma` (rad) and moves its clamped vertices with it.
+    pub fn set_clamp_rotation(&self, sigma: f64, state: &mut ShellState) {
+        self.set_clamp(Clamp::about_x(sigma), state);
     }
 
-    /// Rotates the clamp about x to `sigma` (rad) and moves the clamped vertices of `state` with it.
-    pub fn set_clamp_rotation(&mut self, sigma: f64, state: &mut ShellState) {
-        self.clamp = Clamp { sigma };
+    /// Puts the clamp of `state` at pose `clamp` and moves its clamped vertices with it.
+    pub fn set_clamp(&self, clamp: Clamp, state: &mut ShellState) {
+        state.clamp = clamp;
         self.apply_clamp(state);
     }
 
@@ -157,17 +121,15 @@ impl Shell {
         self.load_path
     }
 
-    /// Sets what the load factor drives. With [`LoadPath::ClampRotation`], call
-    /// [`set_clamp_rotation`](Self::set_clamp_rotation) with the final angle afterwards, so that
-    /// the shell's clamp and the state's clamped vertices agree again.
+    /// Sets what the load factor drives.
     pub fn set_load_path(&mut self, path: LoadPath) {
         self.load_path = path;
     }
 
-    /// Puts the clamped vertices of `state` where the clamp holds them.
+    /// Puts the clamped vertices of `state` where its clamp holds them.
     pub fn apply_clamp(&self, state: &mut ShellState) {
         for &v in &self.mesh.clamp_vertices {
-            state.positions[v] = self.clamp.position(&self.mesh.rest_positions[v]);
+            state.positions[v] = state.clamp.position(&self.mesh.rest_positions[v]);
         }
     }
 
@@ -176,6 +138,7 @@ impl Shell {
         let mut s = ShellState {
             positions: self.mesh.rest_positions.clone(),
             angles: vec![0.0; self.mesh.edges.len()],
+            clamp: Clamp::default(),
         };
         self.apply_clamp(&mut s);
         s
@@ -259,159 +222,144 @@ impl Shell {
         })
     }
 
-    /// Energy (J) of the selected terms at load factor `load`.
-    pub fn energy_terms(&self, s: &ShellState, load: f64, terms: ShellTerms) -> f64 {
-        self.assemble_terms::<SparseSymmetricMatrix>(s, load, terms, None, None, None)
-            .energy
+    /// Energy (J) of the selected term groups (see [`groups`](super::groups)) at load
+    /// factor `load`.
+    pub fn energy_terms(&self, s: &ShellState, load: f64, terms: TermSet) -> f64 {
+        let mut asm = Assembler::<SparseSymmetricMatrix>::energy_only(terms);
+        self.assemble_into(s, load, &mut asm);
+        asm.finish().energy
     }
 
-    /// Energy, gradient (free DOFs) and Hessian of the selected terms at load factor `load`.
-    /// `grad` and `abs_grad` are overwritten; `hess` is zeroed first.
+    /// Energy, gradient (free DOFs) and Hessian of the selected term groups at load factor
+    /// `load`. `grad` and `abs_grad` are overwritten; `hess` is zeroed first.
     pub fn assemble_terms<M: SymmetricMatrix>(
         &self,
         s: &ShellState,
         load: f64,
-        terms: ShellTerms,
-        mut grad: Option<&mut [f64]>,
-        mut hess: Option<&mut M>,
-        mut abs_grad: Option<&mut [f64]>,
+        terms: TermSet,
+        grad: Option<&mut [f64]>,
+        hess: Option<&mut M>,
+        abs_grad: Option<&mut [f64]>,
     ) -> AssemblyInfo {
-        if let Some(g) = grad.as_deref_mut() {
-            g.fill(0.0);
-        }
-        if let Some(a) = abs_grad.as_deref_mut() {
-            a.fill(0.0);
-        }
-        if let Some(h) = hess.as_deref_mut() {
-            h.set_zero();
-        }
-        let want_grad = grad.is_some() || abs_grad.is_some();
-        let want_hess = hess.is_some();
-        let mut info = AssemblyInfo::default();
-        let (gravity_factor, clamp) = self.load_path.at(load, self.clamp);
-        // The clamped vertices follow the clamp of the load path (a copy only while the clamp
-        // turns: on the gravity path the state already holds them).
-        let positions: Cow<[Vec3]> = match self.load_path {
-            LoadPath::Gravity => Cow::Borrowed(&s.positions),
-            LoadPath::ClampRotation { .. } => {
-                let mut p = s.positions.clone();
-                for &v in &self.mesh.clamp_vertices {
-                    p[v] = clamp.position(&self.mesh.rest_positions[v]);
-                }
-                Cow::Owned(p)
-            }
+        let mut asm = Assembler::new(terms, grad, hess, abs_grad);
+        self.assemble_into(s, load, &mut asm);
+        asm.finish()
+    }
+
+    /// Runs the shell's term groups through `asm`: membrane and bending per face, then the
+    /// self-weight.
+    pub fn assemble_into<M: SymmetricMatrix>(
+        &self,
+        s: &ShellState,
+        load: f64,
+        asm: &mut Assembler<'_, M>,
+    ) {
+        let gravity_factor = self.load_path.gravity_factor(load);
+        let positions = &s.positions;
+        let ctx = ShellContext {
+            shell: self,
+            positions,
+            state: s,
+            clamp: s.clamp,
         };
-        let (lambda, mu) = self.properties.lame();
-        let h = self.properties.thickness;
-        for (f, tri) in self.mesh.faces.iter().enumerate() {
-            let q = [&positions[tri[0]], &positions[tri[1]], &positions[tri[2]]];
-            let idx = self.face_stencil(f);
-            if terms.membrane {
-                let mut g9 = SVector::<f64, 9>::zeros();
-                let mut h9 = SMatrix::<f64, 9, 9>::zeros();
-                let e = membrane_energy(
-                    q,
-                    &self.rest[f],
-                    h,
-                    lambda,
-                    mu,
-                    want_grad.then_some(&mut g9),
-                    want_hess.then_some(&mut h9),
-                );
-                info.energy += e;
-                info.energy_magnitude += e.abs();
-                scatter(
-                    &idx[..9],
-                    g9.as_slice(),
-                    |a, b| h9[(a, b)],
-                    &mut grad,
-                    &mut abs_grad,
-                    &mut hess,
-                );
-            }
-            if terms.bending {
-                let mut g21 = SVector::<f64, FACE_VARS>::zeros();
-                let mut h21 = SMatrix::<f64, FACE_VARS, FACE_VARS>::zeros();
-                let e = bending_energy(
-                    q,
-                    &self.directors(f, &positions, s, clamp),
-                    &self.rest[f],
-                    &self.bbar[f],
-                    h,
-                    lambda,
-                    mu,
-                    want_grad.then_some(&mut g21),
-                    want_hess.then_some(&mut h21),
-                );
-                info.energy += e;
-                info.energy_magnitude += e.abs();
-                scatter(
-                    &idx,
-                    g21.as_slice(),
-                    |a, b| h21[(a, b)],
-                    &mut grad,
-                    &mut abs_grad,
-                    &mut hess,
-                );
-            }
-        }
-        if terms.gravity {
+        asm.terms(&ctx, &self.faces);
+        if asm.selects(groups::GRAVITY) {
             let g = self.gravity * gravity_factor;
-            let e = gravity_energy(&self.vertex_masses, &positions, &g);
-            info.energy += e;
-            info.energy_magnitude += e.abs();
+            let e = gravity_energy(&self.vertex_masses, positions, &g);
             let e_rest = gravity_energy(&self.vertex_masses, &self.mesh.rest_positions, &g);
-            info.external_work = e_rest - e;
+            asm.external_energy(e, e_rest - e);
             for (v, m) in self.vertex_masses.iter().enumerate() {
                 for c in 0..3 {
                     let Some(i) = self.dofs.vertex(v, c) else {
                         continue;
                     };
                     let force = m * g[c];
-                    info.external_force = info.external_force.max(force.abs());
-                    if let Some(gr) = grad.as_deref_mut() {
-                        gr[i] -= force;
-                    }
-                    if let Some(a) = abs_grad.as_deref_mut() {
-                        a[i] += force.abs();
-                    }
+                    asm.external_force(force.abs());
+                    asm.generalized_force(i, force);
                 }
             }
         }
-        info
     }
 }
 
-/// Adds a local gradient and Hessian (over `idx`, None = fixed) to the global ones.
-fn scatter<M: SymmetricMatrix>(
-    idx: &[Option<usize>],
-    g: &[f64],
-    h: impl Fn(usize, usize) -> f64,
-    grad: &mut Option<&mut [f64]>,
-    abs_grad: &mut Option<&mut [f64]>,
-    hess: &mut Option<&mut M>,
-) {
-    for (a, ia) in idx.iter().enumerate() {
-        let Some(i) = *ia else { continue };
-        if let Some(gr) = grad.as_deref_mut() {
-            gr[i] += g[a];
-        }
-        if let Some(ab) = abs_grad.as_deref_mut() {
-            ab[i] += g[a].abs();
-        }
-        if let Some(hm) = hess.as_deref_mut() {
-            for (b, ib) in idx.iter().enumerate().take(a + 1) {
-                let Some(j) = *ib else { continue };
-                let v = h(a, b);
-                if v != 0.0 {
-                    // Two local slots can map to one global DOF only on the diagonal (a = b).
-                    if i == j && a != b {
-                        hm.add(i, j, 2.0 * v);
-                    } else {
-                        hm.add(i, j, v);
-                    }
-                }
+/// What a shell term is evaluated at.
+pub struct ShellContext<'a> {
+    /// The shell.
+    pub shell: &'a Shell,
+    /// Vertex positions (m).
+    pub positions: &'a [Vec3],
+    /// The state (edge angles).
+    pub state: &'a ShellState,
+    /// The clamp (the state's).
+    pub clamp: Clamp,
+}
+
+/// One face of the shell, a term of the membrane and bending groups on the 21-slot stencil
+/// (q₀, q₁, q₂, the three opposite vertices, the three edge angles; the membrane uses the
+/// first nine).
+#[derive(Clone, Debug)]
+pub struct FaceTerm {
+    /// The face.
+    pub(crate) face: usize,
+    /// Free DOF of each slot.
+    pub(crate) dofs: Stencil<FACE_VARS>,
+}
+
+impl<'a> StencilTerm<ShellContext<'a>, FACE_VARS> for FaceTerm {
+    fn groups(&self) -> TermSet {
+        groups::MEMBRANE.set().with(groups::BENDING.set())
+    }
+
+    fn stencil(&self) -> &Stencil<FACE_VARS> {
+        &self.dofs
+    }
+
+    fn evaluate(
+        &self,
+        ctx: &ShellContext<'a>,
+        selected: TermSet,
+        out: &mut LocalDerivatives<'_, FACE_VARS>,
+    ) {
+        let shell = ctx.shell;
+        let f = self.face;
+        let tri = shell.mesh.faces[f];
+        let p = ctx.positions;
+        let q = [&p[tri[0]], &p[tri[1]], &p[tri[2]]];
+        let (lambda, mu) = shell.properties.lame();
+        let h = shell.properties.thickness;
+        if selected.contains(groups::MEMBRANE) {
+            let mut g9 = SVector::<f64, 9>::zeros();
+            let mut h9 = SMatrix::<f64, 9, 9>::zeros();
+            let e = membrane_energy(
+                q,
+                &shell.rest[f],
+                h,
+                lambda,
+                mu,
+                out.grad.is_some().then_some(&mut g9),
+                out.hess.is_some().then_some(&mut h9),
+            );
+            out.add_energy(e);
+            if let Some(g) = out.grad.as_deref_mut() {
+                g.fixed_rows_mut::<9>(0).add_assign(&g9);
             }
+            if let Some(hm) = out.hess.as_deref_mut() {
+                hm.fixed_view_mut::<9, 9>(0, 0).add_assign(&h9);
+            }
+        }
+        if selected.contains(groups::BENDING) {
+            let e = bending_energy(
+                q,
+                &shell.directors(f, p, ctx.state, ctx.clamp),
+                &shell.rest[f],
+                &shell.bbar[f],
+                h,
+                lambda,
+                mu,
+                out.grad.as_deref_mut(),
+                out.hess.as_deref_mut(),
+            );
+            out.add_energy(e);
         }
     }
 }

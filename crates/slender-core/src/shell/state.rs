@@ -2,6 +2,8 @@
 
 use crate::geometry::Vec3;
 
+use super::clamp::Clamp;
+
 /// Positions (m) of all vertices (clamped ones included) and angles (rad) of all edges
 /// (clamped edges keep 0: their director is the clamp normal).
 #[derive(Clone, Debug, PartialEq)]
@@ -10,4 +12,6 @@ pub struct ShellState {
     pub positions: Vec<Vec3>,
     /// Edge director angles φ (rad).
     pub angles: Vec<f64>,
+    /// Pose of the clamp (its prescribed DOFs: the clamped vertices and the clamp normal).
+    pub clamp: Clamp,
 }

@@ -1,8 +1,12 @@
-//! Adaptive load stepping with a secant predictor (design.md §4.4), and the solver facade.
+//! The load path: adaptive continuation in the load factor λ with a secant predictor
+//! (design.md §4.4), and the solver facade. This is the one step controller of slender.
 //!
-//! The user never chooses load steps: the solver first tries the whole load change in one
-//! step, halves the increment when Newton fails, doubles it after fast steps, and predicts
-//! each step's start by extrapolating the last two converged states.
+//! What λ drives is the model's business: a gravity ramp, a clamp rotation, the prescribed
+//! motion of supports (see [`EquilibriumProblem::impose_load`]). The user never chooses steps:
+//! the solver first tries the whole change in one step (or `initial_load_step` of it), halves
+//! the increment when Newton fails, doubles it after fast steps (up to `max_load_step`), and
+//! predicts each step's start by extrapolating the last two converged states with the model's
+//! [`difference`](EquilibriumProblem::difference) (a log map on rotation DOFs).
 
 use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
 
@@ -10,7 +14,7 @@ use super::newton::{newton, IterateMeasures, NewtonWorkspace};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
 use super::report::{SolveReport, SolveStatus};
-use super::stability::{lowest_mode, LowestMode};
+use super::stability::{is_stable, lowest_mode_with, EigenWorkspace, LowestMode};
 
 /// A state and the report that says what it is.
 #[derive(Clone, Debug)]
@@ -30,15 +34,21 @@ const SNAP_MAX_STEP: f64 = 1.0 / 32.0;
 /// Relative accuracy of the reported smallest eigenvalue.
 const EIGEN_TOLERANCE: f64 = 1e-6;
 
-/// An equilibrium solver with reusable buffers for one problem size.
+/// An equilibrium solver with reusable buffers for one problem size: after the first solve,
+/// [`solve_in_place`](Self::solve_in_place) allocates nothing on the way to a converged,
+/// stable equilibrium.
 #[derive(Clone, Debug)]
 pub struct EquilibriumSolver<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     /// Parameters.
     pub params: SolverParams,
     ws: NewtonWorkspace<S, M>,
     predictor: Vec<f64>,
-    values: [Vec<f64>; 2],
     scaled: M,
+    previous: S,
+    candidate: S,
+    eigen: EigenWorkspace,
+    mode: LowestMode,
+    mode_valid: bool,
 }
 
 impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
@@ -53,8 +63,16 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             params,
             ws: NewtonWorkspace::new(problem, template),
             predictor: vec![0.0; n],
-            values: [vec![0.0; n], vec![0.0; n]],
             scaled: problem.new_hessian(),
+            previous: template.clone(),
+            candidate: template.clone(),
+            eigen: EigenWorkspace::default(),
+            mode: LowestMode {
+                value: 0.0,
+                normalized: 0.0,
+                shape: Vec::with_capacity(n),
+            },
+            mode_valid: false,
         }
     }
 
@@ -67,24 +85,53 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         from: f64,
         to: f64,
     ) -> Solution<S> {
-        let params = self.params.clone();
+        let mut state = start.clone();
+        let report = self.solve_in_place(problem, &mut state, from, to);
+        Solution {
+            state,
+            report,
+            lowest_mode: self.lowest_mode().cloned(),
+        }
+    }
+
+    /// The lowest mode of the last solve's final Hessian, if it converged and
+    /// `compute_lambda_min` is set.
+    pub fn lowest_mode(&self) -> Option<&LowestMode> {
+        self.mode_valid.then_some(&self.mode)
+    }
+
+    /// The Newton workspace (its Hessian and factorization are those of the last iterate).
+    pub fn workspace(&self) -> &NewtonWorkspace<S, M> {
+        &self.ws
+    }
+
+    /// As [`solve`](Self::solve), updating `state` in place: on return it is the equilibrium at
+    /// `to` if the report says converged, otherwise the last converged load step (or the start,
+    /// with the prescribed DOFs where the model puts them at the load reached).
+    pub fn solve_in_place<P: EquilibriumProblem<State = S, Hessian = M>>(
+        &mut self,
+        problem: &P,
+        state: &mut S,
+        from: f64,
+        to: f64,
+    ) -> SolveReport {
+        let params = self.params;
         let span = to - from;
-        let mut current = start.clone();
         let mut load = from;
-        let mut step = params.initial_load_step * span;
+        let mut step = params.initial_load_step.min(params.max_load_step) * span;
         let mut previous_step: Option<f64> = None;
         let mut iterations = 0;
         let mut load_steps = 0;
         let mut rejected = 0;
         let mut last: IterateMeasures;
         let mut failure: Option<String> = None;
-        let mut candidate = start.clone();
         let mut snapped_at: Option<f64> = None;
         let mut snaps = 0;
+        self.mode_valid = false;
 
         // Span 0 (e.g. a warm re-solve at the same load): a single Newton solve.
         if span == 0.0 {
-            let out = newton(problem, &mut current, to, &params, &mut self.ws);
+            let out = newton(problem, state, to, &params, &mut self.ws);
             iterations += out.iterations;
             last = out.last;
             if !out.converged {
@@ -99,16 +146,14 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     step = remaining;
                 }
                 let target = load + step;
-                // Secant predictor: extrapolate along the last converged increment.
-                candidate.clone_from(&current);
-                if let Some(prev) = previous_step {
-                    let ratio = step / prev;
-                    for i in 0..self.predictor.len() {
-                        self.predictor[i] = (self.values[1][i] - self.values[0][i]) * ratio;
-                    }
-                    problem.displace(&current, &self.predictor, 1.0, &mut candidate);
-                }
-                let mut out = newton(problem, &mut candidate, target, &params, &mut self.ws);
+                self.predict(
+                    problem,
+                    state,
+                    previous_step.map(|p| step / p),
+                    load,
+                    target,
+                );
+                let mut out = newton(problem, &mut self.candidate, target, &params, &mut self.ws);
                 iterations += out.iterations;
                 if !out.converged
                     && step.abs() <= SNAP_MAX_STEP * span.abs()
@@ -121,12 +166,12 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     // long minimization over a large load step could settle in a distant,
                     // spurious minimum instead (e.g. a kinked coil).
                     snapped_at = Some(load);
-                    candidate.clone_from(&current);
+                    self.predict(problem, state, None, load, target);
                     let long = SolverParams {
                         max_iterations: params.snap_iterations,
-                        ..params.clone()
+                        ..params
                     };
-                    out = newton(problem, &mut candidate, target, &long, &mut self.ws);
+                    out = newton(problem, &mut self.candidate, target, &long, &mut self.ws);
                     iterations += out.iterations;
                     if out.converged {
                         snaps += 1;
@@ -135,16 +180,19 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                 last = out.last;
                 if out.converged {
                     load_steps += 1;
-                    problem.dof_values(&current, &mut self.values[0]);
-                    problem.dof_values(&candidate, &mut self.values[1]);
-                    std::mem::swap(&mut current, &mut candidate);
+                    // previous ← state, state ← candidate (buffers rotate, nothing is copied).
+                    std::mem::swap(&mut self.previous, state);
+                    std::mem::swap(state, &mut self.candidate);
                     load = target;
                     previous_step = Some(step);
                     if load == to {
                         break;
                     }
                     if out.iterations <= params.fast_iterations {
-                        step *= 2.0;
+                        step = (step * 2.0).clamp(
+                            -params.max_load_step * span.abs(),
+                            params.max_load_step * span.abs(),
+                        );
                     }
                 } else {
                     rejected += 1;
@@ -159,15 +207,18 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     }
                 }
             }
-            // After a failure, measure the returned state at the *requested* load, so the
-            // residual shows that it is not an equilibrium of the problem that was asked.
+            // After a failure, measure the returned state at the *requested* load (with its
+            // prescribed DOFs there), so that the residual shows that it is not an
+            // equilibrium of the problem that was asked.
             if failure.is_some() {
-                let mut probe = current.clone();
+                self.candidate.clone_from(state);
+                problem.impose_load(&mut self.candidate, load, to, false);
                 let p = SolverParams {
                     max_iterations: 0,
-                    ..params.clone()
+                    polish_iterations: None,
+                    ..params
                 };
-                last = newton(problem, &mut probe, to, &p, &mut self.ws).last;
+                last = newton(problem, &mut self.candidate, to, &p, &mut self.ws).last;
             }
         }
 
@@ -179,24 +230,24 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         };
         // After newton() the workspace holds the Hessian at the last iterate, which is the
         // returned state when converged (the loop returns before stepping).
-        let lowest = if failure.is_none() && params.compute_lambda_min {
+        if failure.is_none() && params.compute_lambda_min {
             // On convergence the workspace still holds the unshifted factorization of the
             // final Hessian; if it is positive definite, inverse iteration can reuse it.
-            let positive_definite =
-                matches!(last.inertia, Some(i) if i.negative == 0 && i.zero == 0);
-            lowest_mode(
+            let positive_definite = last.inertia.is_some_and(|i| is_stable(&i));
+            self.mode_valid = lowest_mode_with(
                 problem,
                 &self.ws.hess,
                 positive_definite,
                 &mut self.scaled,
                 &mut self.ws.ldlt,
                 EIGEN_TOLERANCE,
+                &mut self.eigen,
+                &mut self.mode,
             )
-            .ok()
-        } else {
-            None
-        };
-        let report = SolveReport {
+            .is_ok();
+        }
+        let lowest = self.lowest_mode();
+        SolveReport {
             status,
             load_reached: load,
             iterations,
@@ -213,13 +264,32 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             energy_decrement: last.decrement,
             energy: last.energy,
             inertia: last.inertia,
-            lambda_min: lowest.as_ref().map(|m| m.value),
-            lambda_min_normalized: lowest.as_ref().map(|m| m.normalized),
-        };
-        Solution {
-            state: current,
-            report,
-            lowest_mode: lowest,
+            lambda_min: lowest.map(|m| m.value),
+            lambda_min_normalized: lowest.map(|m| m.normalized),
         }
+    }
+
+    /// Puts into `self.candidate` the start of the step from `load` to `target`: the current
+    /// state extrapolated along the last converged increment scaled by `ratio` (the secant
+    /// predictor, when a previous step exists), with the prescribed DOFs moved to `target`.
+    fn predict<P: EquilibriumProblem<State = S, Hessian = M>>(
+        &mut self,
+        problem: &P,
+        state: &S,
+        ratio: Option<f64>,
+        load: f64,
+        target: f64,
+    ) {
+        match ratio {
+            Some(ratio) => {
+                problem.difference(state, &self.previous, &mut self.predictor);
+                for p in self.predictor.iter_mut() {
+                    *p *= ratio;
+                }
+                problem.displace(state, &self.predictor, 1.0, &mut self.candidate);
+            }
+            None => self.candidate.clone_from(state),
+        }
+        problem.impose_load(&mut self.candidate, load, target, ratio.is_none());
     }
 }

@@ -11,6 +11,6 @@ pub mod stability;
 pub use continuation::{EquilibriumSolver, Solution};
 pub use newton::{newton, NewtonOutcome, NewtonWorkspace};
 pub use params::SolverParams;
-pub use problem::{AssemblyInfo, EquilibriumProblem};
+pub use problem::{AssemblyInfo, EquilibriumProblem, MassMetric};
 pub use report::{SolveReport, SolveStatus};
-pub use stability::{lowest_mode, LowestMode};
+pub use stability::{is_stable, lowest_mode, lowest_mode_with, EigenWorkspace, LowestMode};

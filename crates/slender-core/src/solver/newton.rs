@@ -1,12 +1,13 @@
 //! The Newton loop at a fixed load: exact Hessian, inertia from the LDLᵀ pivots, diagonal
 //! shift when the Hessian is indefinite, step caps and Armijo backtracking (design.md §4.2).
 
+use crate::assembly::{Assembler, TermSet};
 use crate::linalg::{Inertia, SymmetricBandMatrix, SymmetricFactor, SymmetricMatrix};
 
 use super::line_search::{armijo_backtracking, LineSearch};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
-use super::stability::lowest_mode;
+use super::stability::{lowest_mode_with, EigenWorkspace, LowestMode};
 
 /// Buffers reused across Newton iterations and solves: nothing is allocated per iteration.
 #[derive(Clone, Debug)]
@@ -19,6 +20,10 @@ pub struct NewtonWorkspace<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     pub(crate) ldlt: M::Factor,
     pub(crate) trial: S,
     pub(crate) scaled: M,
+    /// Gradient at a polishing trial (the workspace keeps the accepted state's).
+    pub(crate) trial_grad: Vec<f64>,
+    pub(crate) eigen: EigenWorkspace,
+    pub(crate) shift_mode: LowestMode,
 }
 
 impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
@@ -35,6 +40,13 @@ impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
             hess,
             ldlt: M::Factor::default(),
             trial: template.clone(),
+            trial_grad: vec![0.0; n],
+            eigen: EigenWorkspace::default(),
+            shift_mode: LowestMode {
+                value: 0.0,
+                normalized: 0.0,
+                shape: Vec::with_capacity(n),
+            },
         }
     }
 
@@ -104,42 +116,11 @@ pub fn newton<P: EquilibriumProblem>(
     let mut shift = 0.0_f64;
     let mut last = IterateMeasures::default();
     for iteration in 0..=params.max_iterations {
-        let info = problem.assemble(state, load, &mut ws.grad, &mut ws.hess, &mut ws.abs_grad);
-        let mut residual: f64 = 0.0;
-        let mut floor: f64 = 0.0;
-        for i in 0..n {
-            let len = problem.force_length(i);
-            residual = residual.max(ws.grad[i].abs() / len);
-            let noise =
-                ws.abs_grad[i] + ws.hess.diagonal(i).abs() * problem.dof_magnitude(state, i);
-            floor = floor.max(params.roundoff_factor * eps * noise / len);
-        }
-        // The unshifted factorization gives the inertia and, if it exists, the Newton step.
-        let inertia = ws.ldlt.factorize(&ws.hess, 0.0).ok();
-        let mut decrement = f64::INFINITY;
-        let mut tiny_step = false;
-        if inertia.is_some() {
-            for i in 0..n {
-                ws.dx[i] = -ws.grad[i];
-            }
-            ws.ldlt.solve_in_place(&mut ws.dx);
-            decrement = -dot(&ws.grad, &ws.dx);
-            decrement = decrement.abs();
-            tiny_step =
-                (0..n).all(|i| ws.dx[i].abs() <= TINY_STEP * problem.dof_magnitude(state, i));
-        }
-        last = IterateMeasures {
-            residual,
-            floor,
-            external_force: info.external_force,
-            decrement,
-            energy: info.energy,
-            inertia,
-        };
-        let force_ok = residual <= (params.force_tolerance * info.external_force).max(floor);
-        let energy_ok =
-            decrement <= params.energy_tolerance * info.external_work.abs() || tiny_step;
-        if force_ok && energy_ok {
+        let (measures, info) = measure(problem, state, load, params, ws);
+        last = measures;
+        let inertia = last.inertia;
+        if converged(&last, &info, params, problem, state, ws) {
+            polish(problem, state, load, params, ws, &mut last);
             return NewtonOutcome {
                 converged: true,
                 iterations: iteration,
@@ -147,6 +128,7 @@ pub fn newton<P: EquilibriumProblem>(
                 last,
             };
         }
+        let residual = last.residual;
         if iteration == params.max_iterations {
             break;
         }
@@ -154,7 +136,7 @@ pub fn newton<P: EquilibriumProblem>(
             return failed(iteration, "non-finite residual", last);
         }
 
-        let positive_definite = matches!(inertia, Some(i) if i.negative == 0 && i.zero == 0);
+        let positive_definite = inertia.is_some_and(|i| i.is_positive_definite());
         if positive_definite
             || (inertia.is_some() && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
         {
@@ -173,9 +155,19 @@ pub fn newton<P: EquilibriumProblem>(
             for i in 0..n {
                 ws.diag[i] = problem.inertia_metric(i);
             }
-            let lambda = lowest_mode(problem, &ws.hess, false, &mut ws.scaled, &mut ws.ldlt, 1e-3)
-                .map(|m| m.value)
-                .unwrap_or(0.0);
+            let lambda = match lowest_mode_with(
+                problem,
+                &ws.hess,
+                false,
+                &mut ws.scaled,
+                &mut ws.ldlt,
+                1e-3,
+                &mut ws.eigen,
+                &mut ws.shift_mode,
+            ) {
+                Ok(()) => ws.shift_mode.value,
+                Err(_) => 0.0,
+            };
             shift = shift
                 .max(2.0 * lambda.min(0.0).abs())
                 .max(MIN_SHIFT * ws.hess.max_abs_diagonal() / max_entry(&ws.diag));
@@ -224,6 +216,130 @@ pub fn newton<P: EquilibriumProblem>(
         &format!("no convergence in {} iterations", params.max_iterations),
         last,
     )
+}
+
+/// Assembles at `state`, factors the unshifted Hessian (its inertia, and the Newton step in
+/// `ws.dx` when it factors) and measures the residual, its round-off floor and the decrement.
+fn measure<P: EquilibriumProblem>(
+    problem: &P,
+    state: &P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+) -> (IterateMeasures, crate::solver::AssemblyInfo) {
+    let n = problem.n_free();
+    let info = problem.assemble(state, load, &mut ws.grad, &mut ws.hess, &mut ws.abs_grad);
+    let (residual, floor) =
+        residual_and_floor(problem, state, params, &ws.grad, &ws.abs_grad, |i| {
+            ws.hess.diagonal(i)
+        });
+    // The unshifted factorization gives the inertia and, if it exists, the Newton step.
+    let inertia = ws.ldlt.factorize(&ws.hess, 0.0).ok();
+    let mut decrement = f64::INFINITY;
+    if inertia.is_some() {
+        for i in 0..n {
+            ws.dx[i] = -ws.grad[i];
+        }
+        ws.ldlt.solve_in_place(&mut ws.dx);
+        decrement = dot(&ws.grad, &ws.dx).abs();
+    }
+    (
+        IterateMeasures {
+            residual,
+            floor,
+            external_force: info.external_force,
+            decrement,
+            energy: info.energy,
+            inertia,
+        },
+        info,
+    )
+}
+
+/// Largest residual force (N) and its round-off floor (N) from a gradient and its Σ|term|.
+fn residual_and_floor<P: EquilibriumProblem>(
+    problem: &P,
+    state: &P::State,
+    params: &SolverParams,
+    grad: &[f64],
+    abs_grad: &[f64],
+    diagonal: impl Fn(usize) -> f64,
+) -> (f64, f64) {
+    let eps = f64::EPSILON;
+    let mut residual: f64 = 0.0;
+    let mut floor: f64 = 0.0;
+    for i in 0..grad.len() {
+        let len = problem.force_length(i);
+        residual = residual.max(grad[i].abs() / len);
+        let noise = abs_grad[i] + diagonal(i).abs() * problem.dof_magnitude(state, i);
+        floor = floor.max(params.roundoff_factor * eps * noise / len);
+    }
+    (residual, floor)
+}
+
+/// The convergence test (design.md §4.3): the residual force is at most
+/// max(force_tolerance·‖f_ext‖, round-off floor) *and* either the Newton decrement is at most
+/// energy_tolerance·|work of the loads| or the Newton step is below round-off.
+fn converged<P: EquilibriumProblem>(
+    last: &IterateMeasures,
+    info: &crate::solver::AssemblyInfo,
+    params: &SolverParams,
+    problem: &P,
+    state: &P::State,
+    ws: &NewtonWorkspace<P::State, P::Hessian>,
+) -> bool {
+    let force_ok = last.residual <= (params.force_tolerance * info.external_force).max(last.floor);
+    if !force_ok {
+        return false;
+    }
+    let tiny_step = last.inertia.is_some()
+        && (0..ws.dx.len()).all(|i| ws.dx[i].abs() <= TINY_STEP * problem.dof_magnitude(state, i));
+    last.decrement <= params.energy_tolerance * info.external_work.abs() || tiny_step
+}
+
+/// After convergence: up to `params.polish_iterations` full Newton steps, each kept only if it
+/// lowers the residual. The reactions balance the loads up to the sum of the free DOFs'
+/// residuals, so a balance at round-off needs a residual at round-off, below what the
+/// convergence test (a conservative floor) asks and below what a line search on the energy
+/// can see.
+fn polish<P: EquilibriumProblem>(
+    problem: &P,
+    state: &mut P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+    last: &mut IterateMeasures,
+) {
+    let steps = params.polish_iterations.unwrap_or(0);
+    for _ in 0..steps {
+        if last.inertia.is_none() {
+            return;
+        }
+        problem.displace(state, &ws.dx, 1.0, &mut ws.trial);
+        let mut asm = Assembler::<P::Hessian>::new(
+            TermSet::ALL,
+            Some(&mut ws.trial_grad),
+            None,
+            Some(&mut ws.abs_grad),
+        );
+        problem.assemble_selected(&ws.trial, load, &mut asm);
+        asm.finish();
+        let (r, _) = residual_and_floor(
+            problem,
+            &ws.trial,
+            params,
+            &ws.trial_grad,
+            &ws.abs_grad,
+            |_| 0.0,
+        );
+        if !(r < last.residual) {
+            // Rejected: the workspace still holds the state's gradient, Hessian and factors.
+            return;
+        }
+        std::mem::swap(state, &mut ws.trial);
+        let (m, _) = measure(problem, state, load, params, ws);
+        *last = m;
+    }
 }
 
 fn max_entry(v: &[f64]) -> f64 {

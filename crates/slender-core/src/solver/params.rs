@@ -8,7 +8,7 @@ use crate::error::ModelError;
 ///
 /// The convergence tests are scale-invariant: nothing here has units, so the same defaults
 /// work for a 1 mm wire and a 10 m hose, for Γ = 10⁻³ and for Γ = 10⁴.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(default, deny_unknown_fields)]
 pub struct SolverParams {
@@ -32,6 +32,9 @@ pub struct SolverParams {
     pub initial_load_step: f64,
     /// Smallest load step fraction before load stepping gives up. Default 1e-6.
     pub min_load_step: f64,
+    /// Largest load step as a fraction of the whole load change: steps are doubled after fast
+    /// convergence up to this. Default 1.
+    pub max_load_step: f64,
     /// Load steps are doubled after a step that converged in at most this many iterations.
     /// Default 5.
     pub fast_iterations: usize,
@@ -40,6 +43,11 @@ pub struct SolverParams {
     /// Newton iterations allowed when a small failed load step is retried as a snap past a
     /// fold of the loading path. Default 300.
     pub snap_iterations: usize,
+    /// Full Newton steps taken after convergence, each kept only if it lowers the residual,
+    /// to bring the residual from the convergence tolerance down to round-off (reactions then
+    /// balance the loads to round-off). `None`: the caller's default (0 for benchmarks, 3 for
+    /// scenes).
+    pub polish_iterations: Option<usize>,
 }
 
 impl Default for SolverParams {
@@ -53,9 +61,11 @@ impl Default for SolverParams {
             max_backtracks: 40,
             initial_load_step: 1.0,
             min_load_step: 1e-6,
+            max_load_step: 1.0,
             fast_iterations: 5,
             compute_lambda_min: true,
             snap_iterations: 300,
+            polish_iterations: None,
         }
     }
 }
@@ -82,6 +92,20 @@ impl SolverParams {
                 "initial_load_step",
                 self.initial_load_step,
                 "in (0, 1]",
+            ));
+        }
+        if !(self.max_load_step > 0.0 && self.max_load_step <= 1.0) {
+            return Err(ModelError::parameter(
+                "max_load_step",
+                self.max_load_step,
+                "in (0, 1]",
+            ));
+        }
+        if self.polish_iterations.is_some_and(|p| p > 100) {
+            return Err(ModelError::parameter(
+                "polish_iterations",
+                self.polish_iterations.unwrap_or(0) as f64,
+                "in 0..=100",
             ));
         }
         if self.max_iterations == 0 {

@@ -1,5 +1,13 @@
 //! What the Newton solver needs from a model.
+//!
+//! A model is a DOF map, a list of term groups and a retraction: it implements
+//! [`EquilibriumProblem`] by running its term groups through an
+//! [`Assembler`](crate::assembly::Assembler) ([`EquilibriumProblem::assemble_selected`]), and
+//! says how a state moves along a step ([`EquilibriumProblem::displace`]), how two states differ
+//! ([`EquilibriumProblem::difference`], a log map on rotation DOFs) and what the load factor
+//! drives ([`EquilibriumProblem::impose_load`]). Energy and assembly of all terms come for free.
 
+use crate::assembly::{Assembler, TermGroup, TermSet};
 use crate::linalg::SymmetricMatrix;
 
 /// Per-assembly quantities the convergence tests use.
@@ -15,31 +23,60 @@ pub struct AssemblyInfo {
     pub external_force: f64,
 }
 
+/// The inertia a model attaches to its DOFs: the metric of its eigenvalue problems.
+///
+/// The smallest Hessian eigenvalue is reported in this metric (H v = λ M v), so that it is a
+/// squared natural frequency (1/s²) and does not depend on the mesh; the Newton solver's
+/// regularization shifts by multiples of M for the same reason.
+pub trait MassMetric {
+    /// Inertia attached to free DOF `i` (kg, or kg m² for angles).
+    fn inertia_metric(&self, i: usize) -> f64;
+
+    /// Reference value of eigenvalues (1/s²) used to normalize λ_min (e.g. EI/(ρA L⁴)).
+    fn eigenvalue_scale(&self) -> f64;
+}
+
 /// A discretized structure whose equilibria the solver finds: an energy over a state with
 /// exact gradient and Hessian in the free DOFs. The Hessian storage (banded for rods, sparse
 /// for shells) is the problem's choice; the solver only assembles, factors and solves.
 ///
-/// States may carry more than the DOF vector (a rod carries reference frames). Every state a
-/// problem hands out is consistent: [`displace`](Self::displace) produces a new state with
-/// its frames adapted, and [`assemble`](Self::assemble) is exact at that state.
-pub trait EquilibriumProblem {
-    /// Configuration type (positions, angles and whatever caches derive from them).
+/// States may carry more than the DOF vector (a rod carries reference frames, a Cosserat rod
+/// rotations). Every state a problem hands out is consistent: [`displace`](Self::displace)
+/// produces a new state with its caches adapted, and the derivatives are exact at that state.
+pub trait EquilibriumProblem: MassMetric {
+    /// Configuration type (positions, angles, rotations and whatever caches derive from them).
     type State: Clone;
-
-    /// Number of free DOFs.
-    fn n_free(&self) -> usize;
 
     /// Hessian storage and factorization.
     type Hessian: SymmetricMatrix;
 
+    /// Number of free DOFs.
+    fn n_free(&self) -> usize;
+
     /// A zero Hessian with the problem's pattern (n_free × n_free).
     fn new_hessian(&self) -> Self::Hessian;
 
-    /// Energy (J) at load factor `load` (external loads scaled by it).
-    fn energy(&self, state: &Self::State, load: f64) -> f64;
+    /// The model's term groups (each a bit of a [`TermSet`]), in assembly order.
+    fn term_groups(&self) -> &[TermGroup];
+
+    /// Runs the term groups selected in `asm` at load factor `load` through the assembler, for
+    /// any Hessian storage whose pattern holds the model's.
+    fn assemble_selected<M: SymmetricMatrix>(
+        &self,
+        state: &Self::State,
+        load: f64,
+        asm: &mut Assembler<'_, M>,
+    );
+
+    /// Energy (J) at load factor `load` (internal energy minus the work of the loads).
+    fn energy(&self, state: &Self::State, load: f64) -> f64 {
+        let mut asm = Assembler::<Self::Hessian>::energy_only(TermSet::ALL);
+        self.assemble_selected(state, load, &mut asm);
+        asm.finish().energy
+    }
 
     /// Gradient into `grad` (length [`n_free`](Self::n_free)), Hessian into `hess` (zeroed
-    /// here), and Σ_elements |element gradient| per DOF into `abs_grad` (the round-off scale).
+    /// here), and Σ over terms of |term gradient| per DOF into `abs_grad` (the round-off scale).
     fn assemble(
         &self,
         state: &Self::State,
@@ -47,13 +84,37 @@ pub trait EquilibriumProblem {
         grad: &mut [f64],
         hess: &mut Self::Hessian,
         abs_grad: &mut [f64],
-    ) -> AssemblyInfo;
+    ) -> AssemblyInfo {
+        let mut asm = Assembler::new(TermSet::ALL, Some(grad), Some(hess), Some(abs_grad));
+        self.assemble_selected(state, load, &mut asm);
+        asm.finish()
+    }
 
-    /// Values of the free DOFs of `state` (m or rad) into `out`.
-    fn dof_values(&self, state: &Self::State, out: &mut [f64]);
+    /// `out` = `a` ⊖ `b`: the step in the free DOFs that carries `b` to `a` (the log map on
+    /// rotation DOFs, plain differences on coordinates), so that
+    /// `displace(b, difference(a, b), 1)` ≈ `a`. Predictors extrapolate with it; subtracting
+    /// raw DOF values would be wrong for rotations.
+    fn difference(&self, a: &Self::State, b: &Self::State, out: &mut [f64]);
 
-    /// `out` = `state` moved by `alpha·dx` (free DOFs), with caches adapted.
+    /// `out` = `state` moved by `alpha·dx` (free DOFs) by the model's retraction, with caches
+    /// adapted. Prescribed DOFs (supports) are left where `state` has them.
     fn displace(&self, state: &Self::State, dx: &[f64], alpha: f64, out: &mut Self::State);
+
+    /// The chart whose derivatives [`assemble`](Self::assemble) returns: the energy's gradient
+    /// and Hessian are those of dx ↦ E(chart(state, dx)) at dx = 0. Defaults to
+    /// [`displace`](Self::displace); a model whose retraction differs from its chart at second
+    /// order overrides it (finite-difference checks use the chart).
+    fn chart(&self, state: &Self::State, dx: &[f64], out: &mut Self::State) {
+        self.displace(state, dx, 1.0, out);
+    }
+
+    /// Moves the prescribed DOFs of `state` (supports driven by the load path) from their
+    /// values at load factor `from` to those at `to`. With `guess`, free DOFs may be moved too,
+    /// as a first guess of the equilibrium at `to` (used when no secant predictor exists).
+    /// Default: the load factor drives no prescribed DOF.
+    fn impose_load(&self, state: &mut Self::State, from: f64, to: f64, guess: bool) {
+        let _ = (state, from, to, guess);
+    }
 
     /// Largest α ∈ (0, 1] such that `alpha·dx` respects the model's step caps (e.g. no edge
     /// turns by more than π/4 in one step).
@@ -65,12 +126,4 @@ pub trait EquilibriumProblem {
 
     /// Typical magnitude of DOF `i` (m or rad), for the round-off floor of the gradient.
     fn dof_magnitude(&self, state: &Self::State, i: usize) -> f64;
-
-    /// Inertia attached to DOF `i` (kg, or kg m² for angles): the metric in which the smallest
-    /// Hessian eigenvalue is reported, so that it is a squared natural frequency (1/s²) and
-    /// does not depend on the mesh.
-    fn inertia_metric(&self, i: usize) -> f64;
-
-    /// Reference value of eigenvalues (1/s²) used to normalize λ_min (e.g. EI/(ρA L⁴)).
-    fn eigenvalue_scale(&self) -> f64;
 }

@@ -65,6 +65,6 @@ impl SolveReport {
         if !self.converged() {
             return None;
         }
-        self.inertia.map(|i| i.negative == 0 && i.zero == 0)
+        self.inertia.map(|i| super::stability::is_stable(&i))
     }
 }

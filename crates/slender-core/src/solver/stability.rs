@@ -1,14 +1,21 @@
-//! The smallest eigenvalue of the Hessian in the mass metric: the stability margin.
+//! Stability of an equilibrium: the one predicate, and the smallest Hessian eigenvalue in the
+//! mass metric (the stability margin).
 //!
 //! A clamped structure has no rigid-body null space, so an equilibrium is stable exactly when
-//! the Hessian is positive definite. The inertia says *whether*; the smallest eigenvalue says
-//! *how far*. Raw eigenvalues mix units (N/m for coordinates, N m for angles) and scale with
-//! the mesh, so we solve H v = λ M v with the lumped mass matrix M: λ is the square of the
-//! lowest natural frequency (1/s²), a physical and mesh-independent quantity.
+//! the Hessian is positive definite ([`is_stable`]). The inertia says *whether*; the smallest
+//! eigenvalue says *how far*. Raw eigenvalues mix units (N/m for coordinates, N m for angles)
+//! and scale with the mesh, so we solve H v = λ M v with the lumped mass matrix M: λ is the
+//! square of the lowest natural frequency (1/s²), a physical and mesh-independent quantity.
 
-use crate::linalg::{smallest_eigenpair, FactorError, SymmetricFactor, SymmetricMatrix};
+use crate::linalg::{smallest_eigenpair, FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
 
-use super::problem::EquilibriumProblem;
+use super::problem::{EquilibriumProblem, MassMetric};
+
+/// The stability predicate: an equilibrium is stable iff its Hessian has no negative and no
+/// (numerically) zero eigenvalue. Every "is this equilibrium stable?" in slender asks this.
+pub fn is_stable(inertia: &Inertia) -> bool {
+    inertia.negative == 0 && inertia.zero == 0
+}
 
 /// Lowest eigenpair of H v = λ M v.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,8 +28,35 @@ pub struct LowestMode {
     pub shape: Vec<f64>,
 }
 
+/// Buffers of [`lowest_mode_with`]: allocated once per problem size, so that warm re-solves
+/// that only need inverse iteration allocate nothing.
+#[derive(Clone, Debug, Default)]
+pub struct EigenWorkspace {
+    mass: Vec<f64>,
+    inv_sqrt_m: Vec<f64>,
+    v: [Vec<f64>; BLOCK],
+    w: [Vec<f64>; BLOCK],
+}
+
+impl EigenWorkspace {
+    fn prepare<P: MassMetric>(&mut self, problem: &P, n: usize) {
+        self.mass.resize(n, 0.0);
+        self.inv_sqrt_m.resize(n, 0.0);
+        for i in 0..n {
+            let m = problem.inertia_metric(i);
+            self.mass[i] = m;
+            self.inv_sqrt_m[i] = 1.0 / m.sqrt();
+        }
+        for k in 0..BLOCK {
+            self.v[k].resize(n, 0.0);
+            self.w[k].resize(n, 0.0);
+        }
+    }
+}
+
 /// Computes the lowest mode of `hess` (assembled by `problem`), using `scaled` and `ldlt` as
-/// scratch. `rel_tol` is the relative accuracy requested of λ.
+/// scratch. `rel_tol` is the relative accuracy requested of λ. Allocates its buffers; see
+/// [`lowest_mode_with`] for the allocation-free variant.
 ///
 /// If `positive_definite_factor` is true, `ldlt` must hold the LDLᵀ factorization of `hess`
 /// (no shift) with no negative pivot: then inverse iteration (v ← H⁻¹ M v with the Rayleigh
@@ -37,28 +71,50 @@ pub fn lowest_mode<P: EquilibriumProblem>(
     ldlt: &mut <P::Hessian as SymmetricMatrix>::Factor,
     rel_tol: f64,
 ) -> Result<LowestMode, FactorError> {
-    if positive_definite_factor {
-        if let Some(mode) = inverse_iteration(problem, hess.dim(), ldlt, rel_tol) {
-            return Ok(mode);
-        }
-    }
+    let mut ws = EigenWorkspace::default();
+    let mut mode = LowestMode {
+        value: 0.0,
+        normalized: 0.0,
+        shape: Vec::new(),
+    };
+    lowest_mode_with(
+        problem,
+        hess,
+        positive_definite_factor,
+        scaled,
+        ldlt,
+        rel_tol,
+        &mut ws,
+        &mut mode,
+    )?;
+    Ok(mode)
+}
+
+/// As [`lowest_mode`], writing into `mode` (its shape buffer reused) with the buffers of `ws`.
+#[allow(clippy::too_many_arguments)]
+pub fn lowest_mode_with<P: EquilibriumProblem>(
+    problem: &P,
+    hess: &P::Hessian,
+    positive_definite_factor: bool,
+    scaled: &mut P::Hessian,
+    ldlt: &mut <P::Hessian as SymmetricMatrix>::Factor,
+    rel_tol: f64,
+    ws: &mut EigenWorkspace,
+    mode: &mut LowestMode,
+) -> Result<(), FactorError> {
     let n = hess.dim();
-    let inv_sqrt_m: Vec<f64> = (0..n)
-        .map(|i| 1.0 / problem.inertia_metric(i).sqrt())
-        .collect();
-    hess.congruence_scaled(&inv_sqrt_m, scaled);
+    ws.prepare(problem, n);
+    if positive_definite_factor && inverse_iteration(problem, n, ldlt, rel_tol, ws, mode) {
+        return Ok(());
+    }
+    hess.congruence_scaled(&ws.inv_sqrt_m, scaled);
     let est = smallest_eigenpair::<P::Hessian>(scaled, ldlt, rel_tol)?;
-    let shape = est
-        .vector
-        .iter()
-        .zip(&inv_sqrt_m)
-        .map(|(v, s)| v * s)
-        .collect();
-    Ok(LowestMode {
-        value: est.value,
-        normalized: est.value / problem.eigenvalue_scale(),
-        shape,
-    })
+    mode.shape.clear();
+    mode.shape
+        .extend(est.vector.iter().zip(&ws.inv_sqrt_m).map(|(v, s)| v * s));
+    mode.value = est.value;
+    mode.normalized = est.value / problem.eigenvalue_scale();
+    Ok(())
 }
 
 /// Block size of the subspace iteration: near-degenerate pairs (in-plane and out-of-plane
@@ -67,25 +123,26 @@ pub fn lowest_mode<P: EquilibriumProblem>(
 const BLOCK: usize = 3;
 
 /// Subspace (block inverse) iteration with Rayleigh–Ritz for H v = λ M v, reusing an existing
-/// factorization of a positive definite H. Returns `None` if it has not converged.
+/// factorization of a positive definite H. Returns false if it has not converged.
 fn inverse_iteration<P: EquilibriumProblem>(
     problem: &P,
     n: usize,
     ldlt: &<P::Hessian as SymmetricMatrix>::Factor,
     rel_tol: f64,
-) -> Option<LowestMode> {
+    ws: &mut EigenWorkspace,
+    mode: &mut LowestMode,
+) -> bool {
     use nalgebra::{Matrix3, SymmetricEigen};
     if n < BLOCK {
-        return None;
+        return false;
     }
-    let mass: Vec<f64> = (0..n).map(|i| problem.inertia_metric(i)).collect();
+    let EigenWorkspace { mass, v, w, .. } = ws;
     // Deterministic starts with generic components (never orthogonal to a symmetric mode).
-    let mut v: [Vec<f64>; BLOCK] = std::array::from_fn(|k| {
-        (0..n)
-            .map(|i| 1.0 + ((i as f64 + 1.0) * (0.754_877_666 + 0.31 * k as f64)).fract())
-            .collect()
-    });
-    let mut w: [Vec<f64>; BLOCK] = std::array::from_fn(|_| vec![0.0; n]);
+    for (k, vk) in v.iter_mut().enumerate() {
+        for (i, x) in vk.iter_mut().enumerate() {
+            *x = 1.0 + ((i as f64 + 1.0) * (0.754_877_666 + 0.31 * k as f64)).fract();
+        }
+    }
     let m_dot = |a: &[f64], b: &[f64]| -> f64 { (0..n).map(|i| a[i] * mass[i] * b[i]).sum() };
     let mut rho_old = f64::INFINITY;
     for _ in 0..60 {
@@ -98,8 +155,12 @@ fn inverse_iteration<P: EquilibriumProblem>(
         // Projected pencil: A = Wᵀ H W = Wᵀ M V, B = Wᵀ M W.
         let a = Matrix3::from_fn(|r, c| 0.5 * (m_dot(&w[r], &v[c]) + m_dot(&w[c], &v[r])));
         let b = Matrix3::from_fn(|r, c| m_dot(&w[r], &w[c]));
-        let chol = b.cholesky()?;
-        let l_inv = chol.l().try_inverse()?;
+        let Some(chol) = b.cholesky() else {
+            return false;
+        };
+        let Some(l_inv) = chol.l().try_inverse() else {
+            return false;
+        };
         let eig = SymmetricEigen::new(l_inv * a * l_inv.transpose());
         let y = l_inv.transpose() * eig.eigenvectors;
         let (mut order, values) = ([0usize, 1, 2], eig.eigenvalues);
@@ -111,17 +172,17 @@ fn inverse_iteration<P: EquilibriumProblem>(
         }
         let rho = values[order[0]];
         if !rho.is_finite() || rho <= 0.0 {
-            return None;
+            return false;
         }
         if (rho - rho_old).abs() <= rel_tol * rho {
             let norm = m_dot(&v[0], &v[0]).sqrt();
-            return Some(LowestMode {
-                value: rho,
-                normalized: rho / problem.eigenvalue_scale(),
-                shape: v[0].iter().map(|x| x / norm).collect(),
-            });
+            mode.value = rho;
+            mode.normalized = rho / problem.eigenvalue_scale();
+            mode.shape.clear();
+            mode.shape.extend(v[0].iter().map(|x| x / norm));
+            return true;
         }
         rho_old = rho;
     }
-    None
+    false
 }

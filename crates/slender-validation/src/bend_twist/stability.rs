@@ -13,7 +13,9 @@ use serde::{Deserialize, Serialize};
 use slender_core::geometry::Vec3;
 use slender_core::linalg::{smallest_eigenpair, BandLdlt, SymmetricBandMatrix};
 use slender_core::rod::{Rod, RodState};
-use slender_core::solver::{EquilibriumProblem, EquilibriumSolver, SolveStatus, SolverParams};
+use slender_core::solver::{
+    EquilibriumProblem, EquilibriumSolver, MassMetric, SolveStatus, SolverParams,
+};
 use slender_core::ModelError;
 
 use super::case::BendTwistCase;

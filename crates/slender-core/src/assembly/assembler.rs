@@ -1,0 +1,189 @@
+//! The assembler: zeroing, scatter into any Hessian storage, round-off bookkeeping and term
+//! selection, shared by every model.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::linalg::SymmetricMatrix;
+use crate::solver::AssemblyInfo;
+
+use super::stencil::{Stencil, FIXED};
+use super::term::{LocalDerivatives, StencilTerm, TermGroup, TermSet};
+
+/// Collects the energy, gradient, Hessian and round-off scales of one assembly.
+///
+/// Created with the outputs wanted (each optional) and the term groups to include; the
+/// outputs are zeroed on creation. Models add their terms ([`Self::terms`]), precomputed
+/// local contributions ([`Self::local`]) and linear loads ([`Self::load`]); [`Self::finish`]
+/// returns the scalar measures.
+pub struct Assembler<'o, M: SymmetricMatrix> {
+    selection: TermSet,
+    grad: Option<&'o mut [f64]>,
+    hess: Option<&'o mut M>,
+    abs_grad: Option<&'o mut [f64]>,
+    info: AssemblyInfo,
+}
+
+impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
+    /// An assembly of the groups in `selection` into the given outputs, which are zeroed here
+    /// (`abs_grad` receives Σ over terms of |term gradient| per DOF, the round-off scale).
+    pub fn new(
+        selection: TermSet,
+        mut grad: Option<&'o mut [f64]>,
+        mut hess: Option<&'o mut M>,
+        mut abs_grad: Option<&'o mut [f64]>,
+    ) -> Self {
+        if let Some(g) = grad.as_deref_mut() {
+            g.fill(0.0);
+        }
+        if let Some(a) = abs_grad.as_deref_mut() {
+            a.fill(0.0);
+        }
+        if let Some(h) = hess.as_deref_mut() {
+            h.set_zero();
+        }
+        Self {
+            selection,
+            grad,
+            hess,
+            abs_grad,
+            info: AssemblyInfo::default(),
+        }
+    }
+
+    /// An energy-only assembly.
+    pub fn energy_only(selection: TermSet) -> Self {
+        Self::new(selection, None, None, None)
+    }
+
+    /// True if `group` is selected.
+    pub fn selects(&self, group: TermGroup) -> bool {
+        self.selection.contains(group)
+    }
+
+    /// The selected groups.
+    pub fn selection(&self) -> TermSet {
+        self.selection
+    }
+
+    /// True if gradients are wanted (for the gradient or its round-off scale).
+    pub fn wants_gradient(&self) -> bool {
+        self.grad.is_some() || self.abs_grad.is_some()
+    }
+
+    /// True if the Hessian is wanted.
+    pub fn wants_hessian(&self) -> bool {
+        self.hess.is_some()
+    }
+
+    /// Evaluates every term of a group list whose groups are selected, in order, and scatters
+    /// its derivatives.
+    pub fn terms<C: ?Sized, T: StencilTerm<C, D>, const D: usize>(&mut self, ctx: &C, terms: &[T]) {
+        let want_grad = self.wants_gradient();
+        let want_hess = self.wants_hessian();
+        let mut g = SVector::<f64, D>::zeros();
+        let mut h = SMatrix::<f64, D, D>::zeros();
+        for term in terms {
+            let selected = TermSet(term.groups().0 & self.selection.0);
+            if selected == TermSet::NONE {
+                continue;
+            }
+            if want_grad {
+                g.fill(0.0);
+            }
+            if want_hess {
+                h.fill(0.0);
+            }
+            let mut out = LocalDerivatives {
+                energy: 0.0,
+                magnitude: 0.0,
+                grad: want_grad.then_some(&mut g),
+                hess: want_hess.then_some(&mut h),
+            };
+            term.evaluate(ctx, selected, &mut out);
+            let (energy, magnitude) = (out.energy, out.magnitude);
+            self.local(term.stencil(), energy, magnitude, &g, &h);
+        }
+    }
+
+    /// Adds a term's energy (J), its round-off magnitude, and its stencil gradient and Hessian
+    /// (ignored when not wanted). Slots marked [`FIXED`] are dropped; two slots naming the same
+    /// DOF are summed (off-diagonal pairs count twice on that DOF's diagonal).
+    pub fn local<const D: usize>(
+        &mut self,
+        stencil: &Stencil<D>,
+        energy: f64,
+        magnitude: f64,
+        g: &SVector<f64, D>,
+        h: &SMatrix<f64, D, D>,
+    ) {
+        self.info.energy += energy;
+        self.info.energy_magnitude += magnitude;
+        for (a, &i) in stencil.iter().enumerate() {
+            if i == FIXED {
+                continue;
+            }
+            if let Some(gr) = self.grad.as_deref_mut() {
+                gr[i] += g[a];
+            }
+            if let Some(ab) = self.abs_grad.as_deref_mut() {
+                ab[i] += g[a].abs();
+            }
+            if let Some(hm) = self.hess.as_deref_mut() {
+                // Lower triangle of the stencil (b ≤ a): each unordered pair once.
+                for (b, &j) in stencil.iter().enumerate().take(a + 1) {
+                    if j == FIXED {
+                        continue;
+                    }
+                    let v = h[(a, b)];
+                    if i == j && a != b {
+                        hm.add(i, j, 2.0 * v);
+                    } else {
+                        hm.add(i, j, v);
+                    }
+                }
+            }
+        }
+    }
+
+    /// A conservative external load doing work `work` (J) from the reference configuration:
+    /// the energy falls by it. `max_force` (N; moments count as force × length) updates the
+    /// largest external nodal force, the scale of the force convergence test.
+    pub fn load(&mut self, work: f64, max_force: f64) {
+        self.info.energy -= work;
+        self.info.energy_magnitude += work.abs();
+        self.info.external_work += work;
+        self.info.external_force = self.info.external_force.max(max_force);
+    }
+
+    /// A generalized force `force` (N or N m) on DOF `dof` from a linear load: the gradient
+    /// falls by it (no Hessian). [`FIXED`] DOFs are ignored.
+    pub fn generalized_force(&mut self, dof: usize, force: f64) {
+        if dof == FIXED {
+            return;
+        }
+        if let Some(gr) = self.grad.as_deref_mut() {
+            gr[dof] -= force;
+        }
+        if let Some(a) = self.abs_grad.as_deref_mut() {
+            a[dof] += force.abs();
+        }
+    }
+
+    /// Adds a potential energy (J) that is part of the external loads (e.g. an absolute
+    /// gravity potential) without its derivatives; see [`Self::generalized_force`].
+    pub fn external_energy(&mut self, energy: f64, work: f64) {
+        self.info.energy += energy;
+        self.info.energy_magnitude += energy.abs();
+        self.info.external_work += work;
+    }
+
+    /// Raises the largest external nodal force (N) to at least `force`.
+    pub fn external_force(&mut self, force: f64) {
+        self.info.external_force = self.info.external_force.max(force);
+    }
+
+    /// The scalar measures of the assembly.
+    pub fn finish(self) -> AssemblyInfo {
+        self.info
+    }
+}

@@ -1,0 +1,230 @@
+//! What the load factor λ drives on a rod: the loads' scale and the rigid motion of supports.
+//!
+//! The fixed DOFs of a rod live in its state (positions of held vertices, clamp frames), so a
+//! support moving with λ is a change of the state that the solver asks for before each step
+//! ([`EquilibriumProblem::impose_load`](crate::solver::EquilibriumProblem::impose_load)): the
+//! support's vertices move exactly, a clamp's ghost edge turns with it, and, as a first guess
+//! when no secant predictor exists yet, the free vertices move by a blend of the same rigid
+//! motion (weight 1 next to the moving support, 0 next to a support that stays, linear in arc
+//! length between them). Continuation then gives support motion the same adaptive steps and
+//! predictor as a gravity ramp: there is one step controller for both.
+
+use nalgebra::Rotation3;
+
+use crate::error::ModelError;
+use crate::geometry::Vec3;
+
+use super::frames::EdgeFrame;
+use super::model::Rod;
+use super::state::RodState;
+
+/// A rigid motion of one support over the load path: at load factor λ ∈ [0, 1] a point x₀ of
+/// the support is at `pivot + λ·translation + exp(λ·rotation)·(x₀ − pivot)`, x₀ being its
+/// position at λ = 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SupportMotion {
+    /// The support's held vertices (one for a clamp or pin, two for a clip).
+    pub vertices: Vec<usize>,
+    /// Centre of the rotation at λ = 0 (m), usually the support's vertex.
+    pub pivot: Vec3,
+    /// Rotation vector (rad) at λ = 1: axis × angle.
+    pub rotation: Vec3,
+    /// Translation (m) at λ = 1.
+    pub translation: Vec3,
+}
+
+impl SupportMotion {
+    /// Where a point at `x` at load factor `from` is at `to`, for a fraction `w` ∈ [0, 1] of
+    /// the motion (1 for the support itself, less for the blended guess of free vertices).
+    fn carry(&self, x: &Vec3, from: f64, to: f64, w: f64) -> Vec3 {
+        let centre = self.pivot + self.translation * from;
+        let d = (to - from) * w;
+        centre + self.translation * d + Rotation3::new(self.rotation * d) * (x - centre)
+    }
+
+    fn check(&self, rod: &Rod) -> Result<(), ModelError> {
+        for &v in &self.vertices {
+            if !rod.fixed_vertices.contains(&v) {
+                return Err(ModelError::structure(
+                    "support_motion.vertices",
+                    format!("vertex {v} is not held by a support; only supports can be moved"),
+                ));
+            }
+        }
+        let finite = self
+            .pivot
+            .iter()
+            .chain(self.rotation.iter())
+            .chain(self.translation.iter())
+            .all(|c| c.is_finite());
+        if !finite {
+            return Err(ModelError::structure(
+                "support_motion",
+                "pivot, rotation and translation must be finite",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What the load factor λ of a [`Rod`] drives.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RodLoadPath {
+    /// Factor on the loads (gravity, point forces and moments) at λ = 0 and at λ = 1, linear
+    /// in between. Default [0, 1]: λ ramps the loads.
+    pub loads: [f64; 2],
+    /// Supports moved rigidly as λ goes from 0 to 1. Default none.
+    pub motions: Vec<SupportMotion>,
+}
+
+impl Default for RodLoadPath {
+    fn default() -> Self {
+        Self {
+            loads: [0.0, 1.0],
+            motions: Vec::new(),
+        }
+    }
+}
+
+impl RodLoadPath {
+    /// Full loads, the supports moved by `motions` as λ goes from 0 to 1.
+    pub fn support_motion(motions: Vec<SupportMotion>) -> Self {
+        Self {
+            loads: [1.0, 1.0],
+            motions,
+        }
+    }
+
+    /// Factor on the loads at load factor `load`.
+    pub fn load_factor(&self, load: f64) -> f64 {
+        self.loads[0] + load * (self.loads[1] - self.loads[0])
+    }
+}
+
+impl Rod {
+    /// What the load factor drives.
+    pub fn load_path(&self) -> &RodLoadPath {
+        &self.load_path
+    }
+
+    /// Sets what the load factor drives. Errors if a motion names a vertex no support holds or
+    /// is not finite, or a load factor is not finite.
+    pub fn set_load_path(&mut self, path: RodLoadPath) -> Result<(), ModelError> {
+        for m in &path.motions {
+            m.check(self)?;
+        }
+        for (k, f) in path.loads.iter().enumerate() {
+            if !f.is_finite() {
+                return Err(ModelError::parameter(
+                    if k == 0 { "loads[0]" } else { "loads[1]" },
+                    *f,
+                    "finite",
+                ));
+            }
+        }
+        self.load_path = path;
+        Ok(())
+    }
+
+    /// A state like `state` with the support moved by the whole of `motion` (λ from 0 to 1),
+    /// the free vertices moved by the blended guess. The result is not an equilibrium; solve
+    /// from it. Rotations per call should stay well below π so that the reference twists can be
+    /// continued.
+    pub fn with_support_moved(
+        &self,
+        state: &RodState,
+        motion: &SupportMotion,
+    ) -> Result<RodState, ModelError> {
+        motion.check(self)?;
+        let mut out = state.clone();
+        self.move_support(&mut out, motion, 0.0, 1.0, true);
+        Ok(out)
+    }
+
+    /// Moves the supports of `state` along the load path from `from` to `to` (see
+    /// [`EquilibriumProblem::impose_load`](crate::solver::EquilibriumProblem::impose_load)).
+    pub(super) fn impose_path(&self, state: &mut RodState, from: f64, to: f64, guess: bool) {
+        for m in &self.load_path.motions {
+            self.move_support(state, m, from, to, guess);
+        }
+    }
+
+    /// Weight of vertex `v` in the blended guess of `motion`: 1 on the moved support, 0 on the
+    /// others, interpolated in arc length between consecutive supports and constant past the
+    /// outermost ones.
+    fn blend_weight(&self, motion: &SupportMotion, v: usize) -> f64 {
+        let weight_of = |u: usize| f64::from(u8::from(motion.vertices.contains(&u)));
+        let fixed = &self.fixed_vertices;
+        let left = fixed.iter().rev().find(|&&f| f <= v).copied();
+        let right = fixed.iter().find(|&&f| f >= v).copied();
+        let s = &self.arclengths;
+        match (left, right) {
+            (Some(a), Some(b)) if a == b => weight_of(a),
+            (Some(a), Some(b)) => {
+                let u = (s[v] - s[a]) / (s[b] - s[a]);
+                weight_of(a) * (1.0 - u) + weight_of(b) * u
+            }
+            (Some(a), None) => weight_of(a),
+            (None, Some(b)) => weight_of(b),
+            (None, None) => 0.0,
+        }
+    }
+
+    /// Moves `motion`'s support in `state` from load factor `from` to `to` (and, with `guess`,
+    /// the free vertices by the blend), in place: ghost frames turned with their clamp, the
+    /// other frames transported to the new tangents, reference twists continued, moment
+    /// angles updated. Allocates nothing.
+    fn move_support(
+        &self,
+        state: &mut RodState,
+        motion: &SupportMotion,
+        from: f64,
+        to: f64,
+        guess: bool,
+    ) {
+        let n = self.n_edges();
+        let weight = |v: usize| {
+            if motion.vertices.contains(&v) {
+                1.0
+            } else if guess {
+                self.blend_weight(motion, v)
+            } else {
+                0.0
+            }
+        };
+        // Moment loads' unwrapped angles follow their edges (old and new edge from the same
+        // map, before the positions are overwritten).
+        for (m, alpha) in self.moments.iter().zip(state.load_angles.iter_mut()) {
+            let j = m.edge;
+            let (a, b) = (state.positions[j], state.positions[j + 1]);
+            let e_old = b - a;
+            let e_new =
+                motion.carry(&b, from, to, weight(j + 1)) - motion.carry(&a, from, to, weight(j));
+            *alpha = m.updated_angle(&e_old, &e_new, *alpha);
+        }
+        for v in 0..=n {
+            let w = weight(v);
+            if w != 0.0 {
+                state.positions[v] = motion.carry(&state.positions[v], from, to, w);
+            }
+        }
+        // A clamp's ghost edge turns with its support; the reference twists of the clamp hinges
+        // are then continued across the rotation by the transport below.
+        let r = Rotation3::new(motion.rotation * (to - from));
+        let turn = |g: &mut Option<super::frames::GhostEdge>, v: usize| {
+            if let Some(g) = g.as_mut() {
+                if motion.vertices.contains(&v) {
+                    g.frame = EdgeFrame {
+                        tangent: r * g.frame.tangent,
+                        a1: r * g.frame.a1,
+                    };
+                }
+            }
+        };
+        turn(&mut state.frames.ghost_start, 0);
+        turn(&mut state.frames.ghost_end, n);
+        state
+            .frames
+            .transport_in_place(&state.positions, &self.hinge_edges);
+    }
+}

@@ -1,0 +1,52 @@
+//! The external loads of a rod as terms of the [`EXTERNAL`](super::groups::EXTERNAL) group:
+//! dead nodal forces (gravity lumped on the vertices, point forces, a preload) and point
+//! moments (conservative, see `moment.rs`).
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::assembly::Assembler;
+use crate::linalg::SymmetricMatrix;
+
+use super::model::Rod;
+use super::state::RodState;
+
+impl Rod {
+    /// Adds the external loads at load factor `load`.
+    pub(super) fn assemble_loads<M: SymmetricMatrix>(
+        &self,
+        s: &RodState,
+        load: f64,
+        asm: &mut Assembler<'_, M>,
+    ) {
+        let load = self.load_path.load_factor(load);
+        // Dead loads: V = −λ Σ f_v·x_v, measured from the rest positions so that the energy
+        // scale is the work done, not an arbitrary datum.
+        for (v, (f, f0)) in self
+            .nodal_forces
+            .iter()
+            .zip(&self.preload_forces)
+            .enumerate()
+        {
+            let f = f * load + f0;
+            let du = s.positions[v] - self.rest.positions[v];
+            asm.load(f.dot(&du), f.amax());
+            for k in 0..3 {
+                asm.generalized_force(self.dofs.vertex(v, k), f[k]);
+            }
+        }
+        let mut g6 = SVector::<f64, 6>::zeros();
+        let mut h6 = SMatrix::<f64, 6, 6>::zeros();
+        for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
+            let j = m.edge;
+            let e = s.positions[j + 1] - s.positions[j];
+            let v = m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
+            let dtheta = s.thetas[j] - self.rest.thetas[j];
+            asm.load(
+                -v + load * m.axial * dtheta,
+                load * (m.bending + m.axial.abs()) / self.length,
+            );
+            asm.local(&self.edge_dofs(j), 0.0, 0.0, &g6, &h6);
+            asm.generalized_force(self.dofs.theta(j), load * m.axial);
+        }
+    }
+}
