@@ -11,8 +11,11 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assembly;
+pub mod cosserat;
 pub mod error;
+pub mod framed;
 pub mod geometry;
+pub mod lie;
 pub mod linalg;
 pub mod rod;
 pub mod scene;

@@ -36,7 +36,7 @@ pub struct SupportMotion {
 impl SupportMotion {
     /// Where a point at `x` at load factor `from` is at `to`, for a fraction `w` ∈ [0, 1] of
     /// the motion (1 for the support itself, less for the blended guess of free vertices).
-    fn carry(&self, x: &Vec3, from: f64, to: f64, w: f64) -> Vec3 {
+    pub(crate) fn carry(&self, x: &Vec3, from: f64, to: f64, w: f64) -> Vec3 {
         let centre = self.pivot + self.translation * from;
         let d = (to - from) * w;
         centre + self.translation * d + Rotation3::new(self.rotation * d) * (x - centre)
