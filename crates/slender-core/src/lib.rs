@@ -19,6 +19,7 @@ pub mod lie;
 pub mod linalg;
 pub mod rod;
 pub mod scene;
+pub mod se3;
 pub mod shell;
 pub mod solver;
 #[cfg(feature = "testing")]

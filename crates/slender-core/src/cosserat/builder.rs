@@ -52,6 +52,7 @@ impl CosseratBuilder {
                 .map(|j| 0.5 * (geom.arclengths[j] + geom.arclengths[j + 1]))
                 .collect(),
             frame_lengths: geom.rest_lengths.clone(),
+            mass_lengths: geom.rest_lengths.clone(),
             clamp_frames: [
                 self.supports.clamp_start.then_some(ends[0]),
                 self.supports.clamp_end.then_some(ends[1]),

@@ -44,7 +44,16 @@ impl EquilibriumProblem for CosseratRod {
     }
 
     fn displace(&self, state: &FramedState, dx: &[f64], alpha: f64, out: &mut FramedState) {
-        self.core.retract(state, dx, alpha, out);
+        // Each chord is carried by its edge's frame: e ← exp(αω)(e + α(δe − ω×e)), so that the
+        // edge strain Rᵀe/h changes exactly by α times its linearization.
+        let core = &self.core;
+        let x = &state.positions;
+        core.retract_with(state, dx, alpha, out, |j| {
+            let e = x[j + 1] - x[j];
+            let de = core.vertex_step(dx, j + 1, alpha) - core.vertex_step(dx, j, alpha);
+            let w = core.frame_step(dx, j, alpha);
+            nalgebra::UnitQuaternion::from_scaled_axis(w) * (e + de - w.cross(&e))
+        });
     }
 
     fn impose_load(&self, state: &mut FramedState, from: f64, to: f64, guess: bool) {

@@ -59,6 +59,9 @@ pub(crate) struct FrameLayout {
     pub frame_lengths: Vec<f64>,
     /// The slot a point moment at a vertex acts on.
     pub moment_slot: fn(vertex: usize, n_elements: usize) -> usize,
+    /// Length (m) of each element whose mass is lumped on its two vertices: the chord for a
+    /// rod whose centerline is the polygon, the arc for one whose centerline is curved.
+    pub mass_lengths: Vec<f64>,
 }
 
 impl FramedCore {
@@ -92,7 +95,7 @@ impl FramedCore {
         };
         let rho_a = b.properties.linear_density;
         let mut vertex_masses = vec![0.0; n + 1];
-        for (j, &l) in geom.rest_lengths.iter().enumerate() {
+        for (j, &l) in layout.mass_lengths.iter().enumerate() {
             vertex_masses[j] += 0.5 * rho_a * l;
             vertex_masses[j + 1] += 0.5 * rho_a * l;
         }

@@ -5,7 +5,7 @@
 use nalgebra::UnitQuaternion;
 
 use crate::assembly::FIXED;
-use crate::geometry::{rotate_about_axis, Vec3};
+use crate::geometry::Vec3;
 use crate::lie::darboux::rotation_log;
 use crate::lie::quaternion::from_unit;
 
@@ -29,7 +29,7 @@ pub fn rotation_vector(q: &UnitQuaternion<f64>) -> Vec3 {
 
 impl FramedCore {
     /// The spatial rotation increment of frame `j` in `dx` (FIXED components are 0).
-    fn frame_step(&self, dx: &[f64], j: usize, alpha: f64) -> Vec3 {
+    pub(crate) fn frame_step(&self, dx: &[f64], j: usize, alpha: f64) -> Vec3 {
         let mut w = Vec3::zeros();
         for (k, &i) in self.dofs.frame_slots(j).iter().enumerate() {
             if i != FIXED {
@@ -40,7 +40,7 @@ impl FramedCore {
     }
 
     /// The displacement of vertex `v` in `dx`.
-    fn vertex_step(&self, dx: &[f64], v: usize, alpha: f64) -> Vec3 {
+    pub(crate) fn vertex_step(&self, dx: &[f64], v: usize, alpha: f64) -> Vec3 {
         let mut d = Vec3::zeros();
         for (k, &i) in self.dofs.vertex_slots(v).iter().enumerate() {
             if i != FIXED {
@@ -90,36 +90,23 @@ impl FramedCore {
     }
 
     /// The retraction the solver uses: frames by the exponential map; positions rebuilt by
-    /// walking the elements away from the supports, each chord turned by the transverse part
-    /// of its step and stretched by the axial part (as the discrete elastic rod's
-    /// `Rod::retract`). It agrees with the chart to first order, but turning an element does
-    /// not stretch it at second order, which would otherwise make line searches crawl against
-    /// the stiff extension and shear.
-    pub(crate) fn retract(
+    /// walking the elements away from the supports, each chord given by the model's
+    /// `new_chord(j)` (the chord of element j after the step α dx, which must agree with
+    /// x_{j+1} − x_j + α(δx_{j+1} − δx_j) to first order). The models carry each chord with
+    /// its element's frames so that the stiff shear and extension strains change linearly
+    /// along the step: with them, the chart's linear position update would create
+    /// second-order strains that make line searches crawl. Between two supports the walks from
+    /// both ends are blended linearly in arc length, so supports stay exact.
+    pub(crate) fn retract_with(
         &self,
         state: &FramedState,
         dx: &[f64],
         alpha: f64,
         out: &mut FramedState,
+        new_edge: impl Fn(usize) -> Vec3,
     ) {
         let x = &state.positions;
         let disp = |v: usize| self.vertex_step(dx, v, alpha);
-        let new_edge = |j: usize| -> Vec3 {
-            let e = x[j + 1] - x[j];
-            let de = disp(j + 1) - disp(j);
-            let len = e.norm();
-            let t = e / len;
-            let along = t.dot(&de);
-            let across = de - t * along;
-            let turn = across.norm() / len;
-            let dir = if turn > 0.0 {
-                let axis = t.cross(&across) / (turn * len);
-                rotate_about_axis(&t, &axis, turn)
-            } else {
-                t
-            };
-            dir * (len + along)
-        };
         let n = self.n_edges();
         let p = &mut out.positions;
         p.clone_from(x);
