@@ -9,6 +9,7 @@
 
 use serde::Serialize;
 
+use slender_core::framed::ShearStiffness;
 use slender_core::rod::{RodProperties, SectionStiffness};
 use slender_core::shell::ShellProperties;
 
@@ -31,6 +32,13 @@ impl RodMaterialSet {
     pub fn gravity_for_gamma(&self, gamma: f64) -> f64 {
         gamma * self.properties.stiffness.ei_min()
             / (self.properties.linear_density * self.length.powi(3))
+    }
+
+    /// Shear stiffness of the set for the shearable rod models: a solid circular section
+    /// (see [`ShearStiffness::solid_circle`]).
+    pub fn shear(&self) -> ShearStiffness {
+        ShearStiffness::solid_circle(&self.properties.stiffness)
+            .expect("the material sets have valid stiffnesses and Poisson ratios")
     }
 
     /// Γ at a given gravitational acceleration g (m/s²).

@@ -6,10 +6,11 @@
 //! tangent at the clamp is −z as the text says.
 
 use slender_core::geometry::Vec3;
-use slender_core::rod::{Grading, RestCurve, Rod, RodBuilder};
+use slender_core::rod::{Grading, RestCurve, Rod};
 use slender_core::ModelError;
 
 use crate::materials::{RodMaterialSet, OMEGA_ROD};
+use crate::rod_model::RodSpec;
 
 /// One point of the (X, Y) plane and its discretization.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -72,35 +73,41 @@ impl BendTwistCase {
     }
 
     /// The clamped coil with gravity `ramped` scaled by the load factor and `preload` always
-    /// on (m/s²); see [`RodBuilder::preload_gravity`].
+    /// on (m/s²); see [`RodBuilder::preload_gravity`](slender_core::rod::RodBuilder::preload_gravity).
     pub fn build(&self, ramped: Vec3, preload: Vec3) -> Result<Rod, ModelError> {
-        self.builder(ramped, preload)?.build()
+        self.spec(ramped, preload, None)?.build_der()
     }
 
     /// The same rod with its motion restricted to its plane (xz): for the planar equilibrium.
     pub fn build_planar(&self, ramped: Vec3) -> Result<Rod, ModelError> {
-        self.builder(ramped, Vec3::zeros())?
-            .planar_motion(1)
-            .build()
+        self.spec(ramped, Vec3::zeros(), Some(1))?.build_der()
     }
 
-    fn builder(&self, ramped: Vec3, preload: Vec3) -> Result<RodBuilder, ModelError> {
+    /// The coil for any rod model (motion restricted to the plane ⊥ `planar_axis` if given).
+    pub fn spec(
+        &self,
+        ramped: Vec3,
+        preload: Vec3,
+        planar_axis: Option<usize>,
+    ) -> Result<RodSpec, ModelError> {
         self.validate()?;
-        Ok(RodBuilder::new(
-            RestCurve::Circle {
+        Ok(RodSpec {
+            curve: RestCurve::Circle {
                 start: [0.0; 3],
                 tangent: [0.0, 0.0, -1.0],
                 normal: [1.0, 0.0, 0.0],
                 radius: self.radius(),
                 length: self.material.length,
             },
-            self.material.properties,
-        )
-        .elements(self.n_elements())
-        .grading(Grading::Uniform)
-        .first_director(Vec3::x())
-        .clamp_start()
-        .gravity(ramped)
-        .preload_gravity(preload))
+            properties: self.material.properties,
+            shear: self.material.shear(),
+            elements: self.n_elements(),
+            grading: Grading::Uniform,
+            first_director: Vec3::x(),
+            gravity: ramped,
+            preload_gravity: preload,
+            planar_axis,
+            darboux: Default::default(),
+        })
     }
 }

@@ -9,6 +9,7 @@ use slender_core::ModelError;
 
 use super::case::BendTwistCase;
 use super::measures::{shape_measures, ShapeMeasures};
+use crate::rod_model::{BenchmarkRod, RodModel};
 
 /// Settings of the protocol and of its threshold decisions.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -66,9 +67,29 @@ impl ProtocolOutcome {
     }
 }
 
-/// Runs the three stages; returns the outcome and the final vertex positions.
+/// Runs the three stages on the discrete elastic rod; returns the outcome and the final
+/// vertex positions.
 pub fn run_protocol(
     case: &BendTwistCase,
+    settings: &ProtocolSettings,
+    params: &SolverParams,
+) -> Result<(ProtocolOutcome, Vec<Vec3>), ModelError> {
+    run_protocol_with(case, RodModel::Der, settings, params)
+}
+
+/// Runs the three stages on the rod formulation `model`.
+pub fn run_protocol_with(
+    case: &BendTwistCase,
+    model: RodModel,
+    settings: &ProtocolSettings,
+    params: &SolverParams,
+) -> Result<(ProtocolOutcome, Vec<Vec3>), ModelError> {
+    crate::with_rod_model!(model, P => run_protocol_for::<P>(case, model, settings, params))
+}
+
+fn run_protocol_for<P: BenchmarkRod>(
+    case: &BendTwistCase,
+    model: RodModel,
     settings: &ProtocolSettings,
     params: &SolverParams,
 ) -> Result<(ProtocolOutcome, Vec<Vec3>), ModelError> {
@@ -84,13 +105,16 @@ pub fn run_protocol(
     let down = Vec3::new(0.0, 0.0, -g);
     // Each stage ramps one gravity change on top of what the previous stage left on.
     let stages = [(side, Vec3::zeros()), (down, side), (-side, side + down)];
-    let rod0 = case.build(stages[0].0, stages[0].1)?;
-    let mut state = rod0.rest_state().clone();
+    let build = |ramped: Vec3, preload: Vec3| {
+        P::from_spec(&case.spec(ramped, preload, None)?.for_model(model))
+    };
+    let rod0 = build(stages[0].0, stages[0].1)?;
+    let mut state = rod0.rest().clone();
     let mut solver = EquilibriumSolver::new(&rod0, &state, params.clone());
     let mut iterations = 0;
     let mut last = None;
     for (ramped, preload) in stages {
-        let rod = case.build(ramped, preload)?;
+        let rod = build(ramped, preload)?;
         let sol = solver.solve(&rod, &state, 0.0, 1.0);
         iterations += sol.report.iterations;
         let converged = sol.report.converged();
@@ -110,12 +134,13 @@ pub fn run_protocol(
         }
     }
     let (rod, converged, failure, negative) = last.expect("three stages");
+    let positions = P::positions(&state);
     let outcome = ProtocolOutcome {
         converged,
         failure,
-        measures: shape_measures(state.positions(), rod.rest_lengths(), rod.length()),
+        measures: shape_measures(positions, rod.element_lengths(), rod.rod_length()),
         iterations,
         negative_eigenvalues: negative,
     };
-    Ok((outcome, state.positions().to_vec()))
+    Ok((outcome, positions.to_vec()))
 }

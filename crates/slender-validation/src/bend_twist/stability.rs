@@ -13,17 +13,13 @@ use serde::{Deserialize, Serialize};
 use slender_core::geometry::Vec3;
 use slender_core::linalg::{smallest_eigenpair, BandLdlt, SymmetricBandMatrix};
 use slender_core::rod::{Rod, RodState};
-use slender_core::solver::{
-    EquilibriumProblem, EquilibriumSolver, MassMetric, SolveStatus, SolverParams,
-};
+
+use crate::rod_model::{BenchmarkRod, RodModel};
+use slender_core::solver::{EquilibriumSolver, SolveStatus, SolverParams};
 use slender_core::ModelError;
 
 use super::case::BendTwistCase;
 use super::measures::{shape_measures, ShapeMeasures};
-
-/// Half-bandwidth of the out-of-plane block in the ordering (y₁, θ¹, y₂, θ², …): a hinge
-/// couples five consecutive entries.
-const OUT_OF_PLANE_BANDWIDTH: usize = 4;
 
 /// Snap budget of the second attempt at the planar ramp.
 const PATIENT_SNAP_ITERATIONS: usize = 3000;
@@ -67,25 +63,17 @@ impl StabilityOutcome {
     }
 }
 
-/// Free-DOF indices of the out-of-plane unknowns (y coordinates and twist angles), in order.
-fn out_of_plane_dofs(rod: &Rod) -> Vec<usize> {
-    (0..rod.n_free())
-        .filter(|&i| {
-            let f = rod.dofs().full_index(i);
-            f % 4 == 1 || f % 4 == 3
-        })
-        .collect()
-}
-
-/// The out-of-plane block of `hess`, optionally scaled to the mass metric.
-fn block(
-    rod: &Rod,
+/// The out-of-plane block of `hess` over the free DOFs `idx`, optionally scaled to the mass
+/// metric.
+fn block<P: BenchmarkRod>(
+    rod: &P,
     hess: &SymmetricBandMatrix,
     idx: &[usize],
     mass_scaled: bool,
 ) -> SymmetricBandMatrix {
+    let bw = P::OUT_OF_PLANE_BANDWIDTH;
     let m = idx.len();
-    let mut b = SymmetricBandMatrix::new(m, OUT_OF_PLANE_BANDWIDTH);
+    let mut b = SymmetricBandMatrix::new(m, bw);
     let scale: Vec<f64> = idx
         .iter()
         .map(|&i| {
@@ -97,7 +85,7 @@ fn block(
         })
         .collect();
     for r in 0..m {
-        for c in r.saturating_sub(OUT_OF_PLANE_BANDWIDTH)..=r {
+        for c in r.saturating_sub(bw)..=r {
             let v = hess.get(idx[r], idx[c]);
             if v != 0.0 {
                 b.add(r, c, v * scale[r] * scale[c]);
@@ -113,8 +101,19 @@ pub fn decide_by_stability(
     case: &BendTwistCase,
     params: &SolverParams,
 ) -> Result<(StabilityOutcome, Vec<Vec3>), ModelError> {
-    let (out, state) = decide_with_state(case, params)?;
-    Ok((out, state.positions().to_vec()))
+    decide_by_stability_with(case, RodModel::Der, params)
+}
+
+/// As [`decide_by_stability`] with the rod formulation `model`.
+pub fn decide_by_stability_with(
+    case: &BendTwistCase,
+    model: RodModel,
+    params: &SolverParams,
+) -> Result<(StabilityOutcome, Vec<Vec3>), ModelError> {
+    crate::with_rod_model!(model, P => {
+        let (out, state) = decide_with_state_for::<P>(case, model, params)?;
+        Ok((out, P::positions(&state).to_vec()))
+    })
 }
 
 /// As [`decide_by_stability`], returning the final state (the buckled one if the planar state
@@ -123,13 +122,22 @@ pub fn decide_with_state(
     case: &BendTwistCase,
     params: &SolverParams,
 ) -> Result<(StabilityOutcome, RodState), ModelError> {
+    decide_with_state_for::<Rod>(case, RodModel::Der, params)
+}
+
+/// As [`decide_with_state`] for any rod formulation (`P` the type of `model`).
+pub fn decide_with_state_for<P: BenchmarkRod>(
+    case: &BendTwistCase,
+    model: RodModel,
+    params: &SolverParams,
+) -> Result<(StabilityOutcome, P::State), ModelError> {
     let g = case.gravity();
     let gravity = Vec3::new(0.0, 0.0, -g);
     // The planar equilibrium is followed with the motion restricted to the plane, so that the
     // ramp never wanders near out-of-plane saddles; its stability is then read off the full
     // rod's Hessian at that state.
-    let planar_rod = case.build_planar(gravity)?;
-    let start = planar_rod.rest_state().clone();
+    let planar_rod = P::from_spec(&case.spec(gravity, Vec3::zeros(), Some(1))?.for_model(model))?;
+    let start = planar_rod.rest().clone();
     let mut planar = EquilibriumSolver::new(&planar_rod, &start, params.clone()).solve(
         &planar_rod,
         &start,
@@ -152,7 +160,7 @@ pub fn decide_with_state(
         );
         planar.report.iterations += first;
     }
-    let rod = case.build(gravity, Vec3::zeros())?;
+    let rod = P::from_spec(&case.spec(gravity, Vec3::zeros(), None)?.for_model(model))?;
     let switch_params = SolverParams {
         max_iterations: 10 * params.max_iterations,
         ..params.clone()
@@ -178,9 +186,9 @@ pub fn decide_with_state(
     let n = rod.n_free();
     let mut grad = vec![0.0; n];
     let mut abs = vec![0.0; n];
-    let mut hess = SymmetricBandMatrix::new(n, rod.half_bandwidth());
+    let mut hess = rod.new_hessian();
     rod.assemble(&planar.state, 1.0, &mut grad, &mut hess, &mut abs);
-    let idx = out_of_plane_dofs(&rod);
+    let idx = rod.out_of_plane_dofs(1);
     let mut ldlt = BandLdlt::new();
     let inertia = ldlt.factorize(&block(&rod, &hess, &idx, false), 0.0).ok();
     out.out_of_plane_negative = inertia.map(|i| i.negative + i.zero);
@@ -200,18 +208,18 @@ pub fn decide_with_state(
     }
     let max_disp = idx
         .iter()
-        .filter(|&&i| !rod.dofs().is_angle(i))
+        .filter(|&&i| !rod.is_rotational(i))
         .map(|&i| shape[i].abs())
         .fold(0.0, f64::max);
     if max_disp > 0.0 {
-        let s = SWITCH_AMPLITUDE * rod.length() / max_disp;
+        let s = SWITCH_AMPLITUDE * rod.rod_length() / max_disp;
         shape.iter_mut().for_each(|v| *v *= s);
     }
     let planar_energy = rod.energy(&planar.state, 1.0);
-    let mut best: Option<(f64, RodState, bool)> = None;
+    let mut best: Option<(f64, P::State, bool)> = None;
     for sign in [1.0, -1.0] {
         let mut kicked = planar.state.clone();
-        rod.retract(&planar.state, &shape, sign, &mut kicked);
+        rod.displace(&planar.state, &shape, sign, &mut kicked);
         let sol = solver.solve(&rod, &kicked, 1.0, 1.0);
         out.iterations += sol.report.iterations;
         if sol.report.converged() {
@@ -224,9 +232,9 @@ pub fn decide_with_state(
     let state = match best {
         Some((e, state, stable)) => {
             out.buckled = Some(shape_measures(
-                state.positions(),
-                rod.rest_lengths(),
-                rod.length(),
+                P::positions(&state),
+                rod.element_lengths(),
+                rod.rod_length(),
             ));
             out.buckled_stable = Some(stable);
             out.buckled_energy_drop = Some(e - planar_energy);

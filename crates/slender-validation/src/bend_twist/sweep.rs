@@ -8,9 +8,10 @@ use slender_core::ModelError;
 
 use super::case::BendTwistCase;
 use super::master_curve::{critical_boundaries, BendTwistError, StabilityBoundary};
-use super::protocol::{run_protocol, ProtocolSettings};
-use super::stability::decide_by_stability;
+use super::protocol::{run_protocol_with, ProtocolSettings};
+use super::stability::decide_by_stability_with;
 use crate::cantilever::log_space;
+use crate::rod_model::RodModel;
 
 /// The parameter grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,6 +62,16 @@ impl BendTwistSweep {
         params: &SolverParams,
         progress: &(dyn Fn() + Sync),
     ) -> Result<Vec<BendTwistRecord>, BendTwistSweepError> {
+        self.run_with(RodModel::Der, params, progress)
+    }
+
+    /// As [`Self::run`] with the rod formulation `model`.
+    pub fn run_with(
+        &self,
+        model: RodModel,
+        params: &SolverParams,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<Vec<BendTwistRecord>, BendTwistSweepError> {
         // The master curve once per row of the grid.
         let c = self.torsion_ratio();
         let boundaries: Vec<StabilityBoundary> = self
@@ -76,7 +87,7 @@ impl BendTwistSweep {
                     .iter()
                     .position(|&y| y == case.y)
                     .expect("row of the grid");
-                let r = run_point(case, &boundaries[k], &self.protocol, params);
+                let r = run_point_with(case, model, &boundaries[k], &self.protocol, params);
                 progress();
                 r
             })
@@ -158,10 +169,21 @@ pub fn run_point(
     protocol: &ProtocolSettings,
     params: &SolverParams,
 ) -> Result<BendTwistRecord, BendTwistSweepError> {
+    run_point_with(case, RodModel::Der, boundary, protocol, params)
+}
+
+/// Runs both routes at one point with the rod formulation `model`.
+pub fn run_point_with(
+    case: &BendTwistCase,
+    model: RodModel,
+    boundary: &StabilityBoundary,
+    protocol: &ProtocolSettings,
+    params: &SolverParams,
+) -> Result<BendTwistRecord, BendTwistSweepError> {
     let truth_3d =
         matches!((boundary.lower, boundary.upper), (Some(l), Some(u)) if case.x > l && case.x < u);
-    let (p, _) = run_protocol(case, protocol, params)?;
-    let (s, _) = decide_by_stability(case, params)?;
+    let (p, _) = run_protocol_with(case, model, protocol, params)?;
+    let (s, _) = decide_by_stability_with(case, model, params)?;
     let mut failure = String::new();
     if !p.converged {
         failure += &format!("protocol: {}", p.failure);

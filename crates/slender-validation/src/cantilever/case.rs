@@ -5,11 +5,12 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use slender_core::geometry::Vec3;
-use slender_core::rod::{Grading, RestCurve, Rod, RodBuilder};
+use slender_core::rod::{Grading, RestCurve, Rod};
 use slender_core::solver::{EquilibriumSolver, SolveReport, SolverParams};
 use slender_core::ModelError;
 
 use crate::materials::RodMaterialSet;
+use crate::rod_model::{BenchmarkRod, RodModel, RodSpec};
 
 /// Mesh families of the benchmark.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -80,38 +81,63 @@ pub struct CantileverRun {
 }
 
 impl CantileverCase {
-    /// Builds the clamped rod of this case.
-    pub fn build(&self) -> Result<Rod, ModelError> {
+    /// The rod of this case, for any model.
+    pub fn spec(&self) -> Result<RodSpec, ModelError> {
         if !(self.gamma.is_finite() && self.gamma > 0.0) {
             return Err(ModelError::parameter("gamma", self.gamma, "finite and > 0"));
         }
         let g = self.material.gravity_for_gamma(self.gamma);
-        RodBuilder::new(
-            RestCurve::Straight {
+        Ok(RodSpec {
+            curve: RestCurve::Straight {
                 start: [0.0; 3],
                 direction: [1.0, 0.0, 0.0],
                 length: self.material.length,
             },
-            self.material.properties,
-        )
-        .elements(self.n_elements)
-        .grading(self.mesh.grading(self.gamma))
-        .first_director(Vec3::z())
-        .clamp_start()
-        .gravity(Vec3::new(0.0, -g, 0.0))
-        .build()
+            properties: self.material.properties,
+            shear: self.material.shear(),
+            elements: self.n_elements,
+            grading: self.mesh.grading(self.gamma),
+            first_director: Vec3::z(),
+            gravity: Vec3::new(0.0, -g, 0.0),
+            preload_gravity: Vec3::zeros(),
+            planar_axis: None,
+            darboux: Default::default(),
+        })
     }
 
-    /// Solves from the straight state in one call (the solver picks its own load steps).
+    /// Builds the clamped discrete elastic rod of this case.
+    pub fn build(&self) -> Result<Rod, ModelError> {
+        self.spec()?.build_der()
+    }
+
+    /// Solves the discrete elastic rod from the straight state in one call (the solver picks
+    /// its own load steps).
     pub fn run(&self, params: &SolverParams) -> Result<CantileverRun, ModelError> {
+        self.run_with(RodModel::Der, params)
+    }
+
+    /// Solves the rod of `model` from the straight state in one call.
+    pub fn run_with(
+        &self,
+        model: RodModel,
+        params: &SolverParams,
+    ) -> Result<CantileverRun, ModelError> {
         params.validate()?;
-        let rod = self.build()?;
-        let start = rod.rest_state().clone();
+        crate::with_rod_model!(model, P => self.run_model::<P>(model, params))
+    }
+
+    fn run_model<P: BenchmarkRod>(
+        &self,
+        model: RodModel,
+        params: &SolverParams,
+    ) -> Result<CantileverRun, ModelError> {
+        let rod = P::from_spec(&self.spec()?.for_model(model))?;
+        let start = rod.rest().clone();
         let clock = Instant::now();
         let mut solver = EquilibriumSolver::new(&rod, &start, params.clone());
         let solution = solver.solve(&rod, &start, 0.0, 1.0);
         let seconds = clock.elapsed().as_secs_f64();
-        let positions = solution.state.positions().to_vec();
+        let positions = P::positions(&solution.state).to_vec();
         let ratio = if solution.report.converged() {
             end_point_ratio(&positions)
         } else {

@@ -14,6 +14,6 @@ pub use shell_acceptance::shell_cantilever_checks;
 pub use shell_case::{ShellCantileverCase, ShellCantileverRun};
 pub use shell_sweep::{ShellCantileverRecord, ShellCantileverSweep};
 pub use sweep::{
-    log_space, run_case, summarize, CantileverRecord, CantileverSweep, DiscretizationSummary,
-    SweepError, CABLE_RANGE,
+    log_space, run_case, run_case_with, summarize, CantileverRecord, CantileverSweep,
+    DiscretizationSummary, SweepError, CABLE_RANGE,
 };

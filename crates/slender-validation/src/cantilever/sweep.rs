@@ -9,6 +9,7 @@ use slender_core::ModelError;
 use super::case::{CantileverCase, MeshKind};
 use super::master_curve::{master_ratio, MasterCurveError};
 use crate::materials::{RodMaterialSet, ROD_SETS};
+use crate::rod_model::RodModel;
 
 /// The parameter grid of a cantilever sweep.
 #[derive(Clone, Debug, PartialEq)]
@@ -148,12 +149,22 @@ impl CantileverSweep {
         params: &SolverParams,
         progress: &(dyn Fn() + Sync),
     ) -> Result<Vec<CantileverRecord>, SweepError> {
+        self.run_with(RodModel::Der, params, progress)
+    }
+
+    /// As [`Self::run`] with the rod formulation `model`.
+    pub fn run_with(
+        &self,
+        model: RodModel,
+        params: &SolverParams,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<Vec<CantileverRecord>, SweepError> {
         self.validate()?;
         params.validate()?;
         self.cases()
             .par_iter()
             .map(|case| {
-                let r = run_case(case, params);
+                let r = run_case_with(case, model, params);
                 progress();
                 r
             })
@@ -166,8 +177,17 @@ pub fn run_case(
     case: &CantileverCase,
     params: &SolverParams,
 ) -> Result<CantileverRecord, SweepError> {
+    run_case_with(case, RodModel::Der, params)
+}
+
+/// Runs one case with the rod formulation `model` and scores it against the master curve.
+pub fn run_case_with(
+    case: &CantileverCase,
+    model: RodModel,
+    params: &SolverParams,
+) -> Result<CantileverRecord, SweepError> {
     let master = master_ratio(case.gamma)?;
-    let run = case.run(params)?;
+    let run = case.run_with(model, params)?;
     let (converged, failure) = match &run.report.status {
         SolveStatus::Converged => (true, String::new()),
         SolveStatus::NotConverged { reason } => (false, reason.clone()),
