@@ -14,7 +14,6 @@ use nalgebra::Rotation3;
 use crate::error::ModelError;
 use crate::geometry::Vec3;
 
-use super::frames::EdgeFrame;
 use super::model::Rod;
 use super::state::RodState;
 
@@ -211,18 +210,7 @@ impl Rod {
         // A clamp's ghost edge turns with its support; the reference twists of the clamp hinges
         // are then continued across the rotation by the transport below.
         let r = Rotation3::new(motion.rotation * (to - from));
-        let turn = |g: &mut Option<super::frames::GhostEdge>, v: usize| {
-            if let Some(g) = g.as_mut() {
-                if motion.vertices.contains(&v) {
-                    g.frame = EdgeFrame {
-                        tangent: r * g.frame.tangent,
-                        a1: r * g.frame.a1,
-                    };
-                }
-            }
-        };
-        turn(&mut state.frames.ghost_start, 0);
-        turn(&mut state.frames.ghost_end, n);
+        self.turn_clamps(state, &motion.vertices, &r);
         state
             .frames
             .transport_in_place(&state.positions, &self.hinge_edges);

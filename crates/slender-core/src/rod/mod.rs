@@ -4,6 +4,7 @@
 
 pub mod bending;
 pub mod builder;
+pub mod clamp;
 pub mod dofs;
 pub mod equilibrium;
 pub mod frames;
@@ -15,6 +16,7 @@ pub mod loads;
 pub mod mesh;
 pub mod model;
 pub mod moment;
+pub mod point_loads;
 pub mod reactions;
 pub mod rest_curve;
 pub mod retraction;
@@ -22,14 +24,17 @@ pub mod section;
 pub mod state;
 pub mod strains;
 pub mod stretching;
+pub mod supports;
 pub mod twisting;
 
-pub use builder::{PointForce, PointMoment, RodBuilder, Supports};
+pub use builder::RodBuilder;
 pub use load_path::{RodLoadPath, SupportMotion};
 pub use mesh::Grading;
 pub use model::{Rod, RodContext};
+pub use point_loads::{PointForce, PointMoment};
 pub use reactions::{LoadResultant, SupportReaction};
 pub use rest_curve::RestCurve;
 pub use section::{CrossSection, Material, RodProperties, SectionStiffness};
 pub use state::RodState;
 pub use strains::HingeStrain;
+pub use supports::Supports;

@@ -6,7 +6,6 @@ use crate::geometry::Vec3;
 use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
 use crate::solver::problem::AssemblyInfo;
 
-use super::builder::Supports;
 use super::dofs::DofMap;
 use super::frames::EdgeId;
 use super::groups;
@@ -15,6 +14,7 @@ use super::moment::MomentLoad;
 use super::section::RodProperties;
 use super::state::RodState;
 use super::stretching::StretchTerm;
+use super::supports::Supports;
 
 /// A discrete elastic rod ready to be solved (see the crate docs and design.md §2).
 #[derive(Clone, Debug)]
@@ -132,17 +132,11 @@ impl Rod {
         let (l, r) = hinge.edges;
         let (x0, theta_l) = match l {
             EdgeId::Real(j) => (s.positions[j], s.thetas[j]),
-            _ => {
-                let g = s.frames.ghost_start.expect("start clamp");
-                (s.positions[v] - g.frame.tangent * g.length, g.theta)
-            }
+            _ => self.ghost_point(s, v, false),
         };
         let (x2, theta_r) = match r {
             EdgeId::Real(j) => (s.positions[j + 1], s.thetas[j]),
-            _ => {
-                let g = s.frames.ghost_end.expect("end clamp");
-                (s.positions[v] + g.frame.tangent * g.length, g.theta)
-            }
+            _ => self.ghost_point(s, v, true),
         };
         HingeState {
             x: [x0, s.positions[v], x2],

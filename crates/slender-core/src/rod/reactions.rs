@@ -16,6 +16,7 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::geometry::Vec3;
 
+use super::clamp;
 use super::frames::EdgeId;
 use super::hinge::{EdgeHessian, HingeFrame, HingeVector};
 use super::model::Rod;
@@ -46,6 +47,7 @@ impl Rod {
     /// ∂E/∂x_v (N) of the total energy at load factor `load` for every vertex, fixed or not,
     /// and the ghost-edge moments (N m) of the start and end clamps.
     fn full_position_gradient(&self, s: &RodState, load: f64) -> (Vec<Vec3>, [Vec3; 2]) {
+        let load = self.load_path.load_factor(load);
         let n = self.n_edges();
         let mut g = vec![Vec3::zeros(); n + 1];
         let mut ghost_moment = [Vec3::zeros(); 2];
@@ -86,16 +88,26 @@ impl Rod {
                 _ => {
                     // The ghost vertex moves with the clamp.
                     g[v] += slot(0);
-                    ghost_moment[0] += (hs.x[0] - hs.x[1]).cross(&slot(0))
-                        + s.frames.edge(hinge.edges.0).tangent * gh[3];
+                    ghost_moment[0] += clamp::ghost_moment(
+                        &hs.x[0],
+                        &hs.x[1],
+                        &slot(0),
+                        &s.frames.edge(hinge.edges.0).tangent,
+                        gh[3],
+                    );
                 }
             }
             match hinge.edges.1 {
                 EdgeId::Real(j) => g[j + 1] += slot(8),
                 _ => {
                     g[v] += slot(8);
-                    ghost_moment[1] += (hs.x[2] - hs.x[1]).cross(&slot(8))
-                        + s.frames.edge(hinge.edges.1).tangent * gh[7];
+                    ghost_moment[1] += clamp::ghost_moment(
+                        &hs.x[2],
+                        &hs.x[1],
+                        &slot(8),
+                        &s.frames.edge(hinge.edges.1).tangent,
+                        gh[7],
+                    );
                 }
             }
         }
@@ -147,6 +159,7 @@ impl Rod {
     /// couple of their bending part on the edge's end vertices plus their axial torque about
     /// the current tangent).
     pub fn applied_loads(&self, s: &RodState, load: f64) -> LoadResultant {
+        let load = self.load_path.load_factor(load);
         let mut force = Vec3::zeros();
         let mut moment = Vec3::zeros();
         for (v, (f, f0)) in self
