@@ -37,6 +37,7 @@ pub struct RodBuilder {
     natural_twist: f64,
     preload_gravity: Vec3,
     node_arclengths: Option<Vec<f64>>,
+    allow_rigid_motion: bool,
 }
 
 impl RodBuilder {
@@ -55,6 +56,7 @@ impl RodBuilder {
             natural_twist: 0.0,
             preload_gravity: Vec3::zeros(),
             node_arclengths: None,
+            allow_rigid_motion: false,
         }
     }
 
@@ -143,6 +145,14 @@ impl RodBuilder {
         self
     }
 
+    /// Builds the rod even if its own supports leave it free to move rigidly: for a member
+    /// of a structure held through joints or structure-level supports (the structure checks
+    /// the whole for free motion).
+    pub fn allow_rigid_motion(mut self) -> Self {
+        self.allow_rigid_motion = true;
+        self
+    }
+
     /// Validates the input and builds the rod.
     pub fn build(self) -> Result<Rod, ModelError> {
         self.properties.validate()?;
@@ -192,7 +202,7 @@ impl RodBuilder {
         self.supports.validate(n)?;
         validate_point_loads(&self.point_forces, &self.point_moments, n)?;
         require_finite("natural_twist", self.natural_twist)?;
-        let supports = self.supports.normalized()?;
+        let supports = self.supports.normalized(self.allow_rigid_motion)?;
         // Rest reference frames: space-parallel (Bishop) transport along the rest polygon, so
         // the rest reference twist is zero and the rest material frame twists only if the
         // curve does.
@@ -314,6 +324,7 @@ impl RodBuilder {
             preload_forces: Vec::new(),
             dofs,
             moments,
+            anchors: fixed_vertices.clone(),
             fixed_vertices,
             supports,
             gravity: self.gravity,

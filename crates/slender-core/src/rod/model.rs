@@ -35,6 +35,9 @@ pub struct Rod {
     pub(super) moments: Vec<MomentLoad>,
     /// Vertices with fixed positions (clamps and pins), sorted.
     pub(super) fixed_vertices: Vec<usize>,
+    /// Where the retraction's walks start: the fixed vertices plus any vertex a structure
+    /// moves linearly (joints, sliders), sorted.
+    pub(super) anchors: Vec<usize>,
     pub(super) supports: Supports,
     pub(super) gravity: Vec3,
     pub(super) rest: RodState,
@@ -88,6 +91,49 @@ impl Rod {
     /// Lumped vertex masses (kg).
     pub fn vertex_masses(&self) -> &[f64] {
         &self.vertex_masses
+    }
+
+    /// Calls `f` with the stencil (free DOFs, [`FIXED`](crate::assembly::FIXED) for others)
+    /// of every term: the Hessian's sparsity pattern.
+    pub fn for_each_stencil(&self, mut f: impl FnMut(&[usize])) {
+        for t in &self.stretch_terms {
+            f(&t.dofs);
+        }
+        for h in &self.hinges {
+            f(&h.dofs);
+        }
+        for m in &self.moments {
+            let mut d = [FIXED; 7];
+            d[..6].copy_from_slice(&self.edge_dofs(m.edge));
+            d[6] = self.dofs.theta(m.edge);
+            f(&d);
+        }
+    }
+
+    /// Re-adapts the reference frames of `s` to its positions after they were changed in
+    /// place (frames transported, reference twists continued).
+    pub fn refresh_frames(&self, s: &mut RodState) {
+        s.frames.transport_in_place(&s.positions, &self.hinge_edges);
+    }
+
+    /// Sets the vertices that the retraction moves linearly by their own step, besides the
+    /// fixed ones (a structure's joints and sliders; see [`Rod::retract_by`]).
+    pub fn set_anchors(&mut self, extra: &[usize]) {
+        let mut a = self.fixed_vertices.clone();
+        a.extend_from_slice(extra);
+        a.sort_unstable();
+        a.dedup();
+        self.anchors = a;
+    }
+
+    /// Vertices whose positions the rod's own supports fix (clamps and pins), sorted.
+    pub fn fixed_vertices(&self) -> &[usize] {
+        &self.fixed_vertices
+    }
+
+    /// The hinges' edge pairs (for output of strains per hinge).
+    pub fn hinge_count(&self) -> usize {
+        self.hinges.len()
     }
 
     /// Free-DOF vector of a state (coordinates in m, angles in rad).

@@ -60,6 +60,17 @@ impl RodState {
         }
     }
 
+    /// Moves vertex `v` by `d` (m) without adapting the frames (see [`Rod::refresh_frames`]
+    /// (super::Rod::refresh_frames)).
+    pub(crate) fn translate_vertex(&mut self, v: usize, d: Vec3) {
+        self.positions[v] += d;
+    }
+
+    /// Turns the material frame of edge `j` about its tangent by `angle` (rad).
+    pub(crate) fn turn_edge(&mut self, j: usize, angle: f64) {
+        self.thetas[j] += angle;
+    }
+
     /// Material frame (m₁, m₂, t) of edge `j`.
     pub fn material_frame(&self, j: usize) -> [Vec3; 3] {
         let f = self.frames.edges[j];

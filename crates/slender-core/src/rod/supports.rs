@@ -42,12 +42,12 @@ impl Supports {
     }
 
     /// The supports with sorted, unique pins; errors if they leave a rigid-body motion.
-    pub(super) fn normalized(&self) -> Result<Self, ModelError> {
+    pub(super) fn normalized(&self, allow_rigid_motion: bool) -> Result<Self, ModelError> {
         let mut pins = self.pins.clone();
         pins.sort_unstable();
         pins.dedup();
         let n_clamps = usize::from(self.clamp_start) + usize::from(self.clamp_end);
-        if n_clamps == 0 && pins.len() < 3 {
+        if n_clamps == 0 && pins.len() < 3 && !allow_rigid_motion {
             return Err(ModelError::structure(
                 "supports",
                 "the rod can move as a rigid body; add a clamp, or pin at least three non-collinear vertices",
