@@ -38,6 +38,7 @@ pub struct RodBuilder {
     preload_gravity: Vec3,
     node_arclengths: Option<Vec<f64>>,
     allow_rigid_motion: bool,
+    followers: Vec<(usize, Vec3, Vec3)>,
 }
 
 impl RodBuilder {
@@ -57,6 +58,7 @@ impl RodBuilder {
             preload_gravity: Vec3::zeros(),
             node_arclengths: None,
             allow_rigid_motion: false,
+            followers: Vec::new(),
         }
     }
 
@@ -128,6 +130,13 @@ impl RodBuilder {
     /// Adds a point moment (N m) on vertex `v`.
     pub fn point_moment(mut self, v: usize, moment: Vec3) -> Self {
         self.point_moments.push(PointMoment { vertex: v, moment });
+        self
+    }
+
+    /// Adds a follower load on vertex `v`: a force (N) and a moment (N m), given in world axes
+    /// at rest, that turn with the rod's material frame there (see `follower.rs`).
+    pub fn follower_load(mut self, v: usize, force: Vec3, moment: Vec3) -> Self {
+        self.followers.push((v, force, moment));
         self
     }
 
@@ -303,6 +312,7 @@ impl RodBuilder {
             thetas: rest_thetas,
             frames,
             load_angles: vec![0.0; moments.len()],
+            followers: Vec::new(),
         };
 
         let polygon_arclengths: Vec<f64> = std::iter::once(0.0)
@@ -331,6 +341,7 @@ impl RodBuilder {
             rest: rest.clone(),
             arclengths: polygon_arclengths,
             load_path: Default::default(),
+            followers: Vec::new(),
         };
         rod.stretch_terms = (0..n)
             .map(|j| StretchTerm {
@@ -347,6 +358,32 @@ impl RodBuilder {
             .iter()
             .map(|&m| self.preload_gravity * m)
             .collect();
+        for &(v, force, moment) in &self.followers {
+            if v > n {
+                return Err(ModelError::structure(
+                    "follower_loads.vertex",
+                    format!("vertex {v} does not exist; valid vertices are 0..={n}"),
+                ));
+            }
+            if force.iter().chain(moment.iter()).any(|c| !c.is_finite()) {
+                return Err(ModelError::structure(
+                    "follower_loads",
+                    "force and moment must be finite",
+                ));
+            }
+            if rod.fixed_vertices.contains(&v) {
+                return Err(ModelError::structure(
+                    "follower_loads.vertex",
+                    format!("vertex {v} is held by a support: a follower load there does nothing"),
+                ));
+            }
+            rod.followers.push(super::follower::FollowerLoad {
+                vertex: v,
+                edge: v.min(n - 1),
+                force,
+                moment,
+            });
+        }
         for (k, &(vertex, l, r, voronoi)) in topology.iter().enumerate() {
             let mut hinge = Hinge {
                 index: k,
@@ -371,6 +408,8 @@ impl RodBuilder {
             hinge.twisting.rest_twist = hs.twist();
             rod.hinges.push(hinge);
         }
+        let fresh: Vec<_> = rod.follower_loads(&rod.rest).collect();
+        rod.rest.followers = fresh;
         Ok(rod)
     }
 }

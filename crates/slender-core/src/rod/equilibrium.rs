@@ -86,6 +86,10 @@ impl EquilibriumProblem for Rod {
         self.impose_path(state, from, to, guess);
     }
 
+    fn refresh_loads(&self, state: &mut RodState) -> f64 {
+        self.refresh_followers(state)
+    }
+
     fn max_step(&self, state: &RodState, dx: &[f64]) -> f64 {
         self.max_step_by(state, |i| dx[i])
     }

@@ -45,6 +45,8 @@ pub struct Rod {
     pub(super) arclengths: Vec<f64>,
     /// What the load factor drives.
     pub(super) load_path: super::load_path::RodLoadPath,
+    /// Follower loads (applied lagged, see `follower.rs`).
+    pub(super) followers: Vec<super::follower::FollowerLoad>,
 }
 
 impl Rod {

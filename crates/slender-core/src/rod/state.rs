@@ -12,6 +12,8 @@ pub struct RodState {
     pub(super) frames: ReferenceFrames,
     /// Unwrapped angle (rad) of each moment load's edge about its axis (see `moment.rs`).
     pub(super) load_angles: Vec<f64>,
+    /// Current dead-load stand-ins of the follower loads (see `follower.rs`).
+    pub(super) followers: Vec<super::follower::FollowerState>,
 }
 
 impl RodState {
@@ -57,6 +59,15 @@ impl RodState {
                 ref_twist: self.frames.ref_twist.clone(),
             },
             load_angles: self.load_angles.clone(),
+            followers: self
+                .followers
+                .iter()
+                .map(|f| super::follower::FollowerState {
+                    force: rotation * f.force,
+                    couple: rotation * f.couple,
+                    torque: f.torque,
+                })
+                .collect(),
         }
     }
 

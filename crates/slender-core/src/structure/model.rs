@@ -127,6 +127,78 @@ impl Structure {
         Ok(())
     }
 
+    /// Adds the joint hinges' generalized forces to the members' full gradients (see
+    /// [`Rod::full_gradient`](crate::rod::Rod::full_gradient)): the forces supports at or
+    /// next to a joint carry.
+    pub fn add_joint_gradients(
+        &self,
+        state: &StructureState,
+        out: &mut [crate::rod::FullGradient],
+    ) {
+        use crate::assembly::{LocalDerivatives, StencilTerm, TermSet};
+        let ctx = StructureContext {
+            structure: self,
+            state,
+        };
+        for j in &self.joints {
+            let mut g = nalgebra::SVector::<f64, 11>::zeros();
+            let mut out_local = LocalDerivatives {
+                energy: 0.0,
+                magnitude: 0.0,
+                grad: Some(&mut g),
+                hess: None,
+            };
+            j.evaluate(&ctx, TermSet::ALL, &mut out_local);
+            let [s0, s1] = j.sides;
+            let slot = |a: usize| Vec3::new(g[a], g[a + 1], g[a + 2]);
+            out[s0.member].vertices[s0.outer_vertex] += slot(0);
+            out[s0.member].vertices[s0.joint_vertex] += slot(4);
+            out[s1.member].vertices[s1.outer_vertex] += slot(8);
+            out[s0.member].thetas[s0.edge] += g[3];
+            out[s1.member].thetas[s1.edge] += g[7];
+        }
+        // A joint is one point: its forces are gathered on the master end's vertex.
+        for group in &self.joint_groups {
+            let (m0, v0) = group[0];
+            for &(m, v) in &group[1..] {
+                let f = std::mem::take(&mut out[m].vertices[v]);
+                out[m0].vertices[v0] += f;
+            }
+        }
+    }
+
+    /// Moves slider `i` by `translation` (m) along the load path (replacing other slider
+    /// motions).
+    pub fn set_slider_motion(&mut self, i: usize, translation: Vec3) {
+        self.path.sliders.clear();
+        self.path.sliders.push((i, translation));
+    }
+
+    /// Turns twist hold `i` by `angle` (rad) along the load path.
+    pub fn set_hold_motion(&mut self, i: usize, angle: f64) {
+        self.path.holds.clear();
+        self.path.holds.push((i, angle));
+    }
+
+    /// Clears every load path: the structure's and its members' (back to the plain ramp).
+    pub fn clear_paths(&mut self) {
+        self.path.sliders.clear();
+        self.path.holds.clear();
+        for m in self.members.iter_mut() {
+            if let Some(r) = m.as_der_mut() {
+                r.clear_load_path();
+            }
+        }
+    }
+
+    /// Measures the joint hinges' reference twists afresh from the frames of `state` (after
+    /// its members were rebuilt from snapshots with every material angle 0).
+    pub fn reset_joint_twists(&self, state: &mut StructureState) {
+        for (k, j) in self.joints.iter().enumerate() {
+            state.joint_twists[k] = j.continued_twist(state, 0.0);
+        }
+    }
+
     /// Continues the joint hinges' reference twists from `previous` to the frames of `state`.
     fn continue_twists(&self, previous: &StructureState, state: &mut StructureState) {
         for (k, j) in self.joints.iter().enumerate() {
