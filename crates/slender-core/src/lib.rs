@@ -22,6 +22,7 @@ pub mod scene;
 pub mod se3;
 pub mod shell;
 pub mod solver;
+pub mod structure;
 #[cfg(feature = "testing")]
 pub mod testing;
 

@@ -34,6 +34,40 @@ const SNAP_MAX_STEP: f64 = 1.0 / 32.0;
 /// Relative accuracy of the reported smallest eigenvalue.
 const EIGEN_TOLERANCE: f64 = 1e-6;
 
+/// Relative change of lagged (follower) loads below which they are settled.
+const LOAD_SETTLED: f64 = 1e-11;
+/// Newton re-solves allowed for lagged loads to settle, per load step.
+const LOAD_REFRESHES: usize = 200;
+
+/// After a converged Newton solve, refreshes the model's lagged loads (follower loads) and
+/// re-solves until they stop changing; returns the outcome (iterations accumulated).
+fn settle_loads<P: EquilibriumProblem>(
+    problem: &P,
+    state: &mut P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+    mut out: super::newton::NewtonOutcome,
+) -> super::newton::NewtonOutcome {
+    for _ in 0..LOAD_REFRESHES {
+        if !out.converged || problem.refresh_loads(state) <= LOAD_SETTLED {
+            return out;
+        }
+        let next = newton(problem, state, load, params, ws);
+        out = super::newton::NewtonOutcome {
+            iterations: out.iterations + next.iterations,
+            ..next
+        };
+    }
+    super::newton::NewtonOutcome {
+        converged: false,
+        failure: Some(format!(
+            "follower loads did not settle in {LOAD_REFRESHES} re-solves"
+        )),
+        ..out
+    }
+}
+
 /// An equilibrium solver with reusable buffers for one problem size: after the first solve,
 /// [`solve_in_place`](Self::solve_in_place) allocates nothing on the way to a converged,
 /// stable equilibrium.
@@ -132,6 +166,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         // Span 0 (e.g. a warm re-solve at the same load): a single Newton solve.
         if span == 0.0 {
             let out = newton(problem, state, to, &params, &mut self.ws);
+            let out = settle_loads(problem, state, to, &params, &mut self.ws, out);
             iterations += out.iterations;
             last = out.last;
             if !out.converged {
@@ -177,6 +212,16 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                         snaps += 1;
                     }
                 }
+                let before = out.iterations;
+                let out = settle_loads(
+                    problem,
+                    &mut self.candidate,
+                    target,
+                    &params,
+                    &mut self.ws,
+                    out,
+                );
+                iterations += out.iterations - before;
                 last = out.last;
                 if out.converged {
                     load_steps += 1;

@@ -1,5 +1,6 @@
 //! Newton's method with line search, load stepping and stability analysis (design.md §4).
 
+pub mod branch_switch;
 pub mod continuation;
 pub mod line_search;
 pub mod newton;
@@ -8,6 +9,7 @@ pub mod problem;
 pub mod report;
 pub mod stability;
 
+pub use branch_switch::{follow_unstable_mode, kick_scale, BranchSwitch};
 pub use continuation::{EquilibriumSolver, Solution};
 pub use newton::{newton, NewtonOutcome, NewtonWorkspace};
 pub use params::SolverParams;
