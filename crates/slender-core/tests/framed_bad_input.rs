@@ -255,6 +255,7 @@ fn load_paths_are_checked() {
     let bad = slender_core::rod::RodLoadPath {
         loads: [0.0, f64::NAN],
         motions: Vec::new(),
+        gravity_from: None,
     };
     assert!(rod
         .set_load_path(bad)

@@ -305,6 +305,12 @@ impl FramedCore {
                 ));
             }
         }
+        if path
+            .gravity_from
+            .is_some_and(|g| g.iter().any(|c| !c.is_finite()))
+        {
+            return Err(ModelError::structure("gravity_from", "must be finite"));
+        }
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
                 return Err(ModelError::parameter(
@@ -316,6 +322,25 @@ impl FramedCore {
         }
         self.load_path = path;
         Ok(())
+    }
+
+    /// Sets gravity (m/s²) at load factor 1 (the nodal forces follow).
+    pub fn set_gravity(&mut self, g: Vec3) {
+        for (f, &m) in self.nodal_forces.iter_mut().zip(&self.vertex_masses) {
+            *f += (g - self.gravity) * m;
+        }
+        self.gravity = g;
+    }
+
+    /// The dead nodal force (N) on vertex `v` at load factor `load`: the ramped loads, the
+    /// preload, and, while gravity changes along the load path, m_v (g_from − g)(1 − λ).
+    pub(crate) fn nodal_force(&self, v: usize, load: f64) -> Vec3 {
+        let factor = self.load_path.load_factor(load);
+        let mut f = self.nodal_forces[v] * factor + self.preload_forces[v];
+        if let Some(g0) = self.load_path.gravity_from {
+            f += (g0 - self.gravity) * (self.vertex_masses[v] * (1.0 - load));
+        }
+        f
     }
 
     /// Inertia attached to free DOF `i`: the vertex mass for a coordinate, ρA r_g² ℓ for a

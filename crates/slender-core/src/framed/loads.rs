@@ -23,13 +23,8 @@ impl FramedCore {
     ) {
         let factor = self.load_path.load_factor(load);
         // V = −Σ f_v·(x_v − x̄_v): measured from rest so that the energy scale is the work.
-        for (v, (f, f0)) in self
-            .nodal_forces
-            .iter()
-            .zip(&self.preload_forces)
-            .enumerate()
-        {
-            let f = f * factor + f0;
+        for v in 0..self.nodal_forces.len() {
+            let f = self.nodal_force(v, load);
             let du = s.positions[v] - self.rest.positions[v];
             asm.load(f.dot(&du), f.amax());
             let slots = if full {

@@ -49,13 +49,8 @@ impl FramedCore {
         let factor = self.load_path.load_factor(load);
         let mut force = Vec3::zeros();
         let mut moment = Vec3::zeros();
-        for (v, (f, f0)) in self
-            .nodal_forces
-            .iter()
-            .zip(&self.preload_forces)
-            .enumerate()
-        {
-            let f = f * factor + f0;
+        for v in 0..self.nodal_forces.len() {
+            let f = self.nodal_force(v, load);
             force += f;
             moment += s.positions[v].cross(&f);
         }
