@@ -9,5 +9,6 @@ pub mod cantilever;
 pub mod lateral_buckling;
 pub mod lateral_sweep;
 pub mod materials;
+pub mod model_comparison;
 pub mod ode;
 pub mod rod_model;

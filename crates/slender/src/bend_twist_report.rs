@@ -16,9 +16,10 @@ use slender_validation::bend_twist::case::BendTwistCase;
 use slender_validation::bend_twist::criticality::{criticality, Criticality};
 use slender_validation::bend_twist::master_curve::{critical_boundaries, StabilityBoundary};
 use slender_validation::bend_twist::protocol::ProtocolSettings;
-use slender_validation::bend_twist::stability::decide_by_stability;
-use slender_validation::bend_twist::sweep::{run_point, BendTwistRecord, BendTwistSweep};
+use slender_validation::bend_twist::stability::decide_by_stability_with;
+use slender_validation::bend_twist::sweep::{run_point_with, BendTwistRecord, BendTwistSweep};
 use slender_validation::cantilever::log_space;
+use slender_validation::rod_model::RodModel;
 
 use crate::output::{write_atomic, write_csv};
 use crate::plot::{
@@ -37,6 +38,8 @@ fn torsion_ratio(sweep: &BendTwistSweep) -> f64 {
 pub struct BendTwistOutput {
     /// Scores and disagreements.
     pub summary: BendTwistSummary,
+    /// One record per grid point.
+    pub records: Vec<BendTwistRecord>,
     /// Cases computed, reused and their compute time.
     pub stats: RunStats,
 }
@@ -45,6 +48,9 @@ pub struct BendTwistOutput {
 #[derive(Serialize)]
 struct BendTwistKey {
     case: BendTwistCase,
+    /// Absent for the discrete elastic rod, so that its keys are those of before the models.
+    #[serde(skip_serializing_if = "is_der")]
+    model: RodModel,
     protocol: ProtocolSettings,
     solver: SolverParams,
 }
@@ -56,6 +62,21 @@ pub fn run(
     out: &Path,
     store: &StoreOptions,
 ) -> Result<Option<BendTwistOutput>> {
+    run_model(sweep, RodModel::Der, out, store)
+}
+
+fn is_der(m: &RodModel) -> bool {
+    *m == RodModel::Der
+}
+
+/// As [`run`] with the rod formulation `model` (the criticality of the boundaries is measured
+/// for the discrete elastic rod only).
+pub fn run_model(
+    sweep: &BendTwistSweep,
+    model: RodModel,
+    out: &Path,
+    store: &StoreOptions,
+) -> Result<Option<BendTwistOutput>> {
     let params = SolverParams::default();
     params.validate()?;
     let keys: Vec<BendTwistKey> = sweep
@@ -63,6 +84,7 @@ pub fn run(
         .into_iter()
         .map(|case| BendTwistKey {
             case,
+            model,
             protocol: sweep.protocol,
             solver: params.clone(),
         })
@@ -81,8 +103,9 @@ pub fn run(
             .iter()
             .position(|&y| y == k.case.y)
             .context("grid row of a case")?;
-        Ok(run_point(
+        Ok(run_point_with(
             &k.case,
+            k.model,
             &boundaries[row],
             &k.protocol,
             &k.solver,
@@ -99,7 +122,14 @@ pub fn run(
         &out.join("summary.json"),
         serde_json::to_string_pretty(&summary)?.as_bytes(),
     )?;
-    plots(sweep, &records, c, out)?;
+    plots(sweep, model, &records, c, out)?;
+    if model != RodModel::Der {
+        return Ok(Some(BendTwistOutput {
+            summary,
+            records,
+            stats,
+        }));
+    }
     // Sub- or supercritical: the buckled branch followed toward both boundaries.
     let criticality: Vec<Criticality> = CRITICALITY_ROWS
         .par_iter()
@@ -111,7 +141,11 @@ pub fn run(
     let rows: Vec<CriticalityRow> = criticality.iter().map(CriticalityRow::from).collect();
     write_csv(&out.join("criticality.csv"), &rows)?;
     print_criticality(&criticality);
-    Ok(Some(BendTwistOutput { summary, stats }))
+    Ok(Some(BendTwistOutput {
+        summary,
+        records,
+        stats,
+    }))
 }
 
 /// Rows of Y at which the criticality of both boundaries is measured.
@@ -263,7 +297,13 @@ fn overlays(c: f64, y_range: (f64, f64), x_range: (f64, f64)) -> Result<Vec<Over
     Ok(v)
 }
 
-fn plots(sweep: &BendTwistSweep, records: &[BendTwistRecord], c: f64, out: &Path) -> Result<()> {
+fn plots(
+    sweep: &BendTwistSweep,
+    model: RodModel,
+    records: &[BendTwistRecord],
+    c: f64,
+    out: &Path,
+) -> Result<()> {
     let xr = (sweep.xs[0], *sweep.xs.last().expect("non-empty"));
     let yr = (sweep.ys[0], *sweep.ys.last().expect("non-empty"));
     let ov = overlays(c, yr, xr)?;
@@ -379,7 +419,7 @@ fn plots(sweep: &BendTwistSweep, records: &[BendTwistRecord], c: f64, out: &Path
         })
     {
         let case = BendTwistCase::new(r.x, r.y, sweep.elements_per_turn);
-        let (_, positions) = decide_by_stability(&case, &SolverParams::default())?;
+        let (_, positions) = decide_by_stability_with(&case, model, &SolverParams::default())?;
         let rest = case.build(Default::default(), Default::default())?;
         let stem = out.join("shape_buckled");
         plot_shape_views(

@@ -6,6 +6,7 @@ mod bend_twist_report;
 mod cantilever_report;
 mod lateral_buckling_curves_report;
 mod lateral_sweep_report;
+mod model_comparison_report;
 mod output;
 #[allow(dead_code)]
 mod plot;
@@ -26,6 +27,7 @@ use slender_validation::bend_twist::sweep::BendTwistSweep;
 use slender_validation::cantilever::ShellCantileverSweep;
 use slender_validation::cantilever::{log_space, CantileverSweep, MeshKind};
 use slender_validation::materials::{ROD_SETS, SHELL_SETS};
+use slender_validation::rod_model::RodModel;
 use store::runner::StoreOptions;
 use store::shard::Shard;
 
@@ -45,6 +47,10 @@ enum Command {
     /// The bend–twist bifurcation benchmark (seed §4, Figs. 6–8): 2-D or 3-D over a grid in
     /// (X, Y), decided by the seed's protocol and by stability, against the master curve.
     BendTwist(BendTwistArgs),
+    /// The rod models side by side (seed §2, Fig. 5): the cantilever, its order of convergence,
+    /// Greenhill's column and the bend–twist quick grid on the discrete elastic rod, the
+    /// discrete Cosserat rod and the SE(3) beam (the `models` section of `slender validate`).
+    Models(ModelsArgs),
     /// Run every benchmark and write the validation report OUT/index.html with a pass/fail
     /// table of the acceptance targets (exit code 1 if a target fails).
     Validate(ValidateArgs),
@@ -101,11 +107,51 @@ struct SceneSchemaArgs {
     out: Option<PathBuf>,
 }
 
+/// The rod formulations on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum ModelArg {
+    /// Discrete elastic rod (Kirchhoff).
+    Der,
+    /// Discrete Cosserat rod (CRod-type, sine Darboux vector).
+    Cosserat,
+    /// Discrete Cosserat rod with the tangent Darboux vector.
+    CosseratTan,
+    /// SE(3) beam (Odin-type).
+    Se3,
+}
+
+impl ModelArg {
+    fn model(self) -> RodModel {
+        match self {
+            Self::Der => RodModel::Der,
+            Self::Cosserat => RodModel::Cosserat,
+            Self::CosseratTan => RodModel::CosseratTangent,
+            Self::Se3 => RodModel::Se3,
+        }
+    }
+}
+
+#[derive(clap::Args, Debug)]
+struct ModelsArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out/models")]
+    out: PathBuf,
+    /// Worker threads (default: all cores). Results other than times do not depend on it.
+    #[arg(long)]
+    jobs: Option<usize>,
+    #[command(flatten)]
+    store: StoreArgs,
+}
+
 #[derive(clap::Args, Debug)]
 struct BendTwistArgs {
     /// Output directory.
     #[arg(long, default_value = "out/bend-twist")]
     out: PathBuf,
+    /// Rod formulation: der (discrete elastic rod), cosserat (discrete Cosserat rod, CRod-type),
+    /// cosserat-tan (the same with the tangent Darboux vector), se3 (SE(3) beam, Odin-type).
+    #[arg(long, value_enum, default_value_t = ModelArg::Der)]
+    model: ModelArg,
     /// Grid and resolution: quick (12 × 12, 20·Y elements) or full (25 × 25, 100·Y, the seed's).
     #[arg(long, value_enum, default_value_t = Preset::Quick)]
     preset: Preset,
@@ -174,6 +220,10 @@ struct CantileverArgs {
     /// Output directory.
     #[arg(long, default_value = "out/cantilever")]
     out: PathBuf,
+    /// Rod formulation: der (discrete elastic rod), cosserat (discrete Cosserat rod, CRod-type),
+    /// cosserat-tan (the same with the tangent Darboux vector), se3 (SE(3) beam, Odin-type).
+    #[arg(long, value_enum, default_value_t = ModelArg::Der)]
+    model: ModelArg,
     /// Smallest Γ of the log-spaced sweep (> 0).
     #[arg(long, default_value_t = 0.1)]
     gamma_min: f64,
@@ -429,7 +479,8 @@ fn run(cli: Cli) -> Result<bool> {
             let shells = shell_sweep_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
             let store = store_options(&a.out, &a.store);
-            match pool.install(|| cantilever_report::run(&sweep, &a.out, &store))? {
+            let model = a.model.model();
+            match pool.install(|| cantilever_report::run_model(&sweep, model, &a.out, &store))? {
                 Some(out) => {
                     cantilever_report::print_summary(&out.summary);
                     if let Some(shells) = shells {
@@ -452,7 +503,8 @@ fn run(cli: Cli) -> Result<bool> {
             let sweep = bend_twist_sweep(&a)?;
             let pool = thread_pool(a.jobs)?;
             let store = store_options(&a.out, &a.store);
-            match pool.install(|| bend_twist_report::run(&sweep, &a.out, &store))? {
+            let model = a.model.model();
+            match pool.install(|| bend_twist_report::run_model(&sweep, model, &a.out, &store))? {
                 Some(out) => {
                     bend_twist_report::print_summary(&out.summary);
                     println!("wrote {}", a.out.display());
@@ -508,6 +560,28 @@ fn run(cli: Cli) -> Result<bool> {
             }
             Ok(true)
         }
+        Command::Models(a) => {
+            let pool = thread_pool(a.jobs)?;
+            let store = store_options(&a.out, &a.store);
+            match pool.install(|| model_comparison_report::run(&a.out, &store))? {
+                Some(c) => {
+                    model_comparison_report::print_summary(&c);
+                    for ch in &c.checks {
+                        println!(
+                            "{}  {:>10.4}  target {:<8}  {}",
+                            if ch.passed { "PASS" } else { "FAIL" },
+                            ch.measured,
+                            ch.target,
+                            ch.description
+                        );
+                    }
+                    write_csv_checks(&a.out, &c.checks)?;
+                    println!("wrote {}", a.out.display());
+                }
+                None => print_shard_done(&store),
+            }
+            Ok(true)
+        }
         Command::Sensitivity(a) => {
             let study = sensitivity_report::study_from_args(&a)?;
             let pool = thread_pool(a.jobs)?;
@@ -559,4 +633,12 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Writes `checks.csv` of a standalone command.
+fn write_csv_checks(
+    out: &std::path::Path,
+    checks: &[slender_validation::cantilever::Check],
+) -> Result<()> {
+    output::write_csv(&out.join("checks.csv"), checks)
 }

@@ -74,8 +74,24 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     let sens_clock = Instant::now();
     let sensitivity = crate::sensitivity_report::run(&study, &out.join("sensitivity"), store)?;
     let sensitivity_seconds = sens_clock.elapsed().as_secs_f64();
-    let (Some(cantilever), Some(bend_twist), Some(lateral), Some(convergence), Some(sensitivity)) =
-        (cantilever, bend_twist, lateral, convergence, sensitivity)
+    let models_clock = Instant::now();
+    let models = crate::model_comparison_report::run(&out.join("models"), store)?;
+    let models_seconds = models_clock.elapsed().as_secs_f64();
+    let (
+        Some(cantilever),
+        Some(bend_twist),
+        Some(lateral),
+        Some(convergence),
+        Some(sensitivity),
+        Some(models),
+    ) = (
+        cantilever,
+        bend_twist,
+        lateral,
+        convergence,
+        sensitivity,
+        models,
+    )
     else {
         crate::print_shard_done(store);
         return Ok(true);
@@ -90,6 +106,7 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     };
     crate::cantilever_report::print_summary(&cantilever.summary);
     crate::bend_twist_report::print_summary(&bend_twist.summary);
+    crate::model_comparison_report::print_summary(&models);
     let params = SolverParams::default();
     // Flat cables: the shell sets of the seed's Table 2 on the same Fig. 2 plot as the rods.
     let shell_clock = Instant::now();
@@ -134,6 +151,7 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
     let mut checks = cantilever_checks(&cantilever.records, &params)?;
     checks.extend(shell_checks);
     checks.extend(bend_twist_checks(&bend_twist.summary));
+    checks.extend(models.checks.iter().cloned());
     checks.extend(lateral_checks);
     let scene_clock = Instant::now();
     checks.extend(crate::solve::checks::scene_checks()?);
@@ -188,6 +206,13 @@ pub fn run(out: &Path, full: bool, store: &StoreOptions, jobs: usize) -> Result<
                         bt_sweep.ys.len(),
                         bt_sweep.elements_per_turn
                     ),
+                },
+                Section {
+                    title: "Rod models side by side".into(),
+                    dir: "models".into(),
+                    wall_seconds: models_seconds,
+                    stats: models.stats,
+                    about: crate::model_comparison_report::about(&models),
                 },
                 Section {
                     title: "Lateral buckling of a heavy clamped strip".into(),

@@ -133,6 +133,20 @@ const SERIES_LIMIT: f64 = 0.1;
 /// Terms of the series A(t) = atan(√t)/√t = Σ (−t)^k/(2k+1) (0.1²⁰ is below round-off).
 const SERIES_TERMS: usize = 22;
 
+/// The rotation vector θ = φ n = 2 atan2(|v|, w) v/|v| of `q` (w ≥ 0), without derivatives.
+pub fn rotation_log_value(q: &Quat) -> Vector3<f64> {
+    let w = q[0];
+    let v = vector_part(q);
+    let s = v.norm_squared();
+    if w > 0.0 && s < 1e-10 * w * w {
+        // atan(z)/z = 1 − z²/3 + O(z⁴), z² < 1e-10.
+        v * (2.0 / w * (1.0 - s / (3.0 * w * w)))
+    } else {
+        let n = s.sqrt();
+        v * (2.0 * n.atan2(w) / n)
+    }
+}
+
 /// The rotation logarithm θ = φ n = F(|v|², w) v with F = 2 atan2(|v|, w)/|v| (w ≥ 0), and
 /// its derivatives.
 pub fn rotation_log(q: &Quat) -> QuaternionMap {
@@ -142,25 +156,22 @@ pub fn rotation_log(q: &Quat) -> QuaternionMap {
     let rho = s + w * w;
     let (f, f_s, f_ss);
     if w > 0.0 && s < SERIES_LIMIT * w * w {
-        // F = (2/w) A(t), t = s/w²: F_s = 2A′/w³, F_ss = 2A″/w⁵.
+        // F = (2/w) A(t), t = s/w²: F_s = 2A′/w³, F_ss = 2A″/w⁵. Terms fall like t^k; stop
+        // once they are below round-off.
         let t = s / (w * w);
         let (mut a, mut a1, mut a2) = (0.0, 0.0, 0.0);
         let mut tk = 1.0; // t^k
         for k in 0..SERIES_TERMS {
             let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
             let kf = k as f64;
-            let c = sign / (2.0 * kf + 1.0);
-            a += c * tk;
-            if k + 1 < SERIES_TERMS {
-                // Coefficient of t^k in A′ and A″.
-                let c1 = -sign * (kf + 1.0) / (2.0 * kf + 3.0);
-                a1 += c1 * tk;
-            }
-            if k + 2 < SERIES_TERMS {
-                let c2 = sign * (kf + 2.0) * (kf + 1.0) / (2.0 * kf + 5.0);
-                a2 += c2 * tk;
-            }
+            a += sign / (2.0 * kf + 1.0) * tk;
+            // Coefficients of t^k in A′ and A″.
+            a1 -= sign * (kf + 1.0) / (2.0 * kf + 3.0) * tk;
+            a2 += sign * (kf + 2.0) * (kf + 1.0) / (2.0 * kf + 5.0) * tk;
             tk *= t;
+            if tk < 1e-18 {
+                break;
+            }
         }
         f = 2.0 * a / w;
         f_s = 2.0 * a1 / (w * w * w);

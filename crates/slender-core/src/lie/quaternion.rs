@@ -57,6 +57,16 @@ pub struct RelativeRotation {
     pub jac_b: SMatrix<f64, 4, 3>,
 }
 
+/// The relative rotation p̄_a ⊗ p_b alone, sign chosen so that w ≥ 0.
+pub fn relative_quaternion(pa: &UnitQuaternion<f64>, pb: &UnitQuaternion<f64>) -> Quat {
+    let q = mul(&conj(&from_unit(pa)), &from_unit(pb));
+    if q[0] < 0.0 {
+        -q
+    } else {
+        q
+    }
+}
+
 impl RelativeRotation {
     /// The relative rotation from frame `pa` to frame `pb`.
     pub fn new(pa: &UnitQuaternion<f64>, pb: &UnitQuaternion<f64>) -> Self {

@@ -83,6 +83,7 @@ impl SymmetricBandMatrix {
     /// Entries outside the matrix or the band are a programmer error: debug builds panic; release
     /// builds poison the diagonal with NaN so that the next factorization fails with
     /// [`FactorError::NonFinite`] instead of silently dropping the contribution.
+    #[inline]
     pub fn add(&mut self, i: usize, j: usize, v: f64) {
         let (r, c) = if i >= j { (i, j) } else { (j, i) };
         debug_assert!(
@@ -425,6 +426,7 @@ impl SymmetricMatrix for SymmetricBandMatrix {
         SymmetricBandMatrix::set_zero(self)
     }
 
+    #[inline]
     fn add(&mut self, i: usize, j: usize, v: f64) {
         SymmetricBandMatrix::add(self, i, j, v)
     }

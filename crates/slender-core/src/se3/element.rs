@@ -15,8 +15,9 @@ use crate::framed::full_stencil::FullStencil;
 use crate::framed::groups::{component_mask, BENDING, SHEAR, STRETCHING, TWISTING};
 use crate::framed::FramedState;
 use crate::geometry::cross_matrix;
-use crate::lie::darboux::rotation_log;
-use crate::lie::se3::TranslationLog;
+use crate::lie::darboux::{rotation_log, rotation_log_value};
+use crate::lie::quaternion::relative_quaternion;
+use crate::lie::se3::{translation_log_value, TranslationLog};
 use crate::lie::RelativeRotation;
 
 use super::model::Se3Context;
@@ -43,10 +44,10 @@ pub struct Se3Element {
 
 /// d = log(H_A⁻¹ H_B) of the element from node `j` to `j + 1` in state `s`.
 pub fn element_twist(s: &FramedState, j: usize) -> SVector<f64, 6> {
-    let rel = RelativeRotation::new(&s.frames[j], &s.frames[j + 1]);
-    let theta = rotation_log(&rel.q).value;
+    let q = relative_quaternion(&s.frames[j], &s.frames[j + 1]);
+    let theta = rotation_log_value(&q);
     let r = s.frames[j].inverse() * (s.positions[j + 1] - s.positions[j]);
-    let u = TranslationLog::new(&theta, &r).u;
+    let u = translation_log_value(&theta, &r);
     SVector::<f64, 6>::new(u[0], u[1], u[2], theta[0], theta[1], theta[2])
 }
 
@@ -79,8 +80,7 @@ pub(crate) fn chord_after_step(
     let u = tl.u + tl.du_dtheta * dtheta + tl.w * dr;
     let pa2 = nalgebra::UnitQuaternion::from_scaled_axis(wa) * pa;
     let pb2 = nalgebra::UnitQuaternion::from_scaled_axis(wb) * pb;
-    let rel2 = RelativeRotation::new(&pa2, &pb2);
-    let theta2 = rotation_log(&rel2.q).value;
+    let theta2 = rotation_log_value(&relative_quaternion(&pa2, &pb2));
     pa2 * (crate::lie::se3::v_matrix(&theta2) * u)
 }
 
@@ -110,6 +110,22 @@ impl StencilTerm<Se3Context<'_>, 12> for Se3Element {
     ) {
         let s = ctx.state;
         let j = self.element;
+        let mask = component_mask(selected);
+        let l0 = self.rest_length;
+        let c = SVector::<f64, 6>::from_fn(|k, _| self.stiffness[k] * mask[k]);
+        let add_parts = |out: &mut LocalDerivatives<'_, 12>, dd: &SVector<f64, 6>| {
+            let part =
+                |a: usize, b: usize| (a..b).map(|k| c[k] * dd[k] * dd[k]).sum::<f64>() / (2.0 * l0);
+            out.add_energy(part(0, 2));
+            out.add_energy(part(2, 3));
+            out.add_energy(part(3, 5));
+            out.add_energy(part(5, 6));
+        };
+        if !out.wants_gradient() && !out.wants_hessian() {
+            // Energy only (line searches): the logarithms without their derivatives.
+            add_parts(out, &(element_twist(s, j) - self.rest));
+            return;
+        }
         let (pa, pb) = (s.frames[j], s.frames[j + 1]);
         let ra = pa.to_rotation_matrix().into_inner();
         let rel = RelativeRotation::new(&pa, &pb);
@@ -180,7 +196,43 @@ impl StencilTerm<Se3Context<'_>, 12> for Se3Element {
                 let mut v = k.fixed_view_mut::<3, 3>(3, 0);
                 v += s_tr.transpose();
             }
-            *h = jp.transpose() * (k * jp);
+            // Jₚᵀ K Jₚ by 3×3 blocks: the slot columns of Jₚ are (θ, r) = XA (0, −Rᵀ),
+            // WA (T_A, Rᵀ[e]×), XB (0, Rᵀ), WB (T_B, 0); XB's blocks are −XA's.
+            let ktt: Matrix3<f64> = k.fixed_view::<3, 3>(0, 0).into_owned();
+            let ktr: Matrix3<f64> = k.fixed_view::<3, 3>(0, 3).into_owned();
+            let krt: Matrix3<f64> = k.fixed_view::<3, 3>(3, 0).into_owned();
+            let krr: Matrix3<f64> = k.fixed_view::<3, 3>(3, 3).into_owned();
+            let ta: Matrix3<f64> = jt6.fixed_view::<3, 3>(0, 0).into_owned();
+            let tb: Matrix3<f64> = jt6.fixed_view::<3, 3>(0, 3).into_owned();
+            let b = rat * cross_matrix(&e);
+            let (kxa_t, kxa_r) = (-(ktr * rat), -(krr * rat));
+            let (kwa_t, kwa_r) = (ktt * ta + ktr * b, krt * ta + krr * b);
+            let kwb_t = ktt * tb;
+            let xa_xa = -(ra * kxa_r);
+            let wa_xa = ta.transpose() * kxa_t + b.transpose() * kxa_r;
+            let wb_xa = tb.transpose() * kxa_t;
+            let wa_wa = ta.transpose() * kwa_t + b.transpose() * kwa_r;
+            let wb_wa = tb.transpose() * kwa_t;
+            let wb_wb = tb.transpose() * kwb_t;
+            let xa_wa = -(ra * kwa_r);
+            let blocks = [
+                (XA, XA, xa_xa),
+                (WA, XA, wa_xa),
+                (XB, XA, -xa_xa),
+                (WB, XA, wb_xa),
+                (WA, WA, wa_wa),
+                (XB, WA, -xa_wa),
+                (WB, WA, wb_wa),
+                (XB, XB, xa_xa),
+                (WB, XB, -wb_xa),
+                (WB, WB, wb_wb),
+            ];
+            for (r0, c0, m) in blocks {
+                h.fixed_view_mut::<3, 3>(r0, c0).copy_from(&m);
+                if r0 != c0 {
+                    h.fixed_view_mut::<3, 3>(c0, r0).copy_from(&m.transpose());
+                }
+            }
             // Σ λ_θ,k ∇²θ_k on the rotation slots.
             let lambda_q = lg.jac.transpose() * lambda_t;
             let h6 = jq.transpose() * lg.contracted_hessian(&lambda_t) * jq
