@@ -136,6 +136,8 @@ pub struct ModelSummary {
     pub n_elements: usize,
     /// Largest |error| (%) over all Γ.
     pub worst_percent: f64,
+    /// The same error with its sign (positive: too much sag, the model too soft).
+    pub worst_signed_percent: f64,
     /// Γ where it occurs.
     pub worst_at_gamma: f64,
     /// Largest |error| (%) over Γ ∈ [10, 10³].
@@ -166,6 +168,7 @@ pub fn summarize_models(records: &[ModelCantileverRecord]) -> Vec<ModelSummary> 
                     mesh: r.mesh.clone(),
                     n_elements: r.n_elements,
                     worst_percent: 0.0,
+                    worst_signed_percent: 0.0,
                     worst_at_gamma: f64::NAN,
                     worst_cable_percent: 0.0,
                     mean_iterations: 0.0,
@@ -190,6 +193,7 @@ pub fn summarize_models(records: &[ModelCantileverRecord]) -> Vec<ModelSummary> 
         let e = 100.0 * r.rel_error.abs();
         if e > s.worst_percent {
             s.worst_percent = e;
+            s.worst_signed_percent = 100.0 * r.rel_error;
             s.worst_at_gamma = r.gamma;
         }
         if r.gamma >= CABLE_RANGE.0 * (1.0 - 1e-9) && r.gamma <= CABLE_RANGE.1 * (1.0 + 1e-9) {
