@@ -4,6 +4,11 @@
 //! frames), their energies with exact gradients and Hessians, clamps, meshes, and the Newton
 //! solver that finds equilibria and reports their stability (Hessian inertia).
 //!
+//! Two more rod formulations share that solver, for comparing models side by side: the
+//! discrete Cosserat rod ([`cosserat`], a frame per edge, shear) and the geometrically exact
+//! SE(3) beam ([`se3`], a pose per node, helicoidal elements); what they share is in
+//! [`framed`], their rotation calculus in [`lie`].
+//!
 //! This crate does no file I/O, no plotting and spawns no threads, so that it builds for
 //! `wasm32` and can be embedded anywhere. Units are SI throughout (m, N, kg, s, rad).
 
