@@ -51,10 +51,14 @@ impl StabilityResult {
     /// The stability of a report's equilibrium (no branch switch).
     pub fn of(report: &SolveReport) -> Self {
         let i = report.inertia.unwrap_or_default();
+        let (unstable, null) = match report.modes {
+            Some(m) => (m.unstable, m.null),
+            None => (i.negative, i.zero),
+        };
         Self {
-            stable: report.converged() && report.inertia.is_some() && i.negative == 0,
-            unstable_modes: i.negative,
-            null_modes: i.zero,
+            stable: report.stable() == Some(true),
+            unstable_modes: unstable,
+            null_modes: null,
             followed_unstable_mode: false,
             left_unstable_modes: 0,
             energy_drop: 0.0,
