@@ -160,3 +160,78 @@ impl<'a> Context<'a> {
         t
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A case: the store key.
+    #[derive(Serialize)]
+    struct Key {
+        n: u32,
+    }
+
+    /// Its record.
+    #[derive(Serialize, serde::Deserialize, Debug, PartialEq)]
+    struct Doubled {
+        v: u32,
+    }
+
+    fn keys(ns: &[u32]) -> Vec<Key> {
+        ns.iter().map(|&n| Key { n }).collect()
+    }
+
+    /// Runs `ns` through the store `double` of `cx`; the doubled values, if complete.
+    fn double(cx: &mut Context, ns: &[u32]) -> Option<Vec<u32>> {
+        cx.cases("double", &keys(ns), |k| Ok(Doubled { v: 2 * k.n }))
+            .unwrap()
+            .map(|r| r.into_iter().map(|d| d.v).collect())
+    }
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("slender-context-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        dir
+    }
+
+    #[test]
+    fn the_ledger_counts_what_each_section_computed_and_reused() {
+        let root = scratch("ledger");
+        let store = StoreOptions {
+            root: root.join("store"),
+            shard: None,
+        };
+        let mut cx = Context::new(&root, Layout::PerSection, &store, true);
+        cx.enter("a");
+        assert_eq!(double(&mut cx, &[1, 2, 3]), Some(vec![2, 4, 6]));
+        // Two of these are in the store already; two are new.
+        assert_eq!(double(&mut cx, &[3, 4, 1, 5]), Some(vec![6, 8, 2, 10]));
+        cx.compute(2, || Ok(())).unwrap();
+        cx.enter("b");
+        assert_eq!(double(&mut cx, &[5]), Some(vec![10]));
+        cx.pause();
+        let a = cx.tally("a").stats;
+        assert_eq!((a.computed, a.reused), (3 + 2 + 2, 2));
+        let b = cx.stats("b");
+        assert_eq!((b.computed, b.reused), (0, 1));
+        assert_eq!(cx.stats("never"), RunStats::default());
+        assert_eq!(cx.dir("a"), root.join("a"));
+        let _ = std::fs::remove_dir_all(&root);
+    }
+
+    #[test]
+    fn a_shard_counts_its_own_cases_and_returns_no_records() {
+        let root = scratch("shard");
+        let store = StoreOptions {
+            root: root.join("store"),
+            shard: Some("1/2".parse().unwrap()),
+        };
+        let mut cx = Context::new(&root, Layout::Flat, &store, false);
+        cx.enter("a");
+        assert_eq!(double(&mut cx, &[1, 2, 3, 4, 5]), None);
+        assert_eq!(cx.stats("a").computed, 2);
+        assert_eq!(cx.dir("a"), root);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}

@@ -72,7 +72,7 @@ pub trait Benchmark: Sync {
 }
 
 /// A benchmark of any records type, for lists of benchmarks.
-pub trait Run: Sync {
+pub trait AnyBenchmark: Sync {
     /// See [`Benchmark::sections`].
     fn sections(&self) -> Vec<SectionSpec>;
     /// Records, then files, then (when validating) the checks; `None` if this run computes one
@@ -80,7 +80,7 @@ pub trait Run: Sync {
     fn run(&self, cx: &mut Context) -> Result<Option<Vec<Check>>>;
 }
 
-impl<B: Benchmark> Run for B {
+impl<B: Benchmark> AnyBenchmark for B {
     fn sections(&self) -> Vec<SectionSpec> {
         Benchmark::sections(self)
     }
@@ -102,7 +102,7 @@ impl<B: Benchmark> Run for B {
 }
 
 /// The benchmarks of `slender validate` with `preset`, in report order.
-pub fn suite(preset: Preset) -> Vec<Box<dyn Run>> {
+pub fn suite(preset: Preset) -> Vec<Box<dyn AnyBenchmark>> {
     vec![
         Box::new(cantilever::Cantilever::validation()),
         Box::new(bend_twist::BendTwist::for_preset(preset)),

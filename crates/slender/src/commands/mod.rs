@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, Result};
 
-use crate::benchmarks::{Context, Layout, Run};
+use crate::benchmarks::{AnyBenchmark, Context, Layout};
 use crate::store::runner::StoreOptions;
 use crate::store::shard::Shard;
 
@@ -66,7 +66,7 @@ pub fn print_shard_done(store: &StoreOptions) {
 /// Runs one benchmark the way a single-benchmark command does: every section's files
 /// straight in `out`, no acceptance checks; prints where the files went.
 pub fn run_benchmark(
-    benchmark: &dyn Run,
+    benchmark: &dyn AnyBenchmark,
     out: &Path,
     store: &StoreArgs,
     jobs: Option<usize>,
