@@ -4,8 +4,17 @@
 //! A benchmark is a value implementing [`Benchmark`] (one module per benchmark). `slender
 //! validate` runs the list of [`suite`] in turn; the single-benchmark commands (`slender
 //! cantilever`, `bend-twist`, `lateral-buckling`, `sensitivity`) build the same objects from
-//! their flags and run them without the checks. Adding a benchmark: a module here, an entry
-//! in [`suite`], and (if it has one) a command in `crate::commands`.
+//! their flags and run them without the checks.
+//!
+//! - Adding a benchmark: a module here implementing [`Benchmark`] (its cases and store keys,
+//!   records, files and figures, checks, sections with captions), an entry in [`suite`], and,
+//!   if it has a command of its own, a file in `crate::commands` and a variant in `main.rs`.
+//! - Adding a model axis to a benchmark (e.g. the rod model of the cantilever): a field of the
+//!   benchmark's struct (set by `suite` and by its command's flags) and of its store key
+//!   struct, so that records of different models never mix; sections per model, if wanted,
+//!   come from [`Benchmark::sections`]. A comparison across models is a benchmark of its own
+//!   whose cases are the other benchmarks' keys for each model: the store hands them over as
+//!   reused records.
 
 pub mod bend_twist;
 pub mod cantilever;
