@@ -197,3 +197,54 @@ fn a_closed_ring_twists_through_its_instability() {
     let last = s.results(0, None, 1.0, 1);
     assert!(last.stable && last.structures[0].stability.null_modes <= 1);
 }
+
+/// A stiff strip (issue 17): EA = 1e8 N, EI₁ = 1e6 N m² (vertical), EI₂ = 1 N m² (lateral),
+/// GJ = 1 N m², ρA = 1.271 kg/m, 1 m, clamped, its width vertical, under gravity −z. Its
+/// lateral–torsional buckling under self-weight is at q L³/√(EI₂ GJ) = 12.8538 (the classical
+/// constant, design.md §1.3), i.e. g_c = 12.8538/1.271 m/s²; the inertia must switch within
+/// 0.5 % of it, with 1000 elements.
+fn stiff_strip(elements: usize, g: f64) -> Scene {
+    scene(&format!(
+        r#"
+gravity = [0.0, 0.0, {}]
+unstable = "keep"
+[[rods]]
+centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 1.0 }}
+section = {{ shape = "stiffness", ea = 1e8, ei1 = 1e6, ei2 = 1.0, gj = 1.0, linear_density = 1.271 }}
+elements = {elements}
+first_director = [0.0, 0.0, 1.0]
+supports = [ {{ kind = "clamp", vertex = "start" }} ]
+"#,
+        -g
+    ))
+}
+
+#[test]
+fn a_stiff_strip_switches_stability_at_lateral_torsional_buckling() {
+    let g_c = 12.8538 / 1.271;
+    for elements in [320, 1000] {
+        for (f, stable) in [(0.995, true), (1.005, false)] {
+            let mut sc = stiff_strip(elements, f * g_c);
+            sc.unstable = UnstablePolicy::Keep;
+            let s = Session::new(sc).unwrap();
+            let r = s.results(0, None, 1.0, 1);
+            let st = &r.structures[0];
+            assert!(st.report.converged());
+            assert_eq!(
+                st.stability.stable, stable,
+                "{elements} elements, g/g_c = {f}"
+            );
+            // λ_min has the sign of the inertia (its resolution on this graded matrix is a few
+            // hundredths of EI/ρAL⁴; the true values are about ±0.15).
+            let l = st.report.lambda_min_normalized.expect("λ_min");
+            assert_eq!(l > 0.0, stable, "λ_min/scale = {l}");
+            // The residual is measured against the load; when round-off limits it (EA/EI₂ =
+            // 1e8), it is still small against the load, and the report says how small.
+            assert!(
+                st.report.relative_residual < 1e-3,
+                "{}",
+                st.report.relative_residual
+            );
+        }
+    }
+}

@@ -364,11 +364,12 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             snaps,
             branch_switches: switches,
             residual: last.residual,
-            relative_residual: if last.external_force > 0.0 {
-                last.residual / last.external_force
+            relative_residual: if last.force_scale > 0.0 {
+                last.residual / last.force_scale
             } else {
                 0.0
             },
+            force_scale: last.force_scale,
             residual_floor: last.floor,
             energy_decrement: last.decrement,
             energy: last.energy,

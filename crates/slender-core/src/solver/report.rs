@@ -40,8 +40,13 @@ pub struct SolveReport {
     /// Largest residual force (N; moments divided by a length) of the returned state at the
     /// requested load: small when converged, large when the state is not an equilibrium.
     pub residual: f64,
-    /// `residual` divided by the largest external nodal force (0 when there is no load).
+    /// `residual` divided by `force_scale` (0 when there is no force at all).
     pub relative_residual: f64,
+    /// The force scale (N) the residual is measured against: the largest external nodal force,
+    /// or, in a structure loaded only by the motion of its supports, the internal forces they
+    /// impose (half the largest Σ|term force| on a DOF).
+    #[serde(default)]
+    pub force_scale: f64,
     /// Round-off floor of the residual (N) at the returned state.
     pub residual_floor: f64,
     /// Newton decrement gᵀH⁻¹g (J) at the returned state.
@@ -62,6 +67,13 @@ pub struct SolveReport {
 }
 
 impl SolveReport {
+    /// True if the solve converged only because its residual reached the round-off floor,
+    /// above the force tolerance relative to the force scale: the equilibrium is as accurate
+    /// as double precision allows for this stiffness ratio, and no better.
+    pub fn floor_limited(&self, force_tolerance: f64) -> bool {
+        self.converged() && self.residual > force_tolerance * self.force_scale
+    }
+
     /// True if the solve converged.
     pub fn converged(&self) -> bool {
         self.status == SolveStatus::Converged
