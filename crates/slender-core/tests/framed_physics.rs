@@ -159,7 +159,7 @@ fn se3_helix_under_its_end_wrench_is_an_equilibrium_for_any_element_count() {
         let moment = r_end * m_body;
         let dofs = rod.dofs();
         let mut worst: f64 = 0.0;
-        for i in 0..nf {
+        for (i, gi) in g.iter().enumerate() {
             let applied = match dofs.slot(i) {
                 slender_core::framed::DofSlot::Position { v, k } if v == n => force[k],
                 slender_core::framed::DofSlot::Rotation { j, k } if j == n => moment[k],
@@ -170,7 +170,7 @@ fn se3_helix_under_its_end_wrench_is_an_equilibrium_for_any_element_count() {
             } else {
                 force.norm()
             };
-            worst = worst.max((g[i] - applied).abs() / scale);
+            worst = worst.max((gi - applied).abs() / scale);
         }
         eprintln!("helix, N = {n}: relative residual {worst:e}");
         assert!(worst < 1e-11, "N = {n}: relative residual {worst:e}");

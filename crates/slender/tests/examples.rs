@@ -651,3 +651,253 @@ fn shell_cantilever_scene_matches_the_heavy_elastica_master_curve() {
         "{csv}"
     );
 }
+
+/// Complete elliptic integrals K(m), E(m) (parameter m = k²) by the arithmetic–geometric mean.
+fn elliptic_ke(m: f64) -> (f64, f64) {
+    let (mut a, mut b) = (1.0_f64, (1.0 - m).sqrt());
+    let mut c2_sum = 0.5 * m;
+    let mut pow = 0.5;
+    for _ in 0..40 {
+        let an = 0.5 * (a + b);
+        let bn = (a * b).sqrt();
+        let cn = 0.5 * (a - b);
+        pow *= 2.0;
+        c2_sum += pow * cn * cn;
+        a = an;
+        b = bn;
+    }
+    let k = std::f64::consts::FRAC_PI_2 / a;
+    (k, k * (1.0 - c2_sum))
+}
+
+/// Midspan deflection (m) of Euler's pinned–pinned elastica of length `l` under an axial dead
+/// load P with P/P_E = `ratio` > 1 (P_E = π²EI/l²): P/P_E = (2K(k)/π)², deflection = k·l/K(k).
+fn pinned_elastica_deflection(l: f64, ratio: f64) -> f64 {
+    let (mut lo, mut hi) = (1e-12_f64, 0.999_999_f64);
+    for _ in 0..200 {
+        let k = 0.5 * (lo + hi);
+        let kk = elliptic_ke(k * k).0;
+        if (2.0 * kk / std::f64::consts::PI).powi(2) < ratio {
+            lo = k;
+        } else {
+            hi = k;
+        }
+    }
+    let k = 0.5 * (lo + hi);
+    k * l / elliptic_ke(k * k).0
+}
+
+fn transverse_max(rod: &Value) -> f64 {
+    positions(rod)
+        .iter()
+        .map(|p| (p[1] * p[1] + p[2] * p[2]).sqrt())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn pinned_pinned_column_buckles_to_the_elastica() {
+    let out = solve("pinned_pinned_column");
+    let s = step(&out, 0);
+    assert_eq!(s["stable"], Value::Bool(true));
+    let rod = &s["rods"][0];
+    let w = transverse_max(rod);
+    let exact = pinned_elastica_deflection(1.0, 1.2);
+    assert!(
+        (w / exact - 1.0).abs() < 1e-2,
+        "deflection {w} vs elastica {exact}"
+    );
+    // The slider's reaction has no component along its axis; the pin and slider balance the
+    // axial force.
+    let sup = rod["supports"].as_array().unwrap();
+    let slider = v3(&sup[2]["force"]);
+    let load = 1.2 * std::f64::consts::PI.powi(2);
+    assert!(
+        slider[0].abs() < 1e-8 * load,
+        "slider force along its axis {}",
+        slider[0]
+    );
+    let pin = v3(&sup[0]["force"]);
+    assert!((pin[0] - load).abs() < 1e-6 * load, "pin {pin:?}");
+}
+
+#[test]
+fn clamped_pinned_column_buckles_above_its_critical_load() {
+    let out = solve("clamped_pinned_column");
+    let s = step(&out, 0);
+    assert_eq!(s["stable"], Value::Bool(true));
+    let st = &s["structures"][0]["stability"];
+    assert_eq!(st["followed_unstable_mode"], Value::Bool(true), "{st}");
+    assert!(transverse_max(&s["rods"][0]) > 0.05);
+    // The critical load 20.1907 EI/L² by the inertia: 2 % below it the straight column is
+    // stable, 2 % above it unstable.
+    let text = std::fs::read_to_string(repo().join("examples/clamped_pinned_column.toml")).unwrap();
+    for (f, stable) in [(0.98, true), (1.02, false)] {
+        let p = f * 20.1907;
+        let scene = text
+            .replace("unstable = \"follow\"", "unstable = \"keep\"")
+            .replace("-22.20977", &format!("{:.6}", -p));
+        let d = fresh_dir(&format!("clamped-pinned-{f}"));
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::write(d.join("s.toml"), scene).unwrap();
+        let o = Command::new(env!("CARGO_BIN_EXE_slender"))
+            .args(["solve", "--no-preview", "--out"])
+            .arg(d.join("out"))
+            .arg(d.join("s.toml"))
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.success(),
+            stable,
+            "P/Pcr = {f}: exit {:?}",
+            o.status.code()
+        );
+        let s = step(&d.join("out"), 0);
+        assert_eq!(s["stable"], Value::Bool(stable), "P/Pcr = {f}");
+    }
+}
+
+#[test]
+fn a_cable_through_a_sliding_clip_balances_and_slides_freely() {
+    let out = solve("sliding_clip_cable");
+    let s = step(&out, 0);
+    let rod = &s["rods"][0];
+    assert!(rod["relative_force_imbalance"].as_f64().unwrap() < 1e-9);
+    assert!(rod["relative_moment_imbalance"].as_f64().unwrap() < 1e-9);
+    let sleeve = v3(&rod["supports"][1]["force"]);
+    let weight: f64 = 1400.0 * circle_area(0.006) * 1.2 * 9.81;
+    assert!(
+        sleeve[2].abs() < 1e-8 * weight,
+        "force along the sleeve's axis {}",
+        sleeve[2]
+    );
+    assert!(
+        sleeve[1] > 0.1 * weight,
+        "the sleeve carries part of the weight: {sleeve:?}"
+    );
+}
+
+#[test]
+fn a_hanging_ring_is_symmetric_and_its_clamp_carries_its_weight() {
+    let out = solve("hanging_ring");
+    let s = step(&out, 0);
+    let rod = &s["rods"][0];
+    let x = positions(rod);
+    let n = x.len() - 1;
+    // Mirror symmetry about the vertical plane x = 0 through the clamp: vertex v ↔ n − v.
+    for v in 0..=n {
+        let (a, b) = (x[v], x[n - v]);
+        assert!(
+            (a[0] + b[0]).abs() < 1e-8 && (a[2] - b[2]).abs() < 1e-8,
+            "vertex {v}: {a:?} {b:?}"
+        );
+    }
+    // The mass of the discrete ring: its rest polygon of 48 chords inscribed in the circle.
+    let perimeter = 96.0 * 0.15 * (std::f64::consts::PI / 48.0).sin();
+    let weight = 1200.0 * circle_area(0.004) * perimeter * 9.81;
+    let fz: f64 = rod["supports"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| v3(&s["force"])[2])
+        .sum();
+    assert!(
+        (fz / weight - 1.0).abs() < 1e-6,
+        "clamp {fz} vs weight {weight}"
+    );
+    assert_eq!(s["stable"], Value::Bool(true));
+}
+
+/// The planar elastica of a cantilever with a follower tip force F perpendicular to the tip
+/// tangent: EI θ'' = sin θ F_x − cos θ F_y with F = F(−sin θ_L, cos θ_L), θ(L) = θ_L,
+/// θ'(L) = 0, shot from the tip to the clamp on θ_L so that θ(0) = 0. Returns the tip (x, y).
+fn follower_elastica_tip(f_over_ei: f64, length: f64) -> (f64, f64) {
+    let steps = 4000;
+    let h = length / steps as f64;
+    // Integrate from the tip (s = L) backward: state (θ, θ', x − x_L, y − y_L).
+    let run = |theta_l: f64| {
+        let (fx, fy) = (-theta_l.sin() * f_over_ei, theta_l.cos() * f_over_ei);
+        let rhs = |s: [f64; 4]| {
+            [
+                s[1],
+                s[0].sin() * fx - s[0].cos() * fy,
+                s[0].cos(),
+                s[0].sin(),
+            ]
+        };
+        let mut s = [theta_l, 0.0, 0.0, 0.0];
+        for _ in 0..steps {
+            let a = |s: [f64; 4], k: [f64; 4], c: f64| [0, 1, 2, 3].map(|i| s[i] + c * k[i]);
+            let k1 = rhs(s);
+            let k2 = rhs(a(s, k1, -0.5 * h));
+            let k3 = rhs(a(s, k2, -0.5 * h));
+            let k4 = rhs(a(s, k3, -h));
+            s = [0, 1, 2, 3].map(|i| s[i] - h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+        }
+        s
+    };
+    let (mut lo, mut hi) = (0.0, 1.5);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if run(mid)[0] > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let s = run(0.5 * (lo + hi));
+    // s[2], s[3] are the clamp's coordinates relative to the tip.
+    (-s[2], -s[3])
+}
+
+#[test]
+fn a_follower_loaded_cantilever_matches_the_follower_elastica() {
+    let out = solve("follower_cantilever");
+    let s = step(&out, 0);
+    let x = positions(&s["rods"][0]);
+    let tip = x[x.len() - 1];
+    let (ex, ey) = follower_elastica_tip(2.0, 1.0);
+    let err = ((tip[0] - ex).powi(2) + (tip[1] - ey).powi(2)).sqrt();
+    // Discretization error of 40 elements (second order, a few 1e-4).
+    assert!(err < 2e-3, "tip {tip:?} vs follower elastica ({ex}, {ey})");
+    // A dead force of the same size (F L²/EI = 2) leaves the tip near (0.84, 0.49) (Bisshopp
+    // & Drucker's tables): the follower load bends it further round.
+    assert!(tip[1] > 0.55 && tip[0] < 0.8, "{tip:?}");
+}
+
+#[test]
+fn a_branched_harness_stays_joined_and_balances_its_weight() {
+    let out = solve("branched_harness");
+    let s = step(&out, 0);
+    let rods = s["rods"].as_array().unwrap();
+    let joint = positions(&rods[0]).last().copied().unwrap();
+    for r in &rods[1..] {
+        let p = positions(r)[0];
+        assert!(
+            norm(sub(p, joint)) < 1e-12,
+            "{} left the joint: {p:?} vs {joint:?}",
+            r["name"]
+        );
+    }
+    let st = &s["structures"][0];
+    assert_eq!(st["rods"].as_array().unwrap().len(), 3, "{st}");
+    assert!(
+        st["relative_force_imbalance"].as_f64().unwrap() < 1e-9,
+        "{st}"
+    );
+    assert!(
+        st["relative_moment_imbalance"].as_f64().unwrap() < 1e-9,
+        "{st}"
+    );
+    // The two clamps carry the whole weight, computed here.
+    let rho = 1800.0 * 9.81;
+    let weight = rho * (circle_area(0.01) * 0.4 + circle_area(0.006) * (0.35 + 0.3));
+    let fz: f64 = rods
+        .iter()
+        .flat_map(|r| r["supports"].as_array().unwrap().iter())
+        .map(|s| v3(&s["force"])[2])
+        .sum();
+    assert!(
+        (fz / weight - 1.0).abs() < 1e-6,
+        "clamps {fz} vs weight {weight}"
+    );
+}

@@ -457,3 +457,88 @@ fn a_solve_that_does_not_converge_says_so() {
     assert!(solver.lines().nth(1).unwrap().contains("false"), "{solver}");
     assert!(solver.contains("load step fell below"), "{solver}");
 }
+
+#[test]
+fn bad_new_supports_loads_rings_and_joints_are_named() {
+    // A sliding support slides along one straight axis: a curved guide (a list of points)
+    // is not a direction.
+    rejects(
+        "slider-curved-axis",
+        &GOOD.replace(
+            "{ kind = \"pin\", vertex = 12 }",
+            "{ kind = \"slider\", vertex = 12, axis = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]] }",
+        ),
+        &["scene.toml:", "axis"],
+    );
+    rejects(
+        "slider-zero-axis",
+        &GOOD.replace(
+            "{ kind = \"pin\", vertex = 12 }",
+            "{ kind = \"slider\", vertex = 12, axis = [0.0, 0.0, 0.0] }",
+        ),
+        &["rods[0].supports[1].axis", "non-zero", "straight axis"],
+    );
+    rejects(
+        "axis-on-pin",
+        &GOOD.replace(
+            "{ kind = \"pin\", vertex = 12 }",
+            "{ kind = \"pin\", vertex = 12, axis = [0.0, 0.0, 1.0] }",
+        ),
+        &["rods[0].supports[1].axis", "only a slider"],
+    );
+    // A ring whose ends do not meet.
+    rejects(
+        "ring-open",
+        &GOOD.replace("elements = 20", "elements = 20\nclosed = true"),
+        &["rods[0].closed", "must meet"],
+    );
+    // A follower load on a clamped vertex does nothing.
+    rejects(
+        "follower-on-clamp",
+        &GOOD.replace(
+            "supports = [",
+            "forces = [ { vertex = \"start\", force = [0.0, 1.0, 0.0], follower = true } ]\nsupports = [",
+        ),
+        &["rods[0].forces[0].follower", "held by a support"],
+    );
+    // A support both by vertex and by arc length; an arc length past the end.
+    rejects(
+        "support-vertex-and-at",
+        &GOOD.replace(
+            "{ kind = \"pin\", vertex = 12 }",
+            "{ kind = \"pin\", vertex = 12, at = 0.3 }",
+        ),
+        &["rods[0].supports[1]", "exactly one of `vertex`"],
+    );
+    rejects(
+        "support-at-beyond",
+        &GOOD.replace(
+            "{ kind = \"pin\", vertex = 12 }",
+            "{ kind = \"pin\", at = 1.5 }",
+        ),
+        &["rods[0].supports[1].at", "1.5", "0..=1"],
+    );
+    // Joints: an unknown rod, ends that do not meet.
+    let two = format!(
+        "{GOOD}\n[[rods]]\nname = \"branch\"\ncenterline = {{ kind = \"straight\", start = [1.0, 0.5, 0.0], direction = [1.0, 0.0, 0.0], length = 0.5 }}\nsection = {{ shape = \"circle\", diameter = 0.005 }}\nmaterial = {{ young = 1.0e9, poisson = 0.4, density = 1400.0 }}\n"
+    );
+    rejects(
+        "joint-unknown-rod",
+        &format!("{two}\n[[joints]]\nends = [ {{ rod = \"cable\", end = \"end\" }}, {{ rod = \"nope\", end = \"start\" }} ]\n"),
+        &["joints[0].ends[1].rod", "\"nope\"", "cable, branch"],
+    );
+    rejects(
+        "joint-apart",
+        &format!("{two}\n[[joints]]\nends = [ {{ rod = \"cable\", end = \"end\" }}, {{ rod = \"branch\", end = \"start\" }} ]\n"),
+        &["joints[0][1]", "must meet"],
+    );
+    // A line load with a bad interval.
+    rejects(
+        "line-load-interval",
+        &GOOD.replace(
+            "supports = [",
+            "line_loads = [ { force_per_length = [0.0, 0.0, -1.0], from = 0.8, to = 0.2 } ]\nsupports = [",
+        ),
+        &["rods[0].line_loads[0]", "from < to"],
+    );
+}

@@ -19,8 +19,9 @@ use super::symmetric::{SymmetricFactor, SymmetricMatrix};
 pub use super::eigen::{smallest_eigenpair, EigenEstimate};
 pub use super::symmetric::{FactorError, Inertia};
 
-/// Pivots with |dᵢ| ≤ `ZERO_PIVOT_RTOL · (bw + 1) · max|A + σI|` are counted as numerically
-/// zero in the inertia: their sign is below the rounding error of the factorization.
+/// Pivots with |dᵢ| ≤ `ZERO_PIVOT_RTOL · (bw + 1) · sᵢ` are counted as numerically zero in the
+/// inertia, sᵢ being the scale of the terms dᵢ was computed from (see
+/// [`Inertia::from_pivots`]): their sign is below the rounding error of the factorization.
 const ZERO_PIVOT_RTOL: f64 = f64::EPSILON;
 
 /// A symmetric n×n matrix with half-bandwidth `bw`: entry (i, j) may be nonzero only if
@@ -228,6 +229,8 @@ pub struct BandLdlt {
     l: Vec<f64>,
     /// The pivots D.
     d: Vec<f64>,
+    /// The scale of the terms each pivot was computed from (its rounding error's scale).
+    pivot_scale: Vec<f64>,
     inertia: Inertia,
     factored: bool,
 }
@@ -241,9 +244,9 @@ impl BandLdlt {
     /// Factors A + shift·I = L D Lᵀ (unit lower-banded L, diagonal D) without pivoting and
     /// returns the inertia of A + shift·I read off D (Sylvester's law of inertia).
     ///
-    /// Pivots with |dᵢ| ≤ (bw + 1)·ε·max|A + shift·I| are counted in [`Inertia::zero`]: they are
-    /// nonzero, so the factorization completes and can be solved with, but their sign is not
-    /// trustworthy. An exactly zero pivot stops the factorization with
+    /// Pivots within their rounding error of zero ((bw + 1)·ε times the scale of the terms they
+    /// were computed from) are counted in [`Inertia::zero`]: they are nonzero, so the
+    /// factorization completes and can be solved with, but their sign is not trustworthy. An exactly zero pivot stops the factorization with
     /// [`FactorError::ZeroPivot`]; a NaN or infinity (in A, in `shift`, or from overflow) with
     /// [`FactorError::NonFinite`]. After an error the previous factorization is discarded.
     pub fn factorize(
@@ -264,15 +267,8 @@ impl BandLdlt {
             return Err(FactorError::NonFinite { index: 0 });
         }
 
-        let scale = (0..n).fold(0.0_f64, |m, i| {
-            let row = a.row(i);
-            let off = i.saturating_sub(bw) + bw - i;
-            let m = row[off..bw].iter().fold(m, |m, v| m.max(v.abs()));
-            m.max((row[bw] + shift).abs())
-        });
-        let zero_tol = ZERO_PIVOT_RTOL * (bw as f64 + 1.0) * scale;
-
-        let mut inertia = Inertia::default();
+        let rtol = ZERO_PIVOT_RTOL * (bw as f64 + 1.0);
+        self.pivot_scale.resize(n, 0.0);
         for i in 0..n {
             let lo = i.saturating_sub(bw);
             let off = lo + bw - i;
@@ -294,14 +290,17 @@ impl BandLdlt {
 
             // l_ij = w_ij / d_j and d_i = a_ii + σ − Σ_j w_ij·l_ij.
             let mut di = arow[bw] + shift;
+            let mut scale = di.abs();
             let mut finite = true;
             for (x, &dj) in row[off..].iter_mut().zip(&self.d[lo..i]) {
                 let w = *x;
                 let l = w / dj;
                 *x = l;
                 di -= w * l;
+                scale += (w * l).abs();
                 finite &= l.is_finite();
             }
+            self.pivot_scale[i] = scale;
             if !(finite && di.is_finite()) {
                 return Err(FactorError::NonFinite { index: i });
             }
@@ -309,14 +308,12 @@ impl BandLdlt {
                 return Err(FactorError::ZeroPivot { index: i });
             }
             self.d[i] = di;
-            if di.abs() <= zero_tol {
-                inertia.zero += 1;
-            } else if di < 0.0 {
-                inertia.negative += 1;
-            } else {
-                inertia.positive += 1;
-            }
         }
+        let inertia = Inertia::from_pivots(
+            self.d.iter().copied().zip(self.pivot_scale.iter().copied()),
+            rtol,
+        )
+        .map_err(|index| FactorError::NonFinite { index })?;
         self.inertia = inertia;
         self.factored = true;
         Ok(inertia)

@@ -309,20 +309,23 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
                 index: index.saturating_sub(1),
             });
         }
-        let zero_tol = ZERO_PIVOT_RTOL * a.pattern.max_col_count as f64 * scale;
-        let mut inertia = Inertia::default();
-        for (k, d) in self.pivots(&symbolic).into_iter().enumerate() {
-            if !d.is_finite() {
-                return Err(FactorError::NonFinite { index: k });
-            }
-            if d.abs() <= zero_tol {
-                inertia.zero += 1;
-            } else if d < 0.0 {
-                inertia.negative += 1;
-            } else {
-                inertia.positive += 1;
-            }
-        }
+        // Pivot k of the permuted factorization belongs to row fwd[k] of A; its rounding error
+        // scales with that row's diagonal (see `Inertia::from_pivots`).
+        let rtol = ZERO_PIVOT_RTOL * a.pattern.max_col_count as f64;
+        let diag_of = |k: usize| -> f64 {
+            let row = match symbolic.perm() {
+                Some(p) => p.arrays().0[k],
+                None => k,
+            };
+            self.shifted[a.pattern.diag[row]].abs()
+        };
+        let pivots = self.pivots(&symbolic);
+        let inertia = Inertia::from_pivots(
+            pivots.iter().enumerate().map(|(k, &d)| (d, diag_of(k))),
+            rtol,
+        )
+        .map_err(|index| FactorError::NonFinite { index })?;
+        let _ = scale;
         self.inertia = inertia;
         self.factored = true;
         Ok(inertia)

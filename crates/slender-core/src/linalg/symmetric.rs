@@ -81,6 +81,32 @@ impl Inertia {
     pub fn is_positive_definite(&self) -> bool {
         self.negative == 0 && self.zero == 0
     }
+
+    /// The inertia read off LDLᵀ pivots, each with the scale of the terms it was computed
+    /// from: d_k is counted zero when |d_k| ≤ `rtol`·scale_k, its rounding error. The scale of
+    /// pivot k is |a_kk + σ| + Σ_j |l_kj|²|d_j| (the k-th diagonal entry of |L||D||Lᵀ|, the
+    /// backward-error bound of LDLᵀ); a per-row test keeps small but certain pivots of graded
+    /// matrices (a soft lateral mode among stiff stretching rows) from being lost in a tolerance
+    /// set by the largest entry. Err(k): pivot k is not finite. One counting for every storage.
+    pub fn from_pivots(
+        pivots: impl IntoIterator<Item = (f64, f64)>,
+        rtol: f64,
+    ) -> Result<Inertia, usize> {
+        let mut inertia = Inertia::default();
+        for (k, (d, scale)) in pivots.into_iter().enumerate() {
+            if !d.is_finite() {
+                return Err(k);
+            }
+            if d.abs() <= rtol * scale {
+                inertia.zero += 1;
+            } else if d < 0.0 {
+                inertia.negative += 1;
+            } else {
+                inertia.positive += 1;
+            }
+        }
+        Ok(inertia)
+    }
 }
 
 /// Why a factorization or solve failed.

@@ -8,8 +8,11 @@ use super::model::Rod;
 use super::state::RodState;
 
 impl Rod {
-    /// Continues the moment loads' unwrapped angles from `old` to the positions of `out`.
+    /// Continues the moment loads' unwrapped angles from `old` to the positions of `out`, and
+    /// carries the frozen follower loads over unchanged (they change only when refreshed, so a
+    /// trial state's energy is measured under the same loads as the state it left).
     pub(super) fn update_load_angles(&self, old: &RodState, out: &mut RodState) {
+        out.followers.clone_from(&old.followers);
         out.load_angles.clear();
         for (m, &alpha) in self.moments.iter().zip(&old.load_angles) {
             let j = m.edge;

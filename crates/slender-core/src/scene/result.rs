@@ -51,11 +51,16 @@ impl StabilityResult {
     /// The stability of a report's equilibrium (no branch switch).
     pub fn of(report: &SolveReport) -> Self {
         let i = report.inertia.unwrap_or_default();
+        let (unstable, null) = match report.modes {
+            Some(m) => (m.unstable, m.null),
+            None => (i.negative, i.zero),
+        };
         Self {
-            stable: report.converged() && report.inertia.is_some() && i.negative == 0,
-            unstable_modes: i.negative,
-            null_modes: i.zero,
-            followed_unstable_mode: false,
+            stable: report.stable() == Some(true),
+            unstable_modes: unstable,
+            null_modes: null,
+            // Bifurcations crossed inside the load path were followed by the solver itself.
+            followed_unstable_mode: report.branch_switches > 0,
             left_unstable_modes: 0,
             energy_drop: 0.0,
         }
@@ -190,7 +195,10 @@ fn balance(
         total_f += l.force;
         total_m += l.moment;
         f_scale += l.force.norm();
-        m_scale += l.moment.norm();
+        // The loads' moments may cancel (forces along a line through the origin): their scale
+        // is the force times the structure's reach from the origin.
+        let reach = rs.positions().iter().map(|x| x.norm()).fold(0.0, f64::max);
+        m_scale += l.moment.norm() + reach * l.force.norm();
         length += r.length();
     }
     let mut reaction_moments = 0.0;

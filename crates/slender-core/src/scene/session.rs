@@ -161,6 +161,10 @@ impl Session {
     /// What to do with unstable equilibria from now on.
     pub fn set_unstable_policy(&mut self, p: UnstablePolicy) {
         self.unstable = p;
+        self.spec.unstable = p;
+        for run in self.runs.iter_mut() {
+            run.solver.params.follow_stable = p == UnstablePolicy::Follow;
+        }
     }
 
     /// The results of the current equilibria (allocates: for output, not for re-solves).

@@ -15,4 +15,7 @@ pub use newton::{newton, NewtonOutcome, NewtonWorkspace};
 pub use params::SolverParams;
 pub use problem::{AssemblyInfo, EquilibriumProblem, MassMetric};
 pub use report::{SolveReport, SolveStatus};
-pub use stability::{is_stable, lowest_mode, lowest_mode_with, EigenWorkspace, LowestMode};
+pub use stability::{
+    classify_modes, is_stable, lowest_mode, lowest_mode_with, EigenWorkspace, LowestMode,
+    ModeCounts,
+};

@@ -70,6 +70,10 @@ pub struct IterateMeasures {
     pub floor: f64,
     /// Largest external nodal force (N).
     pub external_force: f64,
+    /// The force scale of the residual tests (N): the largest external nodal force, or, for a
+    /// structure loaded only by its supports' motion, half the largest Σ|term force| on a DOF
+    /// (the internal forces the supports impose).
+    pub force_scale: f64,
     /// Newton decrement |gᵀH⁻¹g| (J); infinite if the Hessian could not be factored.
     pub decrement: f64,
     /// Energy (J).
@@ -90,6 +94,10 @@ pub struct NewtonOutcome {
     /// Measures at the final iterate.
     pub last: IterateMeasures,
 }
+
+/// A residual under the round-off floor and below this fraction of the force scale is
+/// accepted at once; above it, only once Newton stops improving it.
+const FLOOR_ACCEPT: f64 = 1e-6;
 
 /// Largest relative step (per DOF magnitude) still considered a change of the state.
 const TINY_STEP: f64 = 1e-13;
@@ -115,11 +123,12 @@ pub fn newton<P: EquilibriumProblem>(
     let eps = f64::EPSILON;
     let mut shift = 0.0_f64;
     let mut last = IterateMeasures::default();
+    let mut previous_residual: Option<f64> = None;
     for iteration in 0..=params.max_iterations {
         let (measures, info) = measure(problem, state, load, params, ws);
         last = measures;
         let inertia = last.inertia;
-        if converged(&last, &info, params, problem, state, ws) {
+        if converged(&last, &info, params, problem, state, ws, previous_residual) {
             polish(problem, state, load, params, ws, &mut last);
             return NewtonOutcome {
                 converged: true,
@@ -129,6 +138,7 @@ pub fn newton<P: EquilibriumProblem>(
             };
         }
         let residual = last.residual;
+        previous_residual = Some(residual);
         if iteration == params.max_iterations {
             break;
         }
@@ -137,8 +147,12 @@ pub fn newton<P: EquilibriumProblem>(
         }
 
         let positive_definite = inertia.is_some_and(|i| i.is_positive_definite());
+        // At a saddle the unshifted step is kept only if it descends: with several unstable
+        // modes the gradient may be orthogonal to the lowest one and not to the others.
         if positive_definite
-            || (inertia.is_some() && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
+            || (inertia.is_some()
+                && dot(&ws.grad, &ws.dx) < 0.0
+                && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
         {
             // Positive definite: the Newton step. At a symmetric saddle (the gradient has no
             // component along the unstable mode, e.g. a planar state under planar loads) the
@@ -233,6 +247,13 @@ fn measure<P: EquilibriumProblem>(
         residual_and_floor(problem, state, params, &ws.grad, &ws.abs_grad, |i| {
             ws.hess.diagonal(i)
         });
+    let force_scale = if info.external_force > 0.0 {
+        info.external_force
+    } else {
+        0.5 * (0..n)
+            .map(|i| ws.abs_grad[i] / problem.force_length(i))
+            .fold(0.0, f64::max)
+    };
     // The unshifted factorization gives the inertia and, if it exists, the Newton step.
     let inertia = ws.ldlt.factorize(&ws.hess, 0.0).ok();
     let mut decrement = f64::INFINITY;
@@ -248,6 +269,7 @@ fn measure<P: EquilibriumProblem>(
             residual,
             floor,
             external_force: info.external_force,
+            force_scale,
             decrement,
             energy: info.energy,
             inertia,
@@ -280,6 +302,7 @@ fn residual_and_floor<P: EquilibriumProblem>(
 /// The convergence test (design.md §4.3): the residual force is at most
 /// max(force_tolerance·‖f_ext‖, round-off floor) *and* either the Newton decrement is at most
 /// energy_tolerance·|work of the loads| or the Newton step is below round-off.
+#[allow(clippy::too_many_arguments)]
 fn converged<P: EquilibriumProblem>(
     last: &IterateMeasures,
     info: &crate::solver::AssemblyInfo,
@@ -287,14 +310,35 @@ fn converged<P: EquilibriumProblem>(
     problem: &P,
     state: &P::State,
     ws: &NewtonWorkspace<P::State, P::Hessian>,
+    previous_residual: Option<f64>,
 ) -> bool {
-    let force_ok = last.residual <= (params.force_tolerance * info.external_force).max(last.floor);
+    let target = params.force_tolerance * last.force_scale;
+    let force_ok = if last.residual <= target {
+        true
+    } else if last.residual <= last.floor {
+        // Below the (conservative) round-off floor but not small against the load: accept
+        // once the residual is small anyway, or once Newton no longer improves it — so that
+        // "converged" means small relative to the load whenever round-off allows it, whatever
+        // the stiffness ratio (the floor of a very stiff term can be a sizeable fraction of a
+        // small load).
+        last.residual <= FLOOR_ACCEPT * last.force_scale
+            || previous_residual.is_some_and(|p| last.residual > 0.5 * p)
+    } else {
+        false
+    };
     if !force_ok {
         return false;
     }
     let tiny_step = last.inertia.is_some()
         && (0..ws.dx.len()).all(|i| ws.dx[i].abs() <= TINY_STEP * problem.dof_magnitude(state, i));
-    last.decrement <= params.energy_tolerance * info.external_work.abs() || tiny_step
+    // The decrement is measured against the work of the loads; a structure moved by its
+    // supports alone has none, and then the elastic energy is the scale.
+    let scale = if info.external_work != 0.0 {
+        info.external_work.abs()
+    } else {
+        info.energy_magnitude
+    };
+    last.decrement <= params.energy_tolerance * scale || tiny_step
 }
 
 /// After convergence: up to `params.polish_iterations` full Newton steps, each kept only if it

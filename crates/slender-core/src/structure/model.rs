@@ -338,6 +338,16 @@ impl EquilibriumProblem for Structure {
         }
     }
 
+    fn refresh_loads(&self, state: &mut StructureState) -> f64 {
+        let mut change: f64 = 0.0;
+        for (m, member) in self.members.iter().enumerate() {
+            if let (Member::Der(r), MemberState::Der(s)) = (member, &mut state.members[m]) {
+                change = change.max(r.refresh_loads(s));
+            }
+        }
+        change
+    }
+
     fn max_step(&self, state: &StructureState, dx: &[f64]) -> f64 {
         self.members
             .iter()

@@ -110,7 +110,7 @@ fn run_protocol_for<P: BenchmarkRod>(
     };
     let rod0 = build(stages[0].0, stages[0].1)?;
     let mut state = rod0.rest().clone();
-    let mut solver = EquilibriumSolver::new(&rod0, &state, params.clone());
+    let mut solver = EquilibriumSolver::new(&rod0, &state, *params);
     let mut iterations = 0;
     let mut last = None;
     for (ramped, preload) in stages {

@@ -138,18 +138,14 @@ pub fn decide_with_state_for<P: BenchmarkRod>(
     // rod's Hessian at that state.
     let planar_rod = P::from_spec(&case.spec(gravity, Vec3::zeros(), Some(1))?.for_model(model))?;
     let start = planar_rod.rest().clone();
-    let mut planar = EquilibriumSolver::new(&planar_rod, &start, params.clone()).solve(
-        &planar_rod,
-        &start,
-        0.0,
-        1.0,
-    );
+    let mut planar =
+        EquilibriumSolver::new(&planar_rod, &start, *params).solve(&planar_rod, &start, 0.0, 1.0);
     if !planar.report.converged() {
         // Fine meshes of many-turn coils at very large Γ unwind through long in-plane snaps:
         // give them a larger minimization budget before declaring failure.
         let patient = SolverParams {
             snap_iterations: PATIENT_SNAP_ITERATIONS.max(params.snap_iterations),
-            ..params.clone()
+            ..*params
         };
         let first = planar.report.iterations;
         planar = EquilibriumSolver::new(&planar_rod, &start, patient).solve(
@@ -163,7 +159,7 @@ pub fn decide_with_state_for<P: BenchmarkRod>(
     let rod = P::from_spec(&case.spec(gravity, Vec3::zeros(), None)?.for_model(model))?;
     let switch_params = SolverParams {
         max_iterations: 10 * params.max_iterations,
-        ..params.clone()
+        ..*params
     };
     let mut solver = EquilibriumSolver::new(&rod, &start, switch_params);
     let mut out = StabilityOutcome {

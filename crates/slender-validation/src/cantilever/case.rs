@@ -134,7 +134,7 @@ impl CantileverCase {
         let rod = P::from_spec(&self.spec()?.for_model(model))?;
         let start = rod.rest().clone();
         let clock = Instant::now();
-        let mut solver = EquilibriumSolver::new(&rod, &start, params.clone());
+        let mut solver = EquilibriumSolver::new(&rod, &start, *params);
         let solution = solver.solve(&rod, &start, 0.0, 1.0);
         let seconds = clock.elapsed().as_secs_f64();
         let positions = P::positions(&solution.state).to_vec();

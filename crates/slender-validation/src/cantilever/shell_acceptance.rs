@@ -11,6 +11,7 @@ use slender_core::ModelError;
 use super::acceptance::Check;
 use super::master_curve::master_ratio;
 use super::shell_case::ShellCantileverCase;
+use super::shell_sweep::ShellCantileverRecord;
 use super::sweep::log_space;
 use crate::materials::OMEGA_COMBINED;
 
@@ -42,6 +43,36 @@ pub fn acceptance_case(n_length: usize, gamma: f64) -> ShellCantileverCase {
         grading: Grading::Power { exponent: 2.0 },
         gamma,
     }
+}
+
+impl From<&ShellCantileverRecord> for ShellErrorPoint {
+    fn from(r: &ShellCantileverRecord) -> Self {
+        Self {
+            n_length: r.n_length,
+            gamma: r.gamma,
+            rel_error: r.rel_error,
+            iterations: r.iterations,
+            seconds: r.seconds,
+        }
+    }
+}
+
+/// Meshes n_L of the targets: the fine one (within 1 % for Γ ≤ 100), then the coarse one.
+const ACCEPTANCE_MESHES: [usize; 2] = [15, 8];
+
+/// Γ of the targets: 13 log-spaced values from 0.1 to 10³.
+fn acceptance_gammas() -> Vec<f64> {
+    log_space(0.1, 1e3, 13)
+}
+
+/// The cases the targets measure, in a fixed order: [`acceptance_case`] at n_L = 15, then
+/// n_L = 8, each over Γ ∈ [0.1, 10³] (13 log-spaced values).
+pub fn acceptance_cases() -> Vec<ShellCantileverCase> {
+    let gammas = acceptance_gammas();
+    ACCEPTANCE_MESHES
+        .iter()
+        .flat_map(|&n| gammas.iter().map(move |&g| acceptance_case(n, g)))
+        .collect()
 }
 
 /// Relative errors of the acceptance case over `gammas` at `n_length`.
@@ -95,27 +126,44 @@ fn check(description: String, measured: f64, limit: f64) -> Check {
 
 /// The targets of issue 4 (parts 1–4), each a measurement: n_L = 15 within 1 % for Γ ≤ 100;
 /// n_L = 8 within 2 % for Γ ≤ 10³ (and, separately, over the cable range [10, 10³]).
-/// Γ runs over 13 log-spaced values from 0.1 to 10³.
+/// Γ runs over 13 log-spaced values from 0.1 to 10³. Computes the cases; see
+/// [`checks_from_records`] for records computed elsewhere.
 pub fn shell_cantilever_checks(params: &SolverParams) -> Result<Vec<Check>, ModelError> {
-    let gammas = log_space(0.1, 1e3, 13);
-    let fine = shell_error_sweep(15, &gammas, params)?;
-    let coarse = shell_error_sweep(8, &gammas, params)?;
+    let gammas = acceptance_gammas();
+    let fine = shell_error_sweep(ACCEPTANCE_MESHES[0], &gammas, params)?;
+    let coarse = shell_error_sweep(ACCEPTANCE_MESHES[1], &gammas, params)?;
+    Ok(checks_from_points(&fine, &coarse))
+}
+
+/// The targets from the records of [`acceptance_cases`] (any order).
+pub fn checks_from_records(records: &[ShellCantileverRecord]) -> Vec<Check> {
+    let at = |n: usize| -> Vec<ShellErrorPoint> {
+        records
+            .iter()
+            .filter(|r| r.n_length == n)
+            .map(ShellErrorPoint::from)
+            .collect()
+    };
+    checks_from_points(&at(ACCEPTANCE_MESHES[0]), &at(ACCEPTANCE_MESHES[1]))
+}
+
+fn checks_from_points(fine: &[ShellErrorPoint], coarse: &[ShellErrorPoint]) -> Vec<Check> {
     let label = "Ω_combined with ν = 0, w/L = 0.1, quadratic grading, exact director clamp";
-    Ok(vec![
+    vec![
         check(
             format!("{label}, n_L × n_W = 15 × 2: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 100]"),
-            worst_percent(&fine, 0.1, 100.0),
+            worst_percent(fine, 0.1, 100.0),
             1.0,
         ),
         check(
             format!("{label}, n_L × n_W = 8 × 2: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 10³]"),
-            worst_percent(&coarse, 0.1, 1e3),
+            worst_percent(coarse, 0.1, 1e3),
             2.0,
         ),
         check(
             format!("{label}, n_L × n_W = 8 × 2: worst |Δy/Δx error| (%) over the cable range Γ ∈ [10, 10³]"),
-            worst_percent(&coarse, 10.0, 1e3),
+            worst_percent(coarse, 10.0, 1e3),
             2.0,
         ),
-    ])
+    ]
 }

@@ -14,7 +14,7 @@ use slender_core::ModelError;
 use crate::materials::ShellMaterialSet;
 
 /// Parameters of one shell cantilever run.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ShellCantileverCase {
     /// Material and geometry set.
     pub material: ShellMaterialSet,

@@ -97,7 +97,7 @@ impl ModelCantileverSweep {
         self.cases()
             .par_iter()
             .map(|(model, case)| {
-                let r = run_one(*model, case, params);
+                let r = run_model_case(*model, case, params);
                 progress();
                 r
             })
@@ -105,7 +105,8 @@ impl ModelCantileverSweep {
     }
 }
 
-fn run_one(
+/// Runs one case of the comparison on `model` and scores it against the master curve.
+pub fn run_model_case(
     model: RodModel,
     case: &CantileverCase,
     params: &SolverParams,
@@ -225,41 +226,78 @@ pub const ORDER_MESHES: [usize; 4] = [10, 20, 40, 80];
 /// Γ values of the order check.
 pub const ORDER_GAMMAS: [f64; 2] = [1.0, 100.0];
 
-/// Orders of convergence of every model of `models` at Γ = 1 and 100 (graded mesh, `material`).
-pub fn convergence_orders(
+/// The cases of the order check for `models`, in a fixed order: model, Γ, N (graded mesh).
+pub fn order_cases(
     models: &[RodModel],
     material: RodMaterialSet,
-    params: &SolverParams,
-) -> Result<Vec<ModelConvergence>, SweepError> {
-    let jobs: Vec<(RodModel, f64)> = models
+) -> Vec<(RodModel, CantileverCase)> {
+    models
         .iter()
-        .flat_map(|&m| ORDER_GAMMAS.iter().map(move |&g| (m, g)))
-        .collect();
-    jobs.par_iter()
-        .map(|&(model, gamma)| {
-            let master = master_ratio(gamma)?;
-            let errors = ORDER_MESHES
+        .flat_map(|&model| {
+            ORDER_GAMMAS.iter().flat_map(move |&gamma| {
+                ORDER_MESHES.iter().map(move |&n_elements| {
+                    (
+                        model,
+                        CantileverCase {
+                            material,
+                            mesh: MeshKind::Graded,
+                            n_elements,
+                            gamma,
+                        },
+                    )
+                })
+            })
+        })
+        .collect()
+}
+
+/// The orders of convergence of `models` read off `records`, which must hold every case of
+/// [`order_cases`] (missing ones count as NaN errors).
+pub fn orders_from_records(
+    models: &[RodModel],
+    records: &[ModelCantileverRecord],
+) -> Vec<ModelConvergence> {
+    let k = ORDER_MESHES.len();
+    models
+        .iter()
+        .flat_map(|&model| ORDER_GAMMAS.iter().map(move |&gamma| (model, gamma)))
+        .map(|(model, gamma)| {
+            let errors: Vec<f64> = ORDER_MESHES
                 .iter()
                 .map(|&n| {
-                    let run = CantileverCase {
-                        material,
-                        mesh: MeshKind::Graded,
-                        n_elements: n,
-                        gamma,
-                    }
-                    .run_with(model, params)?;
-                    Ok(run.ratio / master - 1.0)
+                    records
+                        .iter()
+                        .find(|r| {
+                            r.model == model.name()
+                                && r.mesh == MeshKind::Graded.name()
+                                && r.n_elements == n
+                                && r.gamma == gamma
+                        })
+                        .map_or(f64::NAN, |r| r.rel_error)
                 })
-                .collect::<Result<Vec<f64>, SweepError>>()?;
-            let k = ORDER_MESHES.len();
-            Ok(ModelConvergence {
+                .collect();
+            ModelConvergence {
                 model: model.name().into(),
                 gamma,
                 element_counts: ORDER_MESHES.to_vec(),
                 slope: convergence_slope(&ORDER_MESHES, &errors),
                 finest_slope: convergence_slope(&ORDER_MESHES[k - 2..], &errors[k - 2..]),
                 errors,
-            })
+            }
         })
         .collect()
+}
+
+/// Orders of convergence of every model of `models` at Γ = 1 and 100 (graded mesh, `material`).
+pub fn convergence_orders(
+    models: &[RodModel],
+    material: RodMaterialSet,
+    params: &SolverParams,
+) -> Result<Vec<ModelConvergence>, SweepError> {
+    params.validate()?;
+    let records = order_cases(models, material)
+        .par_iter()
+        .map(|(model, case)| run_model_case(*model, case, params))
+        .collect::<Result<Vec<_>, SweepError>>()?;
+    Ok(orders_from_records(models, &records))
 }

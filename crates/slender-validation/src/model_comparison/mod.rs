@@ -10,8 +10,8 @@ pub mod greenhill;
 pub mod shear_limit;
 
 pub use cantilever::{
-    convergence_orders, summarize_models, ModelCantileverRecord, ModelCantileverSweep,
-    ModelConvergence, ModelSummary,
+    convergence_orders, order_cases, orders_from_records, run_model_case, summarize_models,
+    ModelCantileverRecord, ModelCantileverSweep, ModelConvergence, ModelSummary,
 };
 pub use checks::{bend_twist_model_score, model_checks, BendTwistModelScore};
 pub use greenhill::{greenhill_threshold, GREENHILL};

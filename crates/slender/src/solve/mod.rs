@@ -49,7 +49,7 @@ pub fn write_schema(out: Option<&Path>) -> Result<()> {
 }
 
 /// Runs `slender solve`. Ok(false): outputs written but some step did not converge.
-pub fn run(args: &SolveArgs) -> Result<bool> {
+pub fn run(args: &SolveArgs) -> Result<Outcome> {
     let scene = scene_io::read_scene(&args.scene)?;
     let compiled = scene
         .compile()
@@ -122,6 +122,12 @@ struct StepRow {
     max_residual: f64,
     max_relative_force_imbalance: f64,
     max_relative_moment_imbalance: f64,
+    /// Every equilibrium of the step is stable (null modes allowed).
+    stable: bool,
+    /// Largest number of unstable modes of an equilibrium of the step.
+    unstable_modes: usize,
+    /// An unstable equilibrium was met and its unstable mode followed to a stable one.
+    followed_unstable_mode: bool,
 }
 
 /// One row of `solver.csv`.
@@ -211,6 +217,8 @@ struct EdgeRow {
 #[derive(Serialize)]
 struct Report<'a> {
     converged: bool,
+    /// Every equilibrium of every step is stable.
+    stable: bool,
     steps: usize,
     total_seconds: f64,
     /// Per step: everything but the per-vertex arrays.
@@ -224,7 +232,9 @@ struct StepSummary<'a> {
     seconds: f64,
     pieces: usize,
     converged: bool,
+    stable: bool,
     rods: Vec<RodSummary<'a>>,
+    structures: &'a [slender_core::scene::StructureResult],
     shells: Vec<ShellSummary<'a>>,
 }
 
@@ -258,7 +268,7 @@ fn solve_into(
     scene: &CompiledScene,
     dir: &Path,
     preview: bool,
-) -> Result<bool> {
+) -> Result<Outcome> {
     let clock = Instant::now();
     let t0 = Instant::now();
     let (mut solver, mut first) = SceneSolver::new(spec, scene);
@@ -278,11 +288,29 @@ fn solve_into(
         }
     }
     let converged = steps.iter().all(|s| s.converged) && steps.len() == solver.motion_steps() + 1;
+    let stable = steps.iter().all(|s| s.stable);
     write_summaries(dir, &steps, converged, clock.elapsed().as_secs_f64())?;
     if preview {
         preview::write_preview(scene, &steps, &dir.join("preview"))?;
     }
-    Ok(converged)
+    Ok(if !converged {
+        Outcome::NotConverged
+    } else if !stable {
+        Outcome::Unstable
+    } else {
+        Outcome::Ok
+    })
+}
+
+/// How a scene solve ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Every step converged to a stable equilibrium.
+    Ok,
+    /// Every step converged, but some equilibrium is unstable (kept as the scene asked).
+    Unstable,
+    /// Some step did not converge.
+    NotConverged,
 }
 
 fn step_dir(dir: &Path, step: usize) -> PathBuf {
@@ -451,6 +479,17 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
             max_residual,
             max_relative_force_imbalance: max_f,
             max_relative_moment_imbalance: max_m,
+            stable: s.stable,
+            unstable_modes: s
+                .structures
+                .iter()
+                .map(|x| x.stability.unstable_modes)
+                .max()
+                .unwrap_or(0),
+            followed_unstable_mode: s
+                .structures
+                .iter()
+                .any(|x| x.stability.followed_unstable_mode),
         });
     }
     write_csv(&dir.join("steps.csv"), &step_rows)?;
@@ -458,6 +497,7 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
     write_csv(&dir.join("reactions.csv"), &reaction_rows)?;
     let report = Report {
         converged,
+        stable: steps.iter().all(|s| s.stable),
         steps: steps.len(),
         total_seconds: total,
         summary: steps
@@ -468,6 +508,8 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
                 seconds: s.seconds,
                 pieces: s.pieces,
                 converged: s.converged,
+                stable: s.stable,
+                structures: &s.structures,
                 rods: s
                     .rods
                     .iter()
@@ -507,13 +549,21 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
 pub fn print_summary(out: &Path) -> Result<()> {
     let text = fs::read_to_string(out.join("steps.csv"))?;
     let mut r = csv::Reader::from_reader(text.as_bytes());
-    println!("step  converged  seconds   pieces  rel. force/moment imbalance");
+    println!(
+        "step  converged  stability             seconds   pieces  rel. force/moment imbalance"
+    );
     for row in r.records() {
         let row = row?;
+        let stability = match (&row[10], &row[11], &row[12]) {
+            ("true", _, "true") => "stable (followed)".to_string(),
+            ("true", _, _) => "stable".to_string(),
+            (_, n, _) => format!("UNSTABLE ({n} modes)"),
+        };
         println!(
-            "{:>4}  {:>9}  {:>8.3}  {:>6}  {:.1e} / {:.1e}",
+            "{:>4}  {:>9}  {:<20}  {:>8.3}  {:>6}  {:.1e} / {:.1e}",
             &row[0],
             &row[5],
+            stability,
             row[3].parse::<f64>().unwrap_or(f64::NAN),
             &row[4],
             row[8].parse::<f64>().unwrap_or(f64::NAN),

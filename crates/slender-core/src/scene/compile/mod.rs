@@ -143,6 +143,7 @@ impl Scene {
         solver
             .polish_iterations
             .get_or_insert(SCENE_POLISH_ITERATIONS);
+        solver.follow_stable = self.unstable == UnstablePolicy::Follow;
         Ok(CompiledScene {
             rods,
             structures,

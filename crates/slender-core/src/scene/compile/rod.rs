@@ -243,6 +243,8 @@ pub(super) fn compile_rod(
         let held = match s.kind {
             SupportKind::Clip if v == n_edges => vec![v - 1, v],
             SupportKind::Clip => vec![v, v + 1],
+            // A closed rod clamped where its ends meet holds both ends there.
+            SupportKind::Clamp if spec.closed && (v == 0 || v == n_edges) => vec![0, n_edges],
             SupportKind::Clamp | SupportKind::Pin => vec![v],
             SupportKind::Slider => {
                 let a = match s.axis {

@@ -1,9 +1,10 @@
-//! `slender cantilever`: runs the sweep and writes results.csv, summary.csv, the Fig. 2
-//! counterparts (one per material and mesh family), error plots and deformed shapes.
+//! The rods of the cantilever benchmark: the sweep's cases through the store, results.csv,
+//! summary.csv, the Fig. 2 counterparts (one per material and mesh family), error plots and
+//! deformed shapes.
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::{Context as _, Result};
 use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::master_curve::heavy_elastica;
@@ -14,87 +15,89 @@ use slender_validation::cantilever::{
 
 use slender_validation::rod_model::RodModel;
 
+use crate::benchmarks::{is_der, model_suffix, words, Context};
 use crate::output::write_csv;
 use crate::plot::{plot_cantilever_ratio, plot_relative_error, plot_shapes_2d, Curve};
-use crate::store::runner::RunStats;
-use crate::store::runner::{run_cases, StoreOptions};
-use crate::store::BenchmarkStore;
 
-/// What the cantilever benchmark produced.
-pub struct CantileverOutput {
-    /// One record per case.
-    pub records: Vec<CantileverRecord>,
-    /// Worst errors per discretization.
-    pub summary: Vec<DiscretizationSummary>,
-    /// Cases computed, reused and their compute time.
-    pub stats: RunStats,
-}
+/// The store of rod cantilever records.
+const STORE: &str = "cantilever";
 
 /// Everything a cantilever record depends on: the store key.
 #[derive(Serialize)]
 struct CantileverKey {
     case: CantileverCase,
-    /// Absent for the discrete elastic rod, so that its keys are those of before the models.
+    /// Absent for the discrete elastic rod, so that its keys (and stored records) are those
+    /// of before the rod models.
     #[serde(skip_serializing_if = "is_der")]
     model: RodModel,
     solver: SolverParams,
 }
 
-/// Runs `sweep` through the store and writes everything under `out`; `None` if this run
-/// computed one shard only (no report).
-pub fn run(
-    sweep: &CantileverSweep,
-    out: &Path,
-    store: &StoreOptions,
-) -> Result<Option<CantileverOutput>> {
-    run_model(sweep, RodModel::Der, out, store)
-}
-
-fn is_der(m: &RodModel) -> bool {
-    *m == RodModel::Der
-}
-
-/// As [`run`] with the rod formulation `model`.
-pub fn run_model(
-    sweep: &CantileverSweep,
+/// The records of `cases` (in order) on the rod `model` through the store; `None` if this run
+/// computes one shard.
+pub(super) fn records(
+    cases: &[CantileverCase],
     model: RodModel,
-    out: &Path,
-    store: &StoreOptions,
-) -> Result<Option<CantileverOutput>> {
+    cx: &mut Context,
+) -> Result<Option<Vec<CantileverRecord>>> {
     let solver = SolverParams::default();
-    sweep.validate()?;
     solver.validate()?;
-    let keys: Vec<CantileverKey> = sweep
-        .cases()
-        .into_iter()
-        .map(|case| CantileverKey {
+    let keys: Vec<CantileverKey> = cases
+        .iter()
+        .map(|&case| CantileverKey {
             case,
             model,
-            solver: solver.clone(),
+            solver,
         })
         .collect();
-    let bench = BenchmarkStore::new(&store.root, "cantilever");
-    let run = run_cases(&bench, store.shard, &keys, |k| {
+    cx.cases(STORE, &keys, |k| {
         Ok(run_case_with(&k.case, k.model, &k.solver)?)
-    })?;
-    let stats = RunStats::of(&run);
-    let Some(records) = run.complete() else {
-        return Ok(None);
-    };
-    write_csv(&out.join("results.csv"), &records)?;
-    let summary = summarize(&records);
+    })
+}
+
+/// Writes results.csv, summary.csv and the figures of the sweep's `records` under `out`, and
+/// prints the summary.
+pub(super) fn write(
+    sweep: &CantileverSweep,
+    model: RodModel,
+    records: &[CantileverRecord],
+    out: &Path,
+    cx: &mut Context,
+) -> Result<()> {
+    write_csv(&out.join("results.csv"), records)?;
+    let summary = summarize(records);
     write_csv(&out.join("summary.csv"), &summary)?;
-    plot_ratios(sweep, &records, out)?;
-    plot_coarse_shapes(sweep, model, out)?;
-    Ok(Some(CantileverOutput {
-        records,
-        summary,
-        stats,
-    }))
+    plot_ratios(sweep, model, records, out)?;
+    plot_coarse_shapes(sweep, model, out, cx)?;
+    print_summary(&summary);
+    Ok(())
+}
+
+/// Caption of a figure of the rods' section.
+pub(super) fn caption(stem: &str) -> String {
+    if let Some(rest) = stem.strip_prefix("ratio_") {
+        format!(
+            "Counterpart of the seed's Fig. 2: Δy/Δx against Γ ({}), every element count, \
+             with the heavy-elastica master curve computed in code.",
+            words(rest)
+        )
+    } else if let Some(rest) = stem.strip_prefix("error_") {
+        format!(
+            "Relative error of Δy/Δx against the master curve ({}); the band marks Γ ∈ [10, 10³].",
+            words(rest)
+        )
+    } else if stem.starts_with("shape_") {
+        format!(
+            "Counterpart of the seed's Figs. 3 and 5: equilibrium shapes on coarse meshes ({}).",
+            words(stem)
+        )
+    } else {
+        words(stem)
+    }
 }
 
 /// Prints the worst errors per discretization.
-pub fn print_summary(summary: &[DiscretizationSummary]) {
+fn print_summary(summary: &[DiscretizationSummary]) {
     println!(
         "{:<8} {:<10} {:>4}  {:>22}  {:>16}  {:>9}",
         "material", "mesh", "N", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
@@ -112,7 +115,13 @@ pub fn print_summary(summary: &[DiscretizationSummary]) {
     }
 }
 
-fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path) -> Result<()> {
+fn plot_ratios(
+    sweep: &CantileverSweep,
+    model: RodModel,
+    records: &[CantileverRecord],
+    out: &Path,
+) -> Result<()> {
+    let on_model = model_suffix(model);
     let lo = sweep.gammas.iter().cloned().fold(f64::INFINITY, f64::min);
     let hi = sweep.gammas.iter().cloned().fold(0.0, f64::max);
     // The master curve drawn densely, independent of the sweep's Γ grid.
@@ -150,7 +159,11 @@ fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path
             let stem = out.join(format!("ratio_{}_{}", material.name, mesh.name()));
             plot_cantilever_ratio(
                 &stem,
-                &format!("Cantilever, {} — {} mesh", material.label, mesh.name()),
+                &format!(
+                    "Cantilever, {} — {} mesh{on_model}",
+                    material.label,
+                    mesh.name()
+                ),
                 &master,
                 &ratio_curves,
                 Some(CABLE_RANGE),
@@ -160,7 +173,7 @@ fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path
             plot_relative_error(
                 &stem,
                 &format!(
-                    "Error vs master curve, {} — {} mesh",
+                    "Error vs master curve, {} — {} mesh{on_model}",
                     material.label,
                     mesh.name()
                 ),
@@ -175,7 +188,12 @@ fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path
 
 /// Deformed shapes at Γ = 10⁴ on the coarsest meshes (the seed's Figs. 3 and 5), with the
 /// exact heavy elastica.
-fn plot_coarse_shapes(sweep: &CantileverSweep, model: RodModel, out: &Path) -> Result<()> {
+fn plot_coarse_shapes(
+    sweep: &CantileverSweep,
+    model: RodModel,
+    out: &Path,
+    cx: &mut Context,
+) -> Result<()> {
     let gamma = 1e4;
     let exact = heavy_elastica(gamma)?;
     let reference = Curve {
@@ -192,13 +210,13 @@ fn plot_coarse_shapes(sweep: &CantileverSweep, model: RodModel, out: &Path) -> R
         for &n in &counts {
             let mut shapes = Vec::new();
             for mesh in MeshKind::ALL {
-                let run = CantileverCase {
+                let case = CantileverCase {
                     material: *material,
                     mesh,
                     n_elements: n,
                     gamma,
-                }
-                .run_with(model, &params)?;
+                };
+                let run = cx.compute(1, || Ok(case.run_with(model, &params)?))?;
                 let l = material.length;
                 shapes.push(Curve {
                     label: format!(
@@ -218,7 +236,11 @@ fn plot_coarse_shapes(sweep: &CantileverSweep, model: RodModel, out: &Path) -> R
             let stem = out.join(format!("shape_gamma1e4_{}_n{}", material.name, n));
             plot_shapes_2d(
                 &stem,
-                &format!("Γ = 10⁴, {n} elements, {}", material.label),
+                &format!(
+                    "Γ = 10⁴, {n} elements, {}{}",
+                    material.label,
+                    model_suffix(model)
+                ),
                 "x / L",
                 "y / L",
                 Some(&reference),

@@ -1,123 +1,38 @@
-//! The cross-model section of `slender validate` (seed §2, Fig. 5): the same benchmarks on the
-//! discrete elastic rod, the discrete Cosserat rod (sine and tangent Darboux vectors) and the
-//! SE(3) beam; writes the records, summaries, figures and the per-model checks.
+//! The figures, printed summary and findings of the rod-model comparison.
 
 use std::path::Path;
 
 use anyhow::Result;
-use slender_core::solver::SolverParams;
 use slender_validation::bend_twist::sweep::BendTwistSweep;
-use slender_validation::cantilever::{Check, MeshKind, CABLE_RANGE};
+use slender_validation::cantilever::{MeshKind, CABLE_RANGE};
 use slender_validation::model_comparison::{
-    bend_twist_model_score, convergence_orders, greenhill_threshold, model_checks,
-    shear_tension_limit, summarize_models, BendTwistModelScore, ModelCantileverRecord,
-    ModelCantileverSweep, ModelConvergence, ModelSummary,
+    shear_tension_limit, ModelCantileverRecord, ModelCantileverSweep, ModelConvergence,
 };
 use slender_validation::rod_model::RodModel;
 
-use crate::output::write_csv;
+use super::RodModelRecords;
+use crate::benchmarks::words;
 use crate::plot::{plot_lines, plot_relative_error, Curve, LineAxes, Scale};
-use crate::store::runner::{RunStats, StoreOptions};
 
-/// What the comparison produced.
-pub struct ModelComparison {
-    /// Per model, mesh and N.
-    pub summary: Vec<ModelSummary>,
-    /// Orders of convergence.
-    pub orders: Vec<ModelConvergence>,
-    /// Greenhill thresholds per model.
-    pub greenhill: Vec<(RodModel, f64)>,
-    /// Bend–twist scores per model.
-    pub bend_twist: Vec<BendTwistModelScore>,
-    /// The checks.
-    pub checks: Vec<Check>,
-    /// The bend–twist sweeps' store counts.
-    pub stats: RunStats,
-}
-
-/// Greenhill row of `greenhill.csv`.
-#[derive(serde::Serialize)]
-struct GreenhillRow {
-    model: String,
-    elements: usize,
-    gamma_c: f64,
-    relative_error: f64,
-}
-
-/// Elements of the Greenhill column.
-const GREENHILL_ELEMENTS: usize = 40;
-
-/// Runs the comparison into `out`; `None` if a bend–twist sweep computed one shard only.
-pub fn run(out: &Path, store: &StoreOptions) -> Result<Option<ModelComparison>> {
-    std::fs::create_dir_all(out)?;
-    let params = SolverParams::default();
-    let sweep = ModelCantileverSweep::default();
-    let records = sweep.run(&params, &|| {})?;
-    write_csv(&out.join("cantilever.csv"), &records)?;
-    let summary = summarize_models(&records);
-    write_csv(&out.join("cantilever_summary.csv"), &summary)?;
-    let orders = convergence_orders(&sweep.models, sweep.material, &params)?;
-    crate::output::write_atomic(
-        &out.join("convergence.json"),
-        serde_json::to_string_pretty(&orders)?.as_bytes(),
-    )?;
-    let mut greenhill = Vec::new();
-    let mut rows = Vec::new();
-    for &model in &sweep.models {
-        let g = greenhill_threshold(model, sweep.material, GREENHILL_ELEMENTS, &params)?;
-        rows.push(GreenhillRow {
-            model: model.name().into(),
-            elements: GREENHILL_ELEMENTS,
-            gamma_c: g,
-            relative_error: g / slender_validation::model_comparison::GREENHILL - 1.0,
-        });
-        greenhill.push((model, g));
+/// Caption of a figure of the section.
+pub(super) fn caption(stem: &str) -> String {
+    if let Some(rest) = stem.strip_prefix("error_") {
+        format!(
+            "Counterpart of the seed's Fig. 5: relative error of Δy/Δx of every rod model \
+             against the heavy elastica ({}); the band marks Γ ∈ [10, 10³].",
+            words(rest)
+        )
+    } else if stem == "convergence" {
+        "|Δy/Δx error| against N on the graded mesh for every rod model at Γ = 1 and 100 \
+         (log–log; the slope is the order of convergence)."
+            .into()
+    } else {
+        words(stem)
     }
-    write_csv(&out.join("greenhill.csv"), &rows)?;
-    // Bend–twist on the quick grid, each model in its own folder (through the store).
-    let bt_sweep = BendTwistSweep::quick();
-    let mut bend_twist = Vec::new();
-    let mut stats = RunStats::default();
-    for &model in &sweep.models {
-        let dir = out.join(format!("bend-twist-{}", model.name()));
-        let Some(o) = crate::bend_twist_report::run_model(&bt_sweep, model, &dir, store)? else {
-            return Ok(None);
-        };
-        stats.computed += o.stats.computed;
-        stats.reused += o.stats.reused;
-        stats.case_seconds += o.stats.case_seconds;
-        bend_twist.push(bend_twist_model_score(
-            model.name(),
-            &o.records,
-            &sweep.material,
-        ));
-    }
-    write_csv(&out.join("bend_twist.csv"), &bend_twist)?;
-    plot_errors(&sweep, &records, out)?;
-    plot_orders(&orders, out)?;
-    let mut checks = Vec::new();
-    for (&model, &(_, g)) in sweep.models.iter().zip(&greenhill) {
-        checks.extend(model_checks(
-            model.name(),
-            model.name(),
-            &summary,
-            &orders,
-            g,
-            bend_twist.iter().find(|b| b.model == model.name()),
-        ));
-    }
-    Ok(Some(ModelComparison {
-        summary,
-        orders,
-        greenhill,
-        bend_twist,
-        checks,
-        stats,
-    }))
 }
 
 /// One figure per mesh family and N: the error of every model against Γ.
-fn plot_errors(
+pub(super) fn plot_errors(
     sweep: &ModelCantileverSweep,
     records: &[ModelCantileverRecord],
     out: &Path,
@@ -159,7 +74,7 @@ fn plot_errors(
 }
 
 /// |error| against N (graded mesh) per model and Γ, log–log.
-fn plot_orders(orders: &[ModelConvergence], out: &Path) -> Result<()> {
+pub(super) fn plot_orders(orders: &[ModelConvergence], out: &Path) -> Result<()> {
     let curves: Vec<Curve> = orders
         .iter()
         .map(|o| Curve {
@@ -188,7 +103,7 @@ fn plot_orders(orders: &[ModelConvergence], out: &Path) -> Result<()> {
 }
 
 /// Prints the per-model summary.
-pub fn print_summary(c: &ModelComparison) {
+pub(super) fn print_summary(c: &RodModelRecords) {
     println!("\nrod models (Ω_rod cantilever; graded/uniform; worst |error| %, mean iterations, mean ms per solve):");
     for s in c
         .summary
@@ -221,7 +136,7 @@ pub fn print_summary(c: &ModelComparison) {
     for (m, g) in &c.greenhill {
         println!("  {:<13} Greenhill Γ_c = {g:.5}", m.name());
     }
-    for b in &c.bend_twist {
+    for b in &c.scores {
         println!(
             "  {:<13} bend–twist: {}/{} correct by stability, {}/{} by the protocol, {} unclassified, {} beyond the shear-tension limit ({} wrong there)",
             b.model,
@@ -237,7 +152,7 @@ pub fn print_summary(c: &ModelComparison) {
 }
 
 /// The section's description, with the findings read off this run.
-pub fn about(c: &ModelComparison) -> String {
+pub(super) fn findings(c: &RodModelRecords, bend_twist: &BendTwistSweep) -> String {
     let limit = shear_tension_limit(&slender_validation::materials::OMEGA_ROD);
     let worst = |model: &str, mesh: &str, n: usize| {
         c.summary
@@ -267,7 +182,8 @@ pub fn about(c: &ModelComparison) -> String {
          (Ω_rod): error against Γ for N ∈ {{5, 10, 20, 50}} on uniform and graded meshes \
          (error_*.png), order of convergence (convergence.png, convergence.json), iterations and \
          time per solve (cantilever_summary.csv); Greenhill's heavy column by inertia \
-         (greenhill.csv); the bend–twist quick grid per model (bend-twist-*/, bend_twist.csv). \
+         (greenhill.csv); the bend–twist grid ({nx} × {ny}, {k}·Y elements) per model \
+         (bend-twist-*/, bend_twist.csv). \
          Findings. (1) Five uniform elements: the SE(3) beam is too stiff at large Γ ({se3_u5:+.0} % \
          at worst), the seed's Odin behaviour: its first element bends with constant curvature over \
          h = L/5 ≫ ℓ_b = L/√Γ, so the hanging part starts too far out; the hinge models concentrate \
@@ -284,6 +200,9 @@ pub fn about(c: &ModelComparison) -> String {
          κGA/(1 − κGA/EA) = {limit:.3e} N ({beyond} of them, axial strain > 50 %) lie where the \
          shearable rods are unstable in shear (a property of the Cosserat rod with a linear \
          constitutive law, see shear_limit.rs); wrong decisions elsewhere: {elsewhere}.",
+        nx = bend_twist.xs.len(),
+        ny = bend_twist.ys.len(),
+        k = bend_twist.elements_per_turn,
         se3_u5 = worst("se3", "uniform", 5),
         der_u5 = worst("der", "uniform", 5),
         cos_u5 = worst("cosserat", "uniform", 5),
@@ -291,9 +210,9 @@ pub fn about(c: &ModelComparison) -> String {
         cos_g20 = worst("cosserat", "graded", 20),
         timo = 4.0 * slender_validation::materials::OMEGA_ROD.properties.stiffness.ei_min()
             / slender_validation::materials::OMEGA_ROD.shear().ga1,
-        beyond = c.bend_twist.iter().map(|b| b.beyond_shear_limit).max().unwrap_or(0),
+        beyond = c.scores.iter().map(|b| b.beyond_shear_limit).max().unwrap_or(0),
         elsewhere = c
-            .bend_twist
+            .scores
             .iter()
             .map(|b| b.scored - b.correct - b.wrong_beyond_shear_limit + b.unclassified)
             .sum::<usize>(),

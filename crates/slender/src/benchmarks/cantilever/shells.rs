@@ -1,36 +1,63 @@
-//! The shell part of `slender cantilever`: the strip sets of seed Table 2 against the master
-//! curve, drawn on the same Fig. 2 plot as the rods, plus shape pictures (seed Fig. 4).
+//! The shells of the cantilever benchmark: the strip sets of seed Table 2 through the store,
+//! against the master curve, drawn on the same Fig. 2 plot as the rods, plus shape pictures
+//! (seed Fig. 4).
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::{Context as _, Result};
+use serde::Serialize;
 use slender_core::rod::Grading;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::master_curve::heavy_elastica;
 use slender_validation::cantilever::{
-    log_space, CantileverRecord, ShellCantileverCase, ShellCantileverRecord, ShellCantileverSweep,
-    CABLE_RANGE,
+    log_space, run_shell_case, CantileverRecord, ShellCantileverCase, ShellCantileverRecord,
+    ShellCantileverSweep, CABLE_RANGE,
 };
 use slender_validation::materials::{ShellMaterialSet, OMEGA_COMBINED, OMEGA_IPS};
 
+use crate::benchmarks::{words, Context};
 use crate::output::write_csv;
 use crate::plot::{plot_cantilever_ratio, plot_relative_error, plot_shape_views, Curve, Polyline3};
-use crate::progress::Progress;
 
-/// Runs the shell sweep, writes `shell_results.csv`, the per-set ratio and error plots, the
-/// combined Fig. 2 (`fig2_rod_and_shell`, with the rod `records` of `rod_material` on the
-/// graded mesh) and the shape pictures. Returns the shell records.
-pub fn run(
+/// The store of shell cantilever records.
+const STORE: &str = "cantilever-shell";
+
+/// Everything a shell cantilever record depends on: the store key.
+#[derive(Serialize)]
+struct ShellCantileverKey {
+    case: ShellCantileverCase,
+    solver: SolverParams,
+}
+
+/// The records of `cases` (in order) through the store; `None` if this run computes one shard.
+pub(super) fn records(
+    cases: &[ShellCantileverCase],
+    cx: &mut Context,
+) -> Result<Option<Vec<ShellCantileverRecord>>> {
+    let solver = SolverParams::default();
+    solver.validate()?;
+    let keys: Vec<ShellCantileverKey> = cases
+        .iter()
+        .map(|&case| ShellCantileverKey {
+            case,
+            solver: solver.clone(),
+        })
+        .collect();
+    cx.cases(STORE, &keys, |k| Ok(run_shell_case(&k.case, &k.solver)?))
+}
+
+/// Writes `shell_results.csv`, the per-set ratio and error plots, the combined Fig. 2
+/// (`fig2_rod_and_shell`, with the rod `rod_records` of `rod_material` on the graded mesh)
+/// and the shape pictures under `out`, and prints the summary.
+pub(super) fn write(
     sweep: &ShellCantileverSweep,
+    records: &[ShellCantileverRecord],
     rod_records: &[CantileverRecord],
     rod_material: Option<&str>,
     out: &Path,
-) -> Result<Vec<ShellCantileverRecord>> {
-    let params = SolverParams::default();
-    let progress = Progress::new("shells", sweep.cases().len());
-    let records = sweep.run(&params, &|| progress.tick())?;
-    progress.finish();
-    write_csv(&out.join("shell_results.csv"), &records)?;
+    cx: &mut Context,
+) -> Result<()> {
+    write_csv(&out.join("shell_results.csv"), records)?;
     let lo = sweep.gammas.iter().cloned().fold(f64::INFINITY, f64::min);
     let hi = sweep.gammas.iter().cloned().fold(0.0, f64::max);
     let master: Vec<(f64, f64)> = log_space(lo, hi, 200)
@@ -137,8 +164,32 @@ pub fn run(
         Some(CABLE_RANGE),
     )
     .with_context(|| format!("plotting {}", stem.display()))?;
-    plot_shapes(sweep, out)?;
-    Ok(records)
+    plot_shapes(sweep, out, cx)?;
+    print_summary(records);
+    Ok(())
+}
+
+/// Caption of a figure of the shells' section.
+pub(super) fn caption(stem: &str) -> String {
+    if stem == "fig2_rod_and_shell" {
+        "Counterpart of the seed's Fig. 2: rods (Ω_bundle) and shells of Table 2 along the \
+         master curve."
+            .into()
+    } else if let Some(rest) = stem.strip_prefix("ratio_") {
+        format!(
+            "Shell Δy/Δx against Γ_shell ({}), with the heavy elastica.",
+            words(rest)
+        )
+    } else if let Some(rest) = stem.strip_prefix("error_") {
+        format!("Relative error of the shell's Δy/Δx ({}).", words(rest))
+    } else if stem.starts_with("shell_shape") {
+        format!(
+            "Counterpart of the seed's Fig. 4: shell equilibrium ({}).",
+            words(stem)
+        )
+    } else {
+        words(stem)
+    }
 }
 
 /// The deformed strip as a wire frame (lines along the length and across the width).
@@ -175,7 +226,7 @@ fn wire_frame(
 
 /// Shapes as in the seed's Fig. 4 (an IPS-default strip with fifteen elements), at a large Γ
 /// where coarse meshes struggle, and the Ω_combined strip, each with the exact centre line.
-fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path) -> Result<()> {
+fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path, cx: &mut Context) -> Result<()> {
     let params = SolverParams::default();
     for (set, gamma) in [(OMEGA_IPS, 1e3), (OMEGA_IPS, 1e4), (OMEGA_COMBINED, 61.3)] {
         let n_length = 15;
@@ -187,7 +238,7 @@ fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path) -> Result<()> {
             grading: Grading::Power { exponent: 2.0 },
             gamma,
         };
-        let run = case.run(&params)?;
+        let run = cx.compute(1, || Ok(case.run(&params)?))?;
         let l = set.length;
         let mut lines = wire_frame(&case, &run.positions);
         if let Ok(exact) = heavy_elastica(gamma) {
@@ -224,7 +275,7 @@ fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path) -> Result<()> {
 }
 
 /// Prints the worst errors per shell discretization against the D·w master curve.
-pub fn print_summary(records: &[ShellCantileverRecord]) {
+fn print_summary(records: &[ShellCantileverRecord]) {
     println!(
         "{:<8} {:>5} {:>4} {:>4}  {:>22}  {:>16}  {:>9}",
         "shell", "ν", "n_L", "n_W", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."

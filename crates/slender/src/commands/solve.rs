@@ -1,0 +1,30 @@
+//! `slender solve`: equilibria of a scene file; the work is in [`crate::solve`].
+
+use anyhow::Result;
+
+use crate::solve::Outcome;
+pub use crate::solve::SolveArgs;
+
+/// Solves the scene, prints the summary and the verdict; `false` if a step did not converge
+/// or an equilibrium is unstable (exit code 1: the outputs are written and say which).
+pub fn run(a: &SolveArgs) -> Result<bool> {
+    let outcome = crate::solve::run(a)?;
+    crate::solve::print_summary(&a.out)?;
+    println!("wrote {}", a.out.display());
+    match outcome {
+        Outcome::Ok => {
+            println!("verdict: every step converged to a stable equilibrium");
+            Ok(true)
+        }
+        Outcome::Unstable => {
+            eprintln!(
+                "verdict: UNSTABLE — some equilibrium has negative Hessian eigenvalues and was kept (unstable = \"keep\"); see steps.csv and report.json"
+            );
+            Ok(false)
+        }
+        Outcome::NotConverged => {
+            eprintln!("error: some step did not converge; see solver.csv and report.json");
+            Ok(false)
+        }
+    }
+}
