@@ -1,7 +1,7 @@
 //! The result store end to end, through the binary: a sweep killed with SIGKILL and rerun
 //! gives the records of an uninterrupted run; --jobs 1 and --jobs 2 give identical records;
 //! shards 0/3, 1/3, 2/3 merged equal the unsharded run; torn and edited records are
-//! recomputed.
+//! recomputed; records of different rod models never mix.
 
 use std::collections::BTreeMap;
 use std::fs;
@@ -285,4 +285,38 @@ fn shell_cantilever_cases_are_stored_reused_and_sharded() {
     assert!(String::from_utf8_lossy(&o.stdout).contains("merge"));
     assert_eq!(shells(&shard.join("store")), 3);
     assert!(!shard.join("shell_results.csv").exists());
+}
+
+#[test]
+fn records_of_different_rod_models_never_mix() {
+    let root = scratch("models");
+    let gammas = 4;
+    let der = root.join("der");
+    run_ok(&cantilever_args(&der, gammas), &[]);
+    let reference = records(&der.join("store"));
+    assert_eq!(reference.len(), 2 * gammas);
+    // The SE(3) beam into the same store: its own records, none of the DER's reused.
+    let se3 = run_ok(
+        &cantilever_args(&der, gammas),
+        &[
+            "--model",
+            "se3",
+            "--store",
+            der.join("store").to_str().unwrap(),
+        ],
+    );
+    let log = String::from_utf8_lossy(&se3.stderr);
+    assert!(!log.contains("found finished"), "{log}");
+    let both = records(&der.join("store"));
+    assert_eq!(both.len(), 4 * gammas);
+    for (k, v) in &reference {
+        assert_eq!(both.get(k), Some(v), "a DER record changed");
+    }
+    // `--model der` is the default: the same keys, everything reused.
+    let again = run_ok(&cantilever_args(&der, gammas), &["--model", "der"]);
+    let log = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        log.contains(&format!("{0} of {0} cases found finished", 2 * gammas)),
+        "{log}"
+    );
 }

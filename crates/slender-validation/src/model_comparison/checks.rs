@@ -152,7 +152,7 @@ pub fn model_checks(
         };
         out.push(check(
             format!(
-                "{label}: bend–twist quick grid, stability decisions correct (%) of {} points outside ±5 %{note}",
+                "{label}: bend–twist grid, stability decisions correct (%) of {} points outside ±5 %{note}",
                 b.scored
             ),
             p,

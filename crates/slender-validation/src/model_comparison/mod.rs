@@ -2,7 +2,7 @@
 //! elastic rod, the discrete Cosserat rod (with its sine and with the tangent Darboux vector)
 //! and the SE(3) beam, side by side — the cantilever's error against Γ on uniform and graded
 //! meshes, the observed order of convergence, Newton iterations and time per solve, the
-//! bend–twist decisions on the quick grid, and Greenhill's heavy column by inertia.
+//! bend–twist decisions on a grid, and Greenhill's heavy column by inertia.
 
 pub mod cantilever;
 pub mod checks;

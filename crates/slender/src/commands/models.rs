@@ -16,7 +16,8 @@ pub struct ModelsArgs {
     /// Output directory.
     #[arg(long, default_value = "out/models")]
     out: PathBuf,
-    /// Bend–twist grid: quick (12 × 12, 20·Y elements) or full (25 × 25, 100·Y, the seed's).
+    /// Bend–twist grid: quick (the 12 × 12 quick grid's rows Y ≤ 5, 20·Y elements) or full
+    /// (the whole 12 × 12 grid).
     #[arg(long, value_enum, default_value_t = Preset::Quick)]
     preset: Preset,
     /// Worker threads (default: all cores). Results other than times do not depend on it.
