@@ -8,9 +8,10 @@
 //! cross-site form cannot send without a CORS preflight, which this server never grants).
 
 use std::io::Read;
-use std::net::SocketAddr;
+use std::net::{SocketAddr, TcpListener, ToSocketAddrs};
 
-use anyhow::{anyhow, Result};
+use anyhow::{anyhow, Context as _, Result};
+use socket2::{Domain, Protocol, Socket, Type};
 use slender_core::scene::Session;
 use tiny_http::{Header, Method, Request, Response, Server};
 
@@ -70,6 +71,30 @@ fn header(name: &str, value: &str) -> Header {
     Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("a valid header")
 }
 
+/// A listening socket on `host:port` with TCP_NODELAY, which the accepted connections inherit
+/// (Linux, macOS, Windows): tiny_http writes a reply in several pieces, and with Nagle's
+/// algorithm each piece after the first would wait for the client's delayed ACK (~40 ms on
+/// loopback), capping a drag at ~20 updates per second.
+fn listener(host: &str, port: u16) -> Result<TcpListener> {
+    let address = (host, port)
+        .to_socket_addrs()
+        .with_context(|| format!("--host {host}: not an address of this machine"))?
+        .next()
+        .ok_or_else(|| anyhow!("--host {host}: no address"))?;
+    let socket = Socket::new(Domain::for_address(address), Type::STREAM, Some(Protocol::TCP))
+        .context("creating the server socket")?;
+    // A restarted server may bind the port while old connections linger in TIME_WAIT (on
+    // Windows the option would let another process steal the port: Unix only).
+    #[cfg(unix)]
+    socket.set_reuse_address(true)?;
+    socket.set_tcp_nodelay(true)?;
+    socket
+        .bind(&address.into())
+        .with_context(|| format!("cannot listen on {address}"))?;
+    socket.listen(64)?;
+    Ok(socket.into())
+}
+
 fn escape_html(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
@@ -88,7 +113,7 @@ pub struct ViewServer {
 impl ViewServer {
     /// Binds `host:port` (port 0: any free port); `scene_name` titles the page.
     pub fn bind(host: &str, port: u16, scene_name: &str) -> Result<Self> {
-        let server = Server::http((host, port))
+        let server = Server::from_listener(listener(host, port)?, None)
             .map_err(|e| anyhow!("cannot listen on {host}:{port}: {e}"))?;
         let address = server
             .server_addr()

@@ -48,6 +48,8 @@ pub struct RodView {
     pub twist: Vec<f64>,
     /// Curvature magnitude |κ| at every vertex (1/m).
     pub curvature: Vec<f64>,
+    /// Axial strain of every edge.
+    pub edge_strain: Vec<f64>,
     /// Largest bending stress in the section at every vertex (Pa), from the change of
     /// curvature from rest: E·|Δκ|·d/2 (circle), E·(|Δκ₁|·w/2 + |Δκ₂|·h/2) (rectangle);
     /// `None` for a section given by its stiffnesses (no material, no fibre distance).
@@ -177,6 +179,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                     .iter()
                     .map(|k| (k[0] * k[0] + k[1] * k[1]).sqrt())
                     .collect(),
+                edge_strain: res.edge_strain.clone(),
                 bending_stress: bending_stress(session, r),
                 min_bend_radius: res
                     .min_bend_radius

@@ -349,28 +349,40 @@ function syncHandles() {
   }
 }
 
+/** Reaction arrows (one ArrowHelper per support, kept and updated in place). */
 function updateArrows() {
-  for (const a of arrows) disposeObject(a);
-  arrows = [];
+  const count = view.rods.reduce((n, r) => n + r.supports.length, 0);
+  if (arrows.length !== count) {
+    for (const a of arrows) { a.removeFromParent(); a.line.material.dispose(); a.cone.material.dispose(); }
+    arrows = [];
+    for (let i = 0; i < count; i++) {
+      const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, 0xc62828);
+      world.add(a);
+      arrows.push(a);
+    }
+  }
   labelSpecs = [];
   // Arrow lengths relative to the largest reaction now (the labels give the values).
   let fmax = 0;
   for (const rod of view.rods) for (const s of rod.supports) fmax = Math.max(fmax, Math.hypot(...s.force));
   const forceScale = fmax > 0 ? (0.2 * sceneSize) / fmax : 0;
   const show = $("arrows").checked;
+  let i = 0;
   for (const rod of view.rods) {
     for (const s of rod.supports) {
+      const a = arrows[i++];
       const f = v3(s.force);
       const n = f.length();
-      if (!(n > 0) || !show) { arrows.push(null); continue; }
+      a.visible = show && n > 0;
+      if (!a.visible) continue;
       const len = Math.max(0.04 * sceneSize, n * forceScale);
-      const a = new THREE.ArrowHelper(f.clone().normalize(), v3(s.position), len, 0xc62828, 0.25 * len, 0.12 * len);
-      world.add(a);
-      labelSpecs.push({ at: v3(s.position).addScaledVector(f.clone().normalize(), len), text: fmtForce(n), cls: "label" });
-      arrows.push(a);
+      const dir = f.multiplyScalar(1 / n);
+      a.position.copy(v3(s.position));
+      a.setDirection(dir);
+      a.setLength(len, 0.25 * len, 0.12 * len);
+      labelSpecs.push({ at: v3(s.position).addScaledVector(dir, len), text: fmtForce(n), cls: "label" });
     }
   }
-  arrows = arrows.filter((a) => a);
 }
 
 function fmtForce(n) {
