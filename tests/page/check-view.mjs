@@ -235,9 +235,12 @@ try {
       frame_interval_ms: { median: quantile(b.intervalMs, 0.5), p95: quantile(b.intervalMs, 0.95) },
       pose_to_frame_ms: { median: quantile(b.latencyMs, 0.5), p95: quantile(b.latencyMs, 0.95) },
       server_solve_ms: { median: quantile(b.serverMs, 0.5), p95: quantile(b.serverMs, 0.95) },
+      round_trip_ms: { median: quantile(b.roundTripMs, 0.5), p95: quantile(b.roundTripMs, 0.95) },
+      page_update_ms: { median: quantile(b.updateMs, 0.5), p95: quantile(b.updateMs, 0.95) },
+      page_render_ms: { median: quantile(b.renderMs, 0.5), p95: quantile(b.renderMs, 0.95) },
     };
     speed[name] = r;
-    console.log(`view speed: ${name}: ${r.updates} updates, ${r.updates_per_second.toFixed(1)} updates/s; frame interval median ${r.frame_interval_ms.median.toFixed(2)} ms, p95 ${r.frame_interval_ms.p95.toFixed(2)} ms; server solve median ${r.server_solve_ms.median.toFixed(2)} ms, p95 ${r.server_solve_ms.p95.toFixed(2)} ms; all converged: ${r.all_converged}`);
+    console.log(`view speed: ${name}: ${r.updates} updates, ${r.updates_per_second.toFixed(1)} updates/s; frame interval median ${r.frame_interval_ms.median.toFixed(2)} ms, p95 ${r.frame_interval_ms.p95.toFixed(2)} ms; server solve median ${r.server_solve_ms.median.toFixed(2)} ms, p95 ${r.server_solve_ms.p95.toFixed(2)} ms; request round trip median ${r.round_trip_ms.median.toFixed(2)} ms; page update ${r.page_update_ms.median.toFixed(2)} ms + render ${r.page_render_ms.median.toFixed(2)} ms (medians); all converged: ${r.all_converged}`);
     await s.page.screenshot({ path: join(out, `view-speed-${name}.png`) });
     for (const e of s.errors) fail(e);
   }

@@ -422,7 +422,7 @@ function updatePanel(reply) {
   let res = 0, rel = 0, iters = 0;
   for (const s of view.structures) { res = Math.max(res, s.residual); rel = Math.max(rel, s.relative_residual); iters += s.iterations; }
   $("st-residual").textContent = `${res.toExponential(2)} N (relative ${rel.toExponential(2)})`;
-  $("st-iterations").textContent = lastEdit ? `${lastEdit.edit.iterations} (${lastEdit.edit.load_steps} load steps)` : `${iters}`;
+  $("st-iterations").textContent = lastEdit ? `${lastEdit.edit.iterations} (${lastEdit.edit.load_steps} load step${lastEdit.edit.load_steps === 1 ? "" : "s"})` : `${iters}`;
   $("st-time").textContent = lastEdit
     ? `${lastEdit.solveMs.toFixed(2)} ms (round trip ${lastEdit.roundTripMs.toFixed(1)} ms)`
     : `${(reply?.solve_seconds * 1e3 || 0).toFixed(2)} ms`;
@@ -499,10 +499,14 @@ function applyReply(reply) {
     return false;
   }
   showError(null);
+  const t0 = performance.now();
   applyView(reply);
+  const t1 = performance.now();
   render();
+  lastApply = { updateMs: t1 - t0, renderMs: performance.now() - t1 };
   return true;
 }
+let lastApply = { updateMs: 0, renderMs: 0 };
 
 /** Sends an edit (not a drag) and applies its reply. */
 async function edit(req) {
@@ -554,7 +558,8 @@ async function pump() {
   const received = performance.now();
   const ok = applyReply(reply);
   const rendered = performance.now();
-  timing.updates.push({ queued, sent, received, rendered, serverMs: (reply.solve_seconds ?? 0) * 1e3, ok, converged: reply.edit?.converged ?? false });
+  timing.updates.push({ queued, sent, received, rendered, serverMs: (reply.solve_seconds ?? 0) * 1e3,
+    ...lastApply, ok, converged: reply.edit?.converged ?? false });
   moveInFlight = false;
   if (pendingMove) pump();
   else if (!dragging) afterDrag();
@@ -661,10 +666,10 @@ function frameCamera() {
     .filter((a) => Math.abs(a.dot(up)) < 0.9);
   axes.sort((a, b) => Math.abs(size.dot(a)) - Math.abs(size.dot(b)));
   side.copy(axes[0] ?? new THREE.Vector3(1, 0, 0));
-  const dir = side.multiplyScalar(-1).addScaledVector(up, 0.35).normalize();
+  const dir = side.multiplyScalar(-1).addScaledVector(up, 0.5).normalize();
   camera.near = sceneSize * 1e-3;
   camera.far = sceneSize * 100;
-  camera.position.copy(center).addScaledVector(dir, sceneSize * 1.6);
+  camera.position.copy(center).addScaledVector(dir, sceneSize * 1.3);
   camera.updateProjectionMatrix();
   orbit.target.copy(center);
   orbit.update();
@@ -780,6 +785,9 @@ const slender = {
       latencyMs: ups.map((u) => u.rendered - u.queued),
       intervalMs: intervals,
       serverMs: ups.map((u) => u.serverMs),
+      roundTripMs: ups.map((u) => u.received - u.sent),
+      updateMs: ups.map((u) => u.updateMs),
+      renderMs: ups.map((u) => u.renderMs),
       allConverged: ups.every((u) => u.ok && u.converged),
     };
   },
