@@ -2,7 +2,7 @@
 //!
 //! Layout: [`commands`] (one file per subcommand: flags and dispatch), [`benchmarks`] (one
 //! module per benchmark, all of one shape: cases → store → checks → figures → report
-//! section), [`report`] (the acceptance table and the page), [`store`] (the resumable result
+//! section), [`view`] (the interactive page), [`report`] (the acceptance table and the page), [`store`] (the resumable result
 //! store), [`plot`], [`solve`] (scene files).
 
 mod benchmarks;
@@ -14,6 +14,7 @@ mod progress;
 mod report;
 mod solve;
 mod store;
+mod view;
 
 use std::process::ExitCode;
 
@@ -22,7 +23,7 @@ use clap::{Parser, Subcommand};
 
 use commands::{
     bend_twist, cantilever, lateral_buckling, merge, scene_schema, sensitivity, solve as solve_cmd,
-    validate,
+    validate, view as view_cmd,
 };
 
 /// Large deformations of cables, hoses and flat cables, with the validation to prove them.
@@ -58,6 +59,9 @@ enum Command {
     /// percentage of correct 2-D/3-D decisions against the plate master curve, for every
     /// combination of Ω, n_L, m_ls and σ, as box plots.
     Sensitivity(sensitivity::SensitivityArgs),
+    /// The interactive cable-editing page: starts a local server and prints its URL; drag
+    /// supports, add clips, change gravity, see reactions, bend radius and stability live.
+    View(view_cmd::ViewArgs),
 }
 
 /// Runs a subcommand; `Ok(false)`: it ran but something failed (exit code 1).
@@ -71,6 +75,7 @@ fn run(cli: Cli) -> Result<bool> {
         Command::SceneSchema(a) => scene_schema::run(a),
         Command::LateralBuckling(a) => lateral_buckling::run(a),
         Command::Sensitivity(a) => sensitivity::run(a),
+        Command::View(a) => view_cmd::run(a),
     }
 }
 

@@ -10,6 +10,7 @@ pub mod scene_schema;
 pub mod sensitivity;
 pub mod solve;
 pub mod validate;
+pub mod view;
 
 use std::path::{Path, PathBuf};
 
