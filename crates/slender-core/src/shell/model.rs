@@ -139,6 +139,7 @@ impl Shell {
             positions: self.mesh.rest_positions.clone(),
             angles: vec![0.0; self.mesh.edges.len()],
             clamp: Clamp::default(),
+            membrane_remainder: Vec::new(),
         };
         self.apply_clamp(&mut s);
         s
@@ -336,6 +337,7 @@ impl<'a> StencilTerm<ShellContext<'a>, FACE_VARS> for FaceTerm {
                 h,
                 lambda,
                 mu,
+                ctx.state.membrane_remainder.get(f),
                 out.grad.is_some().then_some(&mut g9),
                 out.hess.is_some().then_some(&mut h9),
             );
