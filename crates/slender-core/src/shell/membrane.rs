@@ -72,6 +72,7 @@ const FFF_COEFFS: [[[f64; 3]; 3]; 3] = [
 /// With a Newton-step remainder `remainder` (m², see [`super::mixed_update`]) the Hessian's
 /// geometric stiffness uses the stress of the linearly updated form a − r (the
 /// mixed-integration-point iteration); energy and gradient never depend on it.
+#[allow(clippy::too_many_arguments)]
 pub fn membrane_energy(
     q: [&Vec3; 3],
     rest: &FaceRest,
