@@ -195,7 +195,7 @@ impl BsplineShellBuilder {
         let h = p.thickness;
         let mut masses = vec![0.0; n_controls];
         let areal_density = p.density * h;
-        let material = |abar: &Vector3<f64>, area: f64| {
+        let material = move |abar: &Vector3<f64>, area: f64| {
             let a = Matrix2::new(abar[0], abar[1], abar[1], abar[2]);
             let inv = a.try_inverse().unwrap_or_else(Matrix2::zeros);
             (
