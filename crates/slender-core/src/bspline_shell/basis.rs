@@ -110,6 +110,15 @@ impl KnotVector {
             .collect()
     }
 
+    /// The integral of each basis function over the whole parameter range:
+    /// (t_{i+p+1} − t_i)/(p + 1).
+    pub fn integrals(&self) -> Vec<f64> {
+        let p = self.degree;
+        (0..self.n_functions())
+            .map(|i| (self.knots[i + p + 1] - self.knots[i]) / (p + 1) as f64)
+            .collect()
+    }
+
     /// Values and first two derivatives of the functions non-zero on element `e` at `x`.
     /// `x` may lie slightly outside the element (the polynomial piece is extended).
     pub fn evaluate(&self, e: usize, x: f64) -> SpanBasis {
