@@ -73,22 +73,25 @@ impl BendingKinematics {
 }
 
 /// The bending geometric stiffness Σ_j M_j ∂²b_j/∂P_k∂P_l at one point, for a given stress M.
+///
+/// Every term of the block formula (module docs) is bilinear in the per-function numbers
+/// (N_k,1, N_k,2, Ñ_k) and (N_l,1, N_l,2, Ñ_l), so the block is assembled from per-function
+/// matrices: block(k, l) = N_k,1 E¹_l + N_k,2 E²_l + Ñ_k Q A_l + Ñ_l (Q A_k)ᵀ, with
+/// E¹_l = N_l,1 B₁₁ + N_l,2 B₁₂ and E²_l = N_l,1 B₂₁ + N_l,2 B₂₂ built from six point
+/// matrices (four scaled 3×3 sums per block instead of the formula's dozen products).
 pub struct BendingGeometric {
     moments: Vector3<f64>,
-    inv_jacobian: f64,
-    beta: f64,
     /// Q [r,1]×, Q [r,2]×.
     q_r1x: Matrix3<f64>,
     q_r2x: Matrix3<f64>,
-    /// [r,a]×ᵀ Q [r,b]× for (a, b) = (1,1), (1,2), (2,1), (2,2).
-    t11: Matrix3<f64>,
-    t12: Matrix3<f64>,
-    t21: Matrix3<f64>,
-    t22: Matrix3<f64>,
-    cx: Matrix3<f64>,
-    c: Vec3,
-    kin_n: Vec3,
+    b11: Matrix3<f64>,
+    b12: Matrix3<f64>,
+    b21: Matrix3<f64>,
+    b22: Matrix3<f64>,
 }
+
+/// The per-function matrices of [`BendingGeometric`]: (Ñ_k, Q A_k, E¹_k, E²_k).
+pub type FunctionGeometry = (f64, Matrix3<f64>, Matrix3<f64>, Matrix3<f64>);
 
 impl BendingGeometric {
     /// Precomputes the contraction with `moments` (J, conjugate to (b₁₁, b₁₂, b₂₂)).
@@ -98,36 +101,35 @@ impl BendingGeometric {
         let q = (Matrix3::identity() - n * n.transpose()) * inv;
         let r = jet.r2nd[0] * moments[0] + jet.r2nd[1] * moments[1] + jet.r2nd[2] * moments[2];
         let c = q * r;
+        let beta = r.dot(&n) * inv;
         let (x1, x2) = (cross_matrix(&jet.r1), cross_matrix(&jet.r2));
         let (q1, q2) = (q * x1, q * x2);
+        // a_i = [r,i]×ᵀ c, b_i = [r,i]×ᵀ n (so A_kᵀc = N_k,1 a₂ − N_k,2 a₁, likewise for n).
+        let (a1, a2) = (c.cross(&jet.r1), c.cross(&jet.r2));
+        let (e1, e2) = (n.cross(&jet.r1), n.cross(&jet.r2));
+        let sym = |x: &Vec3, y: &Vec3| (x * y.transpose() + y * x.transpose()) * inv;
+        let cross = |x: &Vec3, y: &Vec3| (x * y.transpose()) * inv;
+        let cx = cross_matrix(&c);
         Self {
             moments: *moments,
-            inv_jacobian: inv,
-            beta: r.dot(&n),
-            t11: x1.transpose() * q1,
-            t12: x1.transpose() * q2,
-            t21: x2.transpose() * q1,
-            t22: x2.transpose() * q2,
+            b11: -sym(&a2, &e2) - x2.transpose() * q2 * beta,
+            b12: cross(&a2, &e1) + cross(&e2, &a1) + x2.transpose() * q1 * beta + cx,
+            b21: cross(&a1, &e2) + cross(&e1, &a2) + x1.transpose() * q2 * beta - cx,
+            b22: -sym(&a1, &e1) - x1.transpose() * q1 * beta,
             q_r1x: q1,
             q_r2x: q2,
-            cx: cross_matrix(&c),
-            c,
-            kin_n: n,
         }
     }
 
-    /// Per-function data: (Ñ_k, Q A_k, A_kᵀc, A_kᵀn).
-    pub fn function_data(
-        &self,
-        kin: &BendingKinematics,
-        nk: &TensorBasis,
-    ) -> (f64, Matrix3<f64>, Vec3, Vec3) {
+    /// The per-function matrices of the function with basis `nk`.
+    pub fn function_data(&self, nk: &TensorBasis) -> FunctionGeometry {
         let m = &self.moments;
+        let (k1, k2) = (nk[DU], nk[DV]);
         (
             m[0] * nk[DUU] + m[1] * nk[DUV] + m[2] * nk[DVV],
-            self.q_r2x * nk[DU] - self.q_r1x * nk[DV],
-            kin.a_transpose(nk, &self.c),
-            kin.a_transpose(nk, &self.kin_n),
+            self.q_r2x * k1 - self.q_r1x * k2,
+            self.b11 * k1 + self.b12 * k2,
+            self.b21 * k1 + self.b22 * k2,
         )
     }
 
@@ -135,16 +137,9 @@ impl BendingGeometric {
     pub fn block(
         &self,
         nk: &TensorBasis,
-        nl: &TensorBasis,
-        dk: &(f64, Matrix3<f64>, Vec3, Vec3),
-        dl: &(f64, Matrix3<f64>, Vec3, Vec3),
+        dk: &FunctionGeometry,
+        dl: &FunctionGeometry,
     ) -> Matrix3<f64> {
-        let (k1, k2, l1, l2) = (nk[DU], nk[DV], nl[DU], nl[DV]);
-        let aqa = self.t22 * (k1 * l1) - self.t21 * (k1 * l2) - self.t12 * (k2 * l1)
-            + self.t11 * (k2 * l2);
-        dl.1 * dk.0 + dk.1.transpose() * dl.0
-            - (dk.2 * dl.3.transpose() + dk.3 * dl.2.transpose()) * self.inv_jacobian
-            - aqa * (self.beta * self.inv_jacobian)
-            + self.cx * (k1 * l2 - k2 * l1)
+        dl.2 * nk[DU] + dl.3 * nk[DV] + dl.1 * dk.0 + dk.1.transpose() * dl.0
     }
 }

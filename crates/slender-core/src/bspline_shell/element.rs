@@ -8,7 +8,7 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use crate::assembly::{LocalDerivatives, Stencil, StencilTerm, TermSet};
 use crate::geometry::Vec3;
 
-use super::bending::{BendingGeometric, BendingKinematics};
+use super::bending::{BendingGeometric, BendingKinematics, FunctionGeometry};
 use super::forms::{first_form, Forms, SurfaceJet};
 use super::groups;
 use super::membrane;
@@ -86,27 +86,29 @@ impl<const NB: usize, const D: usize> ElementTerm<NB, D> {
     fn membrane(
         &self,
         ctx: &BsplineContext<'_>,
-        out: &mut LocalDerivatives<'_, D>,
-        g: &mut SVector<f64, D>,
+        mut g: Option<&mut SVector<f64, D>>,
         mut h: Option<&mut SMatrix<f64, D, D>>,
-    ) {
+    ) -> f64 {
         let points = &ctx.state.control_points;
         let remainders = &ctx.state.membrane_remainder;
-        let derivatives = out.wants_gradient() || h.is_some();
+        let derivatives = g.is_some() || h.is_some();
+        let mut energy = 0.0;
         let mut gm = [Matrix3::<f64>::zeros(); NB];
         let mut fm = [Matrix3::<f64>::zeros(); NB];
         for (iq, q) in self.membrane_points.iter().enumerate() {
             let jet = SurfaceJet::new(&q.basis, &self.controls, points);
             let d = first_form(&jet.r1, &jet.r2) - q.abar;
             let stress = q.stiffness * d;
-            out.add_energy(0.5 * d.dot(&stress));
+            energy += 0.5 * d.dot(&stress);
             if !derivatives {
                 continue;
             }
             for (k, nk) in q.basis.iter().enumerate() {
                 gm[k] = membrane::strain_gradients(nk, &jet.r1, &jet.r2);
-                let mut rows = g.fixed_rows_mut::<3>(3 * k);
-                rows += gm[k] * stress;
+                if let Some(g) = g.as_deref_mut() {
+                    let mut rows = g.fixed_rows_mut::<3>(3 * k);
+                    rows += gm[k] * stress;
+                }
             }
             let Some(h) = h.as_deref_mut() else { continue };
             // Mixed-integration-point update: the geometric stiffness uses the stress of the
@@ -130,6 +132,7 @@ impl<const NB: usize, const D: usize> ElementTerm<NB, D> {
                 }
             }
         }
+        energy
     }
 
     #[allow(clippy::needless_range_loop)]
@@ -137,45 +140,49 @@ impl<const NB: usize, const D: usize> ElementTerm<NB, D> {
     fn bending(
         &self,
         ctx: &BsplineContext<'_>,
-        out: &mut LocalDerivatives<'_, D>,
-        g: &mut SVector<f64, D>,
+        mut g: Option<&mut SVector<f64, D>>,
         mut h: Option<&mut SMatrix<f64, D, D>>,
-    ) {
+    ) -> f64 {
         let points = &ctx.state.control_points;
-        let derivatives = out.wants_gradient() || h.is_some();
+        let derivatives = g.is_some() || h.is_some();
+        let mut energy = 0.0;
         let mut gb = [Matrix3::<f64>::zeros(); NB];
         let mut fb = [Matrix3::<f64>::zeros(); NB];
-        let mut data = [(0.0, Matrix3::<f64>::zeros(), Vec3::zeros(), Vec3::zeros()); NB];
+        let mut data: [FunctionGeometry; NB] =
+            [(0.0, Matrix3::zeros(), Matrix3::zeros(), Matrix3::zeros()); NB];
         for q in &self.bending_points {
             let jet = SurfaceJet::new(&q.basis, &self.controls, points);
             let forms = Forms::new(&jet);
             let e = forms.b - q.bbar;
             let moments = q.stiffness * e;
-            out.add_energy(0.5 * e.dot(&moments));
+            energy += 0.5 * e.dot(&moments);
             if !derivatives {
                 continue;
             }
             let kin = BendingKinematics::new(&jet, &forms);
             for (k, nk) in q.basis.iter().enumerate() {
                 gb[k] = kin.strain_gradients(nk);
-                let mut rows = g.fixed_rows_mut::<3>(3 * k);
-                rows += gb[k] * moments;
+                if let Some(g) = g.as_deref_mut() {
+                    let mut rows = g.fixed_rows_mut::<3>(3 * k);
+                    rows += gb[k] * moments;
+                }
             }
             let Some(h) = h.as_deref_mut() else { continue };
             let geo = BendingGeometric::new(&jet, &forms, &moments);
             for k in 0..NB {
                 fb[k] = gb[k] * q.stiffness;
-                data[k] = geo.function_data(&kin, &q.basis[k]);
+                data[k] = geo.function_data(&q.basis[k]);
             }
             for k in 0..NB {
                 for l in 0..=k {
-                    let block = fb[k] * gb[l].transpose()
-                        + geo.block(&q.basis[k], &q.basis[l], &data[k], &data[l]);
+                    let block =
+                        fb[k] * gb[l].transpose() + geo.block(&q.basis[k], &data[k], &data[l]);
                     let mut view = h.fixed_view_mut::<3, 3>(3 * k, 3 * l);
                     view += block;
                 }
             }
         }
+        energy
     }
 }
 
@@ -197,26 +204,23 @@ impl<'a, const NB: usize, const D: usize> StencilTerm<BsplineContext<'a>, D>
         out: &mut LocalDerivatives<'_, D>,
     ) {
         debug_assert_eq!(D, 3 * NB);
-        let want_hess = out.wants_hessian();
-        let mut g = SVector::<f64, D>::zeros();
-        let mut h = SMatrix::<f64, D, D>::zeros();
+        // The assembler hands over zeroed outputs: write into them directly (lower block
+        // triangle of the Hessian, mirrored at the end).
         if selected.contains(groups::MEMBRANE) {
-            self.membrane(ctx, out, &mut g, want_hess.then_some(&mut h));
+            let e = self.membrane(ctx, out.grad.as_deref_mut(), out.hess.as_deref_mut());
+            out.add_energy(e);
         }
         if selected.contains(groups::BENDING) {
-            self.bending(ctx, out, &mut g, want_hess.then_some(&mut h));
+            let e = self.bending(ctx, out.grad.as_deref_mut(), out.hess.as_deref_mut());
+            out.add_energy(e);
         }
-        if let Some(grad) = out.grad.as_deref_mut() {
-            *grad += g;
-        }
-        if let Some(hess) = out.hess.as_deref_mut() {
+        if let Some(h) = out.hess.as_deref_mut() {
             // Mirror the lower block triangle (diagonal blocks are symmetric).
             for a in 0..D {
                 for b in 0..a {
                     h[(b, a)] = h[(a, b)];
                 }
             }
-            *hess += h;
         }
     }
 }
