@@ -11,7 +11,7 @@ use crate::solver::AssemblyInfo;
 
 use super::clamp::StripEnd;
 use super::element::{BsplineContext, ElementTerm};
-use super::gravity::gravity_energy;
+use super::gravity::add_gravity;
 use super::groups;
 use super::load_path::BsplineLoadPath;
 use super::loads::PointLoadTerm;
@@ -320,31 +320,27 @@ impl BsplineShell {
         let points = &s.control_points;
         if asm.selects(groups::GRAVITY) {
             let g = self.gravity * factor;
-            let e = gravity_energy(&self.masses, points, &g);
-            let e_rest = gravity_energy(&self.masses, &self.patch.rest_points, &g);
-            asm.external_energy(e, e_rest - e);
-            for (k, m) in self.masses.iter().enumerate() {
-                for c in 0..3 {
-                    let Some(i) = self.dof(k, c) else { continue };
-                    let force = m * g[c];
-                    asm.external_force(force.abs());
-                    asm.generalized_force(i, force);
-                }
-            }
+            add_gravity(
+                asm,
+                &self.masses,
+                points,
+                &self.patch.rest_points,
+                &g,
+                |k, c| self.dof(k, c),
+            );
         }
         if asm.selects(groups::POINT_LOADS) {
             for load in &self.point_loads {
                 let f = load.force * factor;
-                let mut work = 0.0;
+                asm.external_force(f.amax());
                 for &(k, w) in &load.weights {
-                    work += w * f.dot(&(points[k] - self.patch.rest_points[k]));
+                    asm.load(w * f.dot(&(points[k] - self.patch.rest_points[k])), 0.0);
                     for c in 0..3 {
                         if let Some(i) = self.dof(k, c) {
                             asm.generalized_force(i, w * f[c]);
                         }
                     }
                 }
-                asm.load(work, f.amax());
             }
         }
     }
