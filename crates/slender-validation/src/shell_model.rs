@@ -54,7 +54,12 @@ impl ShellModel {
     /// `width_ratio` for square elements: round(n_L·w/L), at least 1 for the B-spline (a
     /// cubic element spans the width smoothly) and at least `min_midedge` for the mid-edge
     /// shell (2 puts a mesh line on the centre line).
-    pub fn square_width_elements(self, width_ratio: f64, n_length: usize, min_midedge: usize) -> usize {
+    pub fn square_width_elements(
+        self,
+        width_ratio: f64,
+        n_length: usize,
+        min_midedge: usize,
+    ) -> usize {
         let n = (width_ratio * n_length as f64).round() as usize;
         match self {
             ShellModel::Midedge => n.max(min_midedge),
@@ -246,7 +251,11 @@ impl StripModel for BsplineShell {
     }
 
     fn centre(&self, state: &Self::State, free_end: bool) -> Vec3 {
-        let u = if free_end { self.properties().length } else { 0.0 };
+        let u = if free_end {
+            self.properties().length
+        } else {
+            0.0
+        };
         self.point(state, u, 0.0)
     }
 

@@ -129,7 +129,9 @@ pub fn shell_cantilever_checks(
                 let coarse = shell_error_sweep(model, 8, &gammas, params)?;
                 let label = "mid-edge shell, Ω_combined with ν = 0, w/L = 0.1, quadratic grading, exact director clamp";
                 checks.push(check(
-                    format!("{label}, n_L × n_W = 15 × 2: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 100]"),
+                    format!(
+                        "{label}, n_L × n_W = 15 × 2: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 100]"
+                    ),
                     worst_percent(&fine, 0.1, 100.0),
                     1.0,
                 ));
@@ -148,7 +150,9 @@ pub fn shell_cantilever_checks(
                 let coarse = shell_error_sweep(model, 8, &gammas, params)?;
                 let label = "C¹ B-spline shell (cubic), Ω_combined with ν = 0, w/L = 0.1, boundary-layer grading, clamp on two control rows";
                 checks.push(check(
-                    format!("{label}, n_L × n_W = 8 × 1: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 10³]"),
+                    format!(
+                        "{label}, n_L × n_W = 8 × 1: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 10³]"
+                    ),
                     worst_percent(&coarse, 0.1, 1e3),
                     1.0,
                 ));

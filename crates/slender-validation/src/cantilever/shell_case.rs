@@ -95,13 +95,21 @@ impl ShellCantileverCase {
         let (report, ratio, (positions, faces)) = match &strip {
             Strip::Midedge(shell) => {
                 let (report, state) = solve_midedge(shell, params, use_rod_predictor)?;
-                (report, centre_line_ratio(shell, &state), shell.surface(&state))
+                (
+                    report,
+                    centre_line_ratio(shell, &state),
+                    shell.surface(&state),
+                )
             }
             Strip::Bspline(shell) => {
                 let start = shell.rest();
                 let mut solver = EquilibriumSolver::new(shell, &start, *params);
                 let s = solver.solve(shell, &start, 0.0, 1.0);
-                (s.report, centre_line_ratio(shell, &s.state), shell.surface(&s.state))
+                (
+                    s.report,
+                    centre_line_ratio(shell, &s.state),
+                    shell.surface(&s.state),
+                )
             }
         };
         let seconds = clock.elapsed().as_secs_f64();

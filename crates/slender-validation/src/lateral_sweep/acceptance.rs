@@ -178,7 +178,11 @@ pub fn decision_checks(
 pub fn sensitivity_checks(scores: &[super::sensitivity::ConfigurationScore]) -> Vec<Check> {
     let mut checks = Vec::new();
     for model in ShellModel::ALL {
-        let mine: Vec<_> = scores.iter().filter(|s| s.model == model).cloned().collect();
+        let mine: Vec<_> = scores
+            .iter()
+            .filter(|s| s.model == model)
+            .cloned()
+            .collect();
         checks.extend(model_sensitivity_checks(model, &mine));
     }
     checks

@@ -243,8 +243,7 @@ fn protocol<S: StripModel>(
     // The first stage that failed, if any: its report is the one returned.
     let mut failure: Option<SolveReport> = None;
     for k in 0..load_steps {
-        let report =
-            solver.solve_in_place(&*shell, &mut state, k as f64 / m, (k + 1) as f64 / m);
+        let report = solver.solve_in_place(&*shell, &mut state, k as f64 / m, (k + 1) as f64 / m);
         iterations += report.iterations;
         if !report.converged() {
             failure.get_or_insert(report);
