@@ -19,6 +19,7 @@ pub mod rod;
 pub mod scene;
 pub mod shell;
 pub mod solver;
+pub mod structure;
 #[cfg(feature = "testing")]
 pub mod testing;
 

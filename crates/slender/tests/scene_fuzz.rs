@@ -193,7 +193,7 @@ fn exercise(text: &str, syntax: Syntax) {
         return;
     }
     REACHED[2].fetch_add(1, Ordering::Relaxed);
-    let (mut solver, first) = SceneSolver::new(&compiled);
+    let (mut solver, first) = SceneSolver::new(&scene, &compiled);
     check_step(&first);
     if !first.converged {
         return;

@@ -239,3 +239,50 @@ fn merge_refuses_two_different_results_for_one_case() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("different results"), "{err}");
 }
+
+/// The shell strips of `slender cantilever` go through the store like the rods: a rerun
+/// computes nothing and writes the same shell_results.csv (wall times included: they are
+/// the stored ones), and shards split them.
+#[test]
+fn shell_cantilever_cases_are_stored_reused_and_sharded() {
+    let root = scratch("shells");
+    let args = |out: &Path| -> Vec<String> {
+        let mut a = cantilever_args(out, 3);
+        let at = a.iter().position(|s| s == "--shell-materials").unwrap();
+        a.truncate(at);
+        a.extend(
+            [
+                "--shell-materials",
+                "shell,combined",
+                "--shell-elements",
+                "8",
+            ]
+            .iter()
+            .map(|s| s.to_string()),
+        );
+        a
+    };
+    let shells = |store: &Path| {
+        fs::read_dir(store.join("cantilever-shell"))
+            .map(|it| it.flatten().count())
+            .unwrap_or(0)
+    };
+    let whole = root.join("whole");
+    let first = run_ok(&args(&whole), &[]);
+    assert_eq!(shells(&whole.join("store")), 6, "2 sets × 3 Γ");
+    let csv = fs::read(whole.join("shell_results.csv")).unwrap();
+    assert!(!String::from_utf8_lossy(&first.stderr).contains("found finished"));
+    let again = run_ok(&args(&whole), &[]);
+    let log = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        log.contains("cantilever-shell: 6 of 6 cases found finished"),
+        "{log}"
+    );
+    assert_eq!(fs::read(whole.join("shell_results.csv")).unwrap(), csv);
+    // Shards: 0/2 computes cases 0, 2, 4 of the shell list and writes no report.
+    let shard = root.join("shard");
+    let o = run_ok(&args(&shard), &["--shard", "0/2"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("merge"));
+    assert_eq!(shells(&shard.join("store")), 3);
+    assert!(!shard.join("shell_results.csv").exists());
+}

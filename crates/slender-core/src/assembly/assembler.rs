@@ -21,6 +21,21 @@ pub struct Assembler<'o, M: SymmetricMatrix> {
     hess: Option<&'o mut M>,
     abs_grad: Option<&'o mut [f64]>,
     info: AssemblyInfo,
+    /// For a part of a larger system: the global DOF and coefficient of each of the part's
+    /// own free DOFs (see [`Self::part`]).
+    remap: Option<&'o [MapSlot]>,
+}
+
+/// Where one free DOF of a part (a member of a composite structure) goes in the whole: the
+/// global free DOF it moves with and the coefficient (the part's DOF = `coef` × the global
+/// one; e.g. a vertex coordinate on a slider is the slider's DOF times an axis component).
+/// `dof` = [`FIXED`] drops it (held by a structure-level support).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapSlot {
+    /// Global free DOF, or [`FIXED`].
+    pub dof: usize,
+    /// Coefficient.
+    pub coef: f64,
 }
 
 impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
@@ -47,7 +62,31 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             hess,
             abs_grad,
             info: AssemblyInfo::default(),
+            remap: None,
         }
+    }
+
+    /// An assembler for a part of the system (a member of a composite structure) whose own
+    /// free DOFs go to the global ones through `remap`; it writes into this assembler's
+    /// outputs (not zeroed again). Add its measures back with [`Self::absorb`].
+    pub fn part<'r>(&'r mut self, remap: &'r [MapSlot]) -> Assembler<'r, M> {
+        debug_assert!(self.remap.is_none(), "parts of parts are not supported");
+        Assembler {
+            selection: self.selection,
+            grad: self.grad.as_deref_mut(),
+            hess: self.hess.as_deref_mut(),
+            abs_grad: self.abs_grad.as_deref_mut(),
+            info: AssemblyInfo::default(),
+            remap: Some(remap),
+        }
+    }
+
+    /// Adds the measures of a part's assembly (see [`Self::part`]).
+    pub fn absorb(&mut self, part: AssemblyInfo) {
+        self.info.energy += part.energy;
+        self.info.energy_magnitude += part.energy_magnitude;
+        self.info.external_work += part.external_work;
+        self.info.external_force = self.info.external_force.max(part.external_force);
     }
 
     /// An energy-only assembly.
@@ -118,6 +157,10 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
     ) {
         self.info.energy += energy;
         self.info.energy_magnitude += magnitude;
+        if let Some(remap) = self.remap {
+            self.scatter_mapped(stencil, remap, g, h);
+            return;
+        }
         for (a, &i) in stencil.iter().enumerate() {
             if i == FIXED {
                 continue;
@@ -145,6 +188,45 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         }
     }
 
+    /// [`Self::local`]'s scatter through a part's DOF map.
+    fn scatter_mapped<const D: usize>(
+        &mut self,
+        stencil: &Stencil<D>,
+        remap: &[MapSlot],
+        g: &SVector<f64, D>,
+        h: &SMatrix<f64, D, D>,
+    ) {
+        let slot = |a: usize| -> Option<MapSlot> {
+            let i = stencil[a];
+            if i == FIXED {
+                return None;
+            }
+            let m = remap[i];
+            (m.dof != FIXED).then_some(m)
+        };
+        for a in 0..D {
+            let Some(ma) = slot(a) else { continue };
+            let i = ma.dof;
+            if let Some(gr) = self.grad.as_deref_mut() {
+                gr[i] += ma.coef * g[a];
+            }
+            if let Some(ab) = self.abs_grad.as_deref_mut() {
+                ab[i] += (ma.coef * g[a]).abs();
+            }
+            if let Some(hm) = self.hess.as_deref_mut() {
+                for b in 0..=a {
+                    let Some(mb) = slot(b) else { continue };
+                    let v = ma.coef * mb.coef * h[(a, b)];
+                    if mb.dof == i && a != b {
+                        hm.add(i, i, 2.0 * v);
+                    } else {
+                        hm.add(i, mb.dof, v);
+                    }
+                }
+            }
+        }
+    }
+
     /// A conservative external load doing work `work` (J) from the reference configuration:
     /// the energy falls by it. `max_force` (N; moments count as force × length) updates the
     /// largest external nodal force, the scale of the force convergence test.
@@ -161,6 +243,16 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         if dof == FIXED {
             return;
         }
+        let (dof, force) = match self.remap {
+            Some(remap) => {
+                let m = remap[dof];
+                if m.dof == FIXED {
+                    return;
+                }
+                (m.dof, m.coef * force)
+            }
+            None => (dof, force),
+        };
         if let Some(gr) = self.grad.as_deref_mut() {
             gr[dof] -= force;
         }

@@ -2,11 +2,13 @@
 //! trait the Newton solver is generic over, the banded LDLᵀ (rods), the sparse LDLᵀ through
 //! faer (shells), and the smallest eigenpair by spectrum slicing.
 
+pub mod adaptive;
 pub mod banded;
 pub mod eigen;
 pub mod sparse;
 pub mod symmetric;
 
+pub use adaptive::{AdaptiveLdlt, AdaptiveMatrix};
 pub use banded::{BandLdlt, SymmetricBandMatrix};
 pub use eigen::{smallest_eigenpair, EigenEstimate};
 pub use sparse::{SparseLdlt, SparseSymmetricMatrix};

@@ -1,56 +1,26 @@
 //! Building a rod: rest curve, mesh, section, supports and loads, validated.
 
 use crate::error::{require_finite, ModelError};
-use crate::geometry::{any_orthogonal, parallel_transport, Vec3};
+use crate::geometry::{any_orthogonal, Vec3};
 
 use super::bending::{material_curvature, BendingHinge};
+use super::clamp::{clamp_hinges, GhostEdge};
 use super::dofs::DofMap;
-use super::frames::{updated_ref_twist, EdgeFrame, EdgeId, GhostEdge, ReferenceFrames};
+use super::frames::{updated_ref_twist, EdgeFrame, EdgeId, ReferenceFrames};
 use super::gravity::lumped_vertex_masses;
 use super::hinge::Hinge;
 use super::hinge::HingeFrame;
 use super::mesh::Grading;
 use super::model::Rod;
-use super::moment::MomentLoad;
+use super::point_loads::{
+    moment_loads, nodal_forces, validate_point_loads, PointForce, PointMoment,
+};
 use super::rest_curve::RestCurve;
 use super::section::RodProperties;
 use super::state::RodState;
 use super::stretching::StretchTerm;
+use super::supports::Supports;
 use super::twisting::TwistingHinge;
-
-/// Where a rod is held.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Supports {
-    /// Clamp at vertex 0: position and material frame fixed (ghost edge, half Voronoi cell).
-    pub clamp_start: bool,
-    /// Clamp at the last vertex.
-    pub clamp_end: bool,
-    /// Pinned vertices: position fixed, rotation free.
-    pub pins: Vec<usize>,
-    /// If `Some(k)`: motion restricted to the plane ⊥ e_k through the rest shape (coordinate k
-    /// of every vertex and every twist angle fixed). For following symmetric equilibria of
-    /// planar problems; the rest curve must lie in that plane.
-    pub planar_axis: Option<usize>,
-}
-
-/// A dead force (N) on a vertex, scaled by the load factor.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointForce {
-    /// Vertex index.
-    pub vertex: usize,
-    /// Force (N).
-    pub force: Vec3,
-}
-
-/// A moment (N m) on a vertex, scaled by the load factor. It acts on the edge that starts at
-/// the vertex (the last edge for the last vertex); see `moment.rs` for its conservative form.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointMoment {
-    /// Vertex index.
-    pub vertex: usize,
-    /// Moment (N m).
-    pub moment: Vec3,
-}
 
 /// Builds a [`Rod`] from a rest curve, section properties, mesh and supports.
 #[derive(Clone, Debug)]
@@ -67,6 +37,8 @@ pub struct RodBuilder {
     natural_twist: f64,
     preload_gravity: Vec3,
     node_arclengths: Option<Vec<f64>>,
+    allow_rigid_motion: bool,
+    followers: Vec<(usize, Vec3, Vec3)>,
 }
 
 impl RodBuilder {
@@ -85,6 +57,8 @@ impl RodBuilder {
             natural_twist: 0.0,
             preload_gravity: Vec3::zeros(),
             node_arclengths: None,
+            allow_rigid_motion: false,
+            followers: Vec::new(),
         }
     }
 
@@ -159,6 +133,13 @@ impl RodBuilder {
         self
     }
 
+    /// Adds a follower load on vertex `v`: a force (N) and a moment (N m), given in world axes
+    /// at rest, that turn with the rod's material frame there (see `follower.rs`).
+    pub fn follower_load(mut self, v: usize, force: Vec3, moment: Vec3) -> Self {
+        self.followers.push((v, force, moment));
+        self
+    }
+
     /// Natural (stress-free) twist rate of the material frame about the centerline (rad/m),
     /// e.g. a pre-twisted strip. Default 0.
     pub fn natural_twist(mut self, rate: f64) -> Self {
@@ -170,6 +151,14 @@ impl RodBuilder {
     /// orthogonal to the tangent). Default: any deterministic orthogonal direction.
     pub fn first_director(mut self, m1: Vec3) -> Self {
         self.first_director = Some(m1);
+        self
+    }
+
+    /// Builds the rod even if its own supports leave it free to move rigidly: for a member
+    /// of a structure held through joints or structure-level supports (the structure checks
+    /// the whole for free motion).
+    pub fn allow_rigid_motion(mut self) -> Self {
+        self.allow_rigid_motion = true;
         self
     }
 
@@ -219,61 +208,10 @@ impl RodBuilder {
                 format!("edge {j} has (near) zero length; points must be distinct"),
             ));
         }
-        for v in &self.supports.pins {
-            if *v > n {
-                return Err(ModelError::structure(
-                    "pins",
-                    format!("vertex {v} does not exist; valid vertices are 0..={n}"),
-                ));
-            }
-        }
-        for pf in &self.point_forces {
-            if pf.vertex > n {
-                return Err(ModelError::structure(
-                    "point_forces.vertex",
-                    format!(
-                        "vertex {} does not exist; valid vertices are 0..={n}",
-                        pf.vertex
-                    ),
-                ));
-            }
-            if pf.force.iter().any(|c| !c.is_finite()) {
-                return Err(ModelError::structure(
-                    "point_forces.force",
-                    "must be finite",
-                ));
-            }
-        }
-        for pm in &self.point_moments {
-            if pm.vertex > n {
-                return Err(ModelError::structure(
-                    "point_moments.vertex",
-                    format!(
-                        "vertex {} does not exist; valid vertices are 0..={n}",
-                        pm.vertex
-                    ),
-                ));
-            }
-            if pm.moment.iter().any(|c| !c.is_finite()) {
-                return Err(ModelError::structure(
-                    "point_moments.moment",
-                    "must be finite",
-                ));
-            }
-        }
+        self.supports.validate(n)?;
+        validate_point_loads(&self.point_forces, &self.point_moments, n)?;
         require_finite("natural_twist", self.natural_twist)?;
-        let mut pins = self.supports.pins.clone();
-        pins.sort_unstable();
-        pins.dedup();
-        let n_clamps =
-            usize::from(self.supports.clamp_start) + usize::from(self.supports.clamp_end);
-        if n_clamps == 0 && pins.len() < 3 {
-            return Err(ModelError::structure(
-                "supports",
-                "the rod can move as a rigid body; add a clamp, or pin at least three non-collinear vertices",
-            ));
-        }
-
+        let supports = self.supports.normalized(self.allow_rigid_motion)?;
         // Rest reference frames: space-parallel (Bishop) transport along the rest polygon, so
         // the rest reference twist is zero and the rest material frame twists only if the
         // curve does.
@@ -326,20 +264,12 @@ impl RodBuilder {
         let rest_thetas: Vec<f64> = (0..n)
             .map(|j| self.natural_twist * 0.5 * (arclengths[j] + arclengths[j + 1]))
             .collect();
-        let ghost = |end_tangent: Vec3, edge: EdgeFrame, length: f64, theta: f64| GhostEdge {
-            frame: EdgeFrame {
-                tangent: end_tangent,
-                a1: parallel_transport(&edge.a1, &edge.tangent, &end_tangent).normalize(),
-            },
-            theta,
-            length,
-        };
         let ghost_start = self
             .supports
             .clamp_start
-            .then(|| ghost(points[0].1, edges[0], rest_lengths[0], 0.0));
+            .then(|| GhostEdge::new(points[0].1, edges[0], rest_lengths[0], 0.0));
         let ghost_end = self.supports.clamp_end.then(|| {
-            ghost(
+            GhostEdge::new(
                 points[n].1,
                 edges[n - 1],
                 rest_lengths[n - 1],
@@ -347,42 +277,15 @@ impl RodBuilder {
             )
         });
 
-        let mut fixed_vertices = pins.clone();
-        if self.supports.clamp_start {
-            fixed_vertices.push(0);
-        }
-        if self.supports.clamp_end {
-            fixed_vertices.push(n);
-        }
-        fixed_vertices.sort_unstable();
-        fixed_vertices.dedup();
-        if let Some(k) = self.supports.planar_axis {
-            if k > 2 {
-                return Err(ModelError::structure(
-                    "planar_axis",
-                    format!("got {k}; valid axes are 0 (x), 1 (y), 2 (z)"),
-                ));
-            }
-            let c0 = positions[0][k];
-            if positions.iter().any(|p| (p[k] - c0).abs() > 1e-12 * total) {
-                return Err(ModelError::structure(
-                    "planar_axis",
-                    "the rest curve does not lie in the plane of motion",
-                ));
-            }
-        }
-        let dofs = DofMap::new(n, &fixed_vertices, self.supports.planar_axis);
+        let fixed_vertices = supports.fixed_vertices(n);
+        supports.check_plane(&positions, total)?;
+        let dofs = DofMap::new(n, &fixed_vertices, supports.planar_axis);
 
         // Hinges: interior vertices, plus the clamped ends (half Voronoi cell, design.md §2.5).
+        let (start_hinge, end_hinge) =
+            clamp_hinges(&rest_lengths, ghost_start.is_some(), ghost_end.is_some());
         let mut topology: Vec<(usize, EdgeId, EdgeId, f64)> = Vec::new();
-        if ghost_start.is_some() {
-            topology.push((
-                0,
-                EdgeId::GhostStart,
-                EdgeId::Real(0),
-                0.5 * rest_lengths[0],
-            ));
-        }
+        topology.extend(start_hinge);
         for i in 1..n {
             topology.push((
                 i,
@@ -391,14 +294,7 @@ impl RodBuilder {
                 0.5 * (rest_lengths[i - 1] + rest_lengths[i]),
             ));
         }
-        if ghost_end.is_some() {
-            topology.push((
-                n,
-                EdgeId::Real(n - 1),
-                EdgeId::GhostEnd,
-                0.5 * rest_lengths[n - 1],
-            ));
-        }
+        topology.extend(end_hinge);
         let hinge_edges: Vec<(EdgeId, EdgeId)> = topology.iter().map(|h| (h.1, h.2)).collect();
         let mut frames = ReferenceFrames {
             edges,
@@ -410,19 +306,13 @@ impl RodBuilder {
             let t = updated_ref_twist(&frames.edge(l), &frames.edge(r), 0.0);
             frames.ref_twist.push(t);
         }
-        let moments: Vec<MomentLoad> = self
-            .point_moments
-            .iter()
-            .map(|pm| {
-                let edge = pm.vertex.min(n - 1);
-                MomentLoad::new(edge, pm.moment, &tangents[edge])
-            })
-            .collect();
+        let moments = moment_loads(&self.point_moments, &tangents);
         let rest = RodState {
             positions: positions.clone(),
             thetas: rest_thetas,
             frames,
             load_angles: vec![0.0; moments.len()],
+            followers: Vec::new(),
         };
 
         let polygon_arclengths: Vec<f64> = std::iter::once(0.0)
@@ -444,15 +334,14 @@ impl RodBuilder {
             preload_forces: Vec::new(),
             dofs,
             moments,
+            anchors: fixed_vertices.clone(),
             fixed_vertices,
-            supports: Supports {
-                pins,
-                ..self.supports
-            },
+            supports,
             gravity: self.gravity,
             rest: rest.clone(),
             arclengths: polygon_arclengths,
             load_path: Default::default(),
+            followers: Vec::new(),
         };
         rod.stretch_terms = (0..n)
             .map(|j| StretchTerm {
@@ -463,19 +352,38 @@ impl RodBuilder {
             })
             .collect();
         rod.vertex_masses = lumped_vertex_masses(&rod.rest_lengths, self.properties.linear_density);
-        rod.nodal_forces = rod
-            .vertex_masses
-            .iter()
-            .map(|&m| self.gravity * m)
-            .collect();
-        for pf in &self.point_forces {
-            rod.nodal_forces[pf.vertex] += pf.force;
-        }
+        rod.nodal_forces = nodal_forces(&rod.vertex_masses, self.gravity, &self.point_forces);
         rod.preload_forces = rod
             .vertex_masses
             .iter()
             .map(|&m| self.preload_gravity * m)
             .collect();
+        for &(v, force, moment) in &self.followers {
+            if v > n {
+                return Err(ModelError::structure(
+                    "follower_loads.vertex",
+                    format!("vertex {v} does not exist; valid vertices are 0..={n}"),
+                ));
+            }
+            if force.iter().chain(moment.iter()).any(|c| !c.is_finite()) {
+                return Err(ModelError::structure(
+                    "follower_loads",
+                    "force and moment must be finite",
+                ));
+            }
+            if rod.fixed_vertices.contains(&v) {
+                return Err(ModelError::structure(
+                    "follower_loads.vertex",
+                    format!("vertex {v} is held by a support: a follower load there does nothing"),
+                ));
+            }
+            rod.followers.push(super::follower::FollowerLoad {
+                vertex: v,
+                edge: v.min(n - 1),
+                force,
+                moment,
+            });
+        }
         for (k, &(vertex, l, r, voronoi)) in topology.iter().enumerate() {
             let mut hinge = Hinge {
                 index: k,
@@ -500,6 +408,8 @@ impl RodBuilder {
             hinge.twisting.rest_twist = hs.twist();
             rod.hinges.push(hinge);
         }
+        let fresh: Vec<_> = rod.follower_loads(&rod.rest).collect();
+        rod.rest.followers = fresh;
         Ok(rod)
     }
 }

@@ -86,23 +86,12 @@ impl EquilibriumProblem for Rod {
         self.impose_path(state, from, to, guess);
     }
 
+    fn refresh_loads(&self, state: &mut RodState) -> f64 {
+        self.refresh_followers(state)
+    }
+
     fn max_step(&self, state: &RodState, dx: &[f64]) -> f64 {
-        let (turn, change) = self.max_edge_rotation(state, dx);
-        let theta = (0..dx.len())
-            .filter(|&i| self.dofs.is_angle(i))
-            .map(|i| dx[i].abs())
-            .fold(0.0, f64::max);
-        let mut alpha: f64 = 1.0;
-        if turn > MAX_EDGE_TURN {
-            alpha = alpha.min(MAX_EDGE_TURN / turn);
-        }
-        if change > MAX_EDGE_CHANGE {
-            alpha = alpha.min(MAX_EDGE_CHANGE / change);
-        }
-        if theta > MAX_THETA_STEP {
-            alpha = alpha.min(MAX_THETA_STEP / theta);
-        }
-        alpha
+        self.max_step_by(state, |i| dx[i])
     }
 
     fn force_length(&self, i: usize) -> f64 {
@@ -120,6 +109,29 @@ impl EquilibriumProblem for Rod {
         } else {
             state.positions[f / 4].amax().max(self.length)
         }
+    }
+}
+
+impl Rod {
+    /// The step cap of [`EquilibriumProblem::max_step`] with the step of DOF `i` given by
+    /// `dx(i)`.
+    pub fn max_step_by(&self, state: &RodState, dx: impl Fn(usize) -> f64 + Copy) -> f64 {
+        let (turn, change) = self.max_edge_rotation(state, dx);
+        let theta = (0..self.dofs.n_free())
+            .filter(|&i| self.dofs.is_angle(i))
+            .map(|i| dx(i).abs())
+            .fold(0.0, f64::max);
+        let mut alpha: f64 = 1.0;
+        if turn > MAX_EDGE_TURN {
+            alpha = alpha.min(MAX_EDGE_TURN / turn);
+        }
+        if change > MAX_EDGE_CHANGE {
+            alpha = alpha.min(MAX_EDGE_CHANGE / change);
+        }
+        if theta > MAX_THETA_STEP {
+            alpha = alpha.min(MAX_THETA_STEP / theta);
+        }
+        alpha
     }
 }
 

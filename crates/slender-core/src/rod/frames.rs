@@ -13,6 +13,8 @@
 
 use crate::geometry::{parallel_transport, rotate_about_axis, signed_angle, Vec3};
 
+pub use super::clamp::GhostEdge;
+
 /// The reference frame of one edge: unit tangent and first reference director a₁ ⊥ tangent.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EdgeFrame {
@@ -44,17 +46,6 @@ pub enum EdgeId {
     GhostStart,
     /// The ghost edge inside the clamp at the end (after the last vertex).
     GhostEnd,
-}
-
-/// A clamp's ghost edge: fixed frame, fixed material angle, length of the adjacent real edge.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GhostEdge {
-    /// Its reference frame (the clamp's orientation).
-    pub frame: EdgeFrame,
-    /// Its material angle (rad), fixed.
-    pub theta: f64,
-    /// Its length (m); only the direction enters the energy, the length sets the stencil.
-    pub length: f64,
 }
 
 /// Reference frames of all edges plus the reference twist of every hinge, adapted to one set

@@ -14,7 +14,6 @@ use nalgebra::Rotation3;
 use crate::error::ModelError;
 use crate::geometry::Vec3;
 
-use super::frames::EdgeFrame;
 use super::model::Rod;
 use super::state::RodState;
 
@@ -75,6 +74,9 @@ pub struct RodLoadPath {
     pub loads: [f64; 2],
     /// Supports moved rigidly as λ goes from 0 to 1. Default none.
     pub motions: Vec<SupportMotion>,
+    /// Gravity (m/s²) at λ = 0 when gravity changes along the path to the rod's own at λ = 1
+    /// (e.g. an interactive edit). Default none.
+    pub gravity_from: Option<Vec3>,
 }
 
 impl Default for RodLoadPath {
@@ -82,6 +84,7 @@ impl Default for RodLoadPath {
         Self {
             loads: [0.0, 1.0],
             motions: Vec::new(),
+            gravity_from: None,
         }
     }
 }
@@ -92,6 +95,16 @@ impl RodLoadPath {
         Self {
             loads: [1.0, 1.0],
             motions,
+            gravity_from: None,
+        }
+    }
+
+    /// Full loads, gravity changing from `from` (m/s²) to the rod's own.
+    pub fn gravity_change(from: Vec3) -> Self {
+        Self {
+            loads: [1.0, 1.0],
+            motions: Vec::new(),
+            gravity_from: Some(from),
         }
     }
 
@@ -102,6 +115,23 @@ impl RodLoadPath {
 }
 
 impl Rod {
+    /// The extra nodal force (N) on vertex `v` at load factor `load` while gravity changes
+    /// along the path: m_v (g_from − g)(1 − λ), which is zero at λ = 1.
+    pub(super) fn gravity_transition(&self, v: usize, load: f64) -> Vec3 {
+        match self.load_path.gravity_from {
+            Some(g0) => (g0 - self.gravity) * (self.vertex_masses[v] * (1.0 - load)),
+            None => Vec3::zeros(),
+        }
+    }
+
+    /// Sets gravity (m/s²) at load factor 1 (the nodal forces follow).
+    pub fn set_gravity(&mut self, g: Vec3) {
+        for (f, &m) in self.nodal_forces.iter_mut().zip(&self.vertex_masses) {
+            *f += (g - self.gravity) * m;
+        }
+        self.gravity = g;
+    }
+
     /// What the load factor drives.
     pub fn load_path(&self) -> &RodLoadPath {
         &self.load_path
@@ -112,6 +142,12 @@ impl Rod {
     pub fn set_load_path(&mut self, path: RodLoadPath) -> Result<(), ModelError> {
         for m in &path.motions {
             m.check(self)?;
+        }
+        if path
+            .gravity_from
+            .is_some_and(|g| g.iter().any(|c| !c.is_finite()))
+        {
+            return Err(ModelError::structure("gravity_from", "must be finite"));
         }
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
@@ -124,6 +160,53 @@ impl Rod {
         }
         self.load_path = path;
         Ok(())
+    }
+
+    /// Sets the load path to full loads with one support motion (the vectors of the current
+    /// path are reused: an interactive drag allocates nothing here).
+    pub fn set_support_motion(
+        &mut self,
+        vertices: &[usize],
+        pivot: Vec3,
+        rotation: Vec3,
+        translation: Vec3,
+    ) -> Result<(), ModelError> {
+        let mut path = std::mem::take(&mut self.load_path);
+        path.loads = [1.0, 1.0];
+        path.gravity_from = None;
+        path.motions.truncate(1);
+        if path.motions.is_empty() {
+            path.motions.push(SupportMotion {
+                vertices: Vec::new(),
+                pivot,
+                rotation,
+                translation,
+            });
+        }
+        let m = &mut path.motions[0];
+        m.vertices.clear();
+        m.vertices.extend_from_slice(vertices);
+        m.pivot = pivot;
+        m.rotation = rotation;
+        m.translation = translation;
+        let checked = m.check(self);
+        if checked.is_ok() {
+            self.load_path = path;
+        } else {
+            self.clear_load_path();
+        }
+        checked
+    }
+
+    /// Back to the plain load ramp (vectors kept for reuse).
+    pub fn clear_load_path(&mut self) {
+        self.load_path.loads = [0.0, 1.0];
+        self.load_path.gravity_from = None;
+        for m in self.load_path.motions.iter_mut() {
+            m.vertices.clear();
+            m.rotation = Vec3::zeros();
+            m.translation = Vec3::zeros();
+        }
     }
 
     /// A state like `state` with the support moved by the whole of `motion` (λ from 0 to 1),
@@ -145,7 +228,9 @@ impl Rod {
     /// [`EquilibriumProblem::impose_load`](crate::solver::EquilibriumProblem::impose_load)).
     pub(super) fn impose_path(&self, state: &mut RodState, from: f64, to: f64, guess: bool) {
         for m in &self.load_path.motions {
-            self.move_support(state, m, from, to, guess);
+            if !m.vertices.is_empty() {
+                self.move_support(state, m, from, to, guess);
+            }
         }
     }
 
@@ -211,18 +296,7 @@ impl Rod {
         // A clamp's ghost edge turns with its support; the reference twists of the clamp hinges
         // are then continued across the rotation by the transport below.
         let r = Rotation3::new(motion.rotation * (to - from));
-        let turn = |g: &mut Option<super::frames::GhostEdge>, v: usize| {
-            if let Some(g) = g.as_mut() {
-                if motion.vertices.contains(&v) {
-                    g.frame = EdgeFrame {
-                        tangent: r * g.frame.tangent,
-                        a1: r * g.frame.a1,
-                    };
-                }
-            }
-        };
-        turn(&mut state.frames.ghost_start, 0);
-        turn(&mut state.frames.ghost_end, n);
+        self.turn_clamps(state, &motion.vertices, &r);
         state
             .frames
             .transport_in_place(&state.positions, &self.hinge_edges);

@@ -18,6 +18,7 @@ impl Rod {
         load: f64,
         asm: &mut Assembler<'_, M>,
     ) {
+        let lambda = load;
         let load = self.load_path.load_factor(load);
         // Dead loads: V = −λ Σ f_v·x_v, measured from the rest positions so that the energy
         // scale is the work done, not an arbitrary datum.
@@ -27,12 +28,34 @@ impl Rod {
             .zip(&self.preload_forces)
             .enumerate()
         {
-            let f = f * load + f0;
+            let f = f * load + f0 + self.gravity_transition(v, lambda);
             let du = s.positions[v] - self.rest.positions[v];
             asm.load(f.dot(&du), f.amax());
             for k in 0..3 {
                 asm.generalized_force(self.dofs.vertex(v, k), f[k]);
             }
+        }
+        // Follower loads, frozen in the state (see `follower.rs`): dead forces on the vertex,
+        // a couple on the edge's vertices and a torque on its angle.
+        for (f, now) in self.followers.iter().zip(&s.followers) {
+            let (v, j) = (f.vertex, f.edge);
+            let du = s.positions[v] - self.rest.positions[v];
+            let de = (s.positions[j + 1] - s.positions[j])
+                - (self.rest.positions[j + 1] - self.rest.positions[j]);
+            let dtheta = s.thetas[j] - self.rest.thetas[j];
+            let fv = now.force * load;
+            let c = now.couple * load;
+            let tau = now.torque * load;
+            asm.load(
+                fv.dot(&du) + c.dot(&de) + tau * dtheta,
+                fv.amax().max(c.amax()).max(tau.abs() / self.length),
+            );
+            for k in 0..3 {
+                asm.generalized_force(self.dofs.vertex(v, k), fv[k]);
+                asm.generalized_force(self.dofs.vertex(j + 1, k), c[k]);
+                asm.generalized_force(self.dofs.vertex(j, k), -c[k]);
+            }
+            asm.generalized_force(self.dofs.theta(j), tau);
         }
         let mut g6 = SVector::<f64, 6>::zeros();
         let mut h6 = SMatrix::<f64, 6, 6>::zeros();

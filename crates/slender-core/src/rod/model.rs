@@ -6,7 +6,6 @@ use crate::geometry::Vec3;
 use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
 use crate::solver::problem::AssemblyInfo;
 
-use super::builder::Supports;
 use super::dofs::DofMap;
 use super::frames::EdgeId;
 use super::groups;
@@ -15,6 +14,7 @@ use super::moment::MomentLoad;
 use super::section::RodProperties;
 use super::state::RodState;
 use super::stretching::StretchTerm;
+use super::supports::Supports;
 
 /// A discrete elastic rod ready to be solved (see the crate docs and design.md §2).
 #[derive(Clone, Debug)]
@@ -35,6 +35,9 @@ pub struct Rod {
     pub(super) moments: Vec<MomentLoad>,
     /// Vertices with fixed positions (clamps and pins), sorted.
     pub(super) fixed_vertices: Vec<usize>,
+    /// Where the retraction's walks start: the fixed vertices plus any vertex a structure
+    /// moves linearly (joints, sliders), sorted.
+    pub(super) anchors: Vec<usize>,
     pub(super) supports: Supports,
     pub(super) gravity: Vec3,
     pub(super) rest: RodState,
@@ -42,6 +45,8 @@ pub struct Rod {
     pub(super) arclengths: Vec<f64>,
     /// What the load factor drives.
     pub(super) load_path: super::load_path::RodLoadPath,
+    /// Follower loads (applied lagged, see `follower.rs`).
+    pub(super) followers: Vec<super::follower::FollowerLoad>,
 }
 
 impl Rod {
@@ -90,6 +95,49 @@ impl Rod {
         &self.vertex_masses
     }
 
+    /// Calls `f` with the stencil (free DOFs, [`FIXED`](crate::assembly::FIXED) for others)
+    /// of every term: the Hessian's sparsity pattern.
+    pub fn for_each_stencil(&self, mut f: impl FnMut(&[usize])) {
+        for t in &self.stretch_terms {
+            f(&t.dofs);
+        }
+        for h in &self.hinges {
+            f(&h.dofs);
+        }
+        for m in &self.moments {
+            let mut d = [FIXED; 7];
+            d[..6].copy_from_slice(&self.edge_dofs(m.edge));
+            d[6] = self.dofs.theta(m.edge);
+            f(&d);
+        }
+    }
+
+    /// Re-adapts the reference frames of `s` to its positions after they were changed in
+    /// place (frames transported, reference twists continued).
+    pub fn refresh_frames(&self, s: &mut RodState) {
+        s.frames.transport_in_place(&s.positions, &self.hinge_edges);
+    }
+
+    /// Sets the vertices that the retraction moves linearly by their own step, besides the
+    /// fixed ones (a structure's joints and sliders; see [`Rod::retract_by`]).
+    pub fn set_anchors(&mut self, extra: &[usize]) {
+        let mut a = self.fixed_vertices.clone();
+        a.extend_from_slice(extra);
+        a.sort_unstable();
+        a.dedup();
+        self.anchors = a;
+    }
+
+    /// Vertices whose positions the rod's own supports fix (clamps and pins), sorted.
+    pub fn fixed_vertices(&self) -> &[usize] {
+        &self.fixed_vertices
+    }
+
+    /// The hinges' edge pairs (for output of strains per hinge).
+    pub fn hinge_count(&self) -> usize {
+        self.hinges.len()
+    }
+
     /// Free-DOF vector of a state (coordinates in m, angles in rad).
     pub fn dof_vector(&self, s: &RodState) -> Vec<f64> {
         let mut v = vec![0.0; self.dofs.n_free()];
@@ -132,17 +180,11 @@ impl Rod {
         let (l, r) = hinge.edges;
         let (x0, theta_l) = match l {
             EdgeId::Real(j) => (s.positions[j], s.thetas[j]),
-            _ => {
-                let g = s.frames.ghost_start.expect("start clamp");
-                (s.positions[v] - g.frame.tangent * g.length, g.theta)
-            }
+            _ => self.ghost_point(s, v, false),
         };
         let (x2, theta_r) = match r {
             EdgeId::Real(j) => (s.positions[j + 1], s.thetas[j]),
-            _ => {
-                let g = s.frames.ghost_end.expect("end clamp");
-                (s.positions[v] + g.frame.tangent * g.length, g.theta)
-            }
+            _ => self.ghost_point(s, v, true),
         };
         HingeState {
             x: [x0, s.positions[v], x2],

@@ -16,6 +16,7 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::geometry::Vec3;
 
+use super::clamp;
 use super::frames::EdgeId;
 use super::hinge::{EdgeHessian, HingeFrame, HingeVector};
 use super::model::Rod;
@@ -33,6 +34,18 @@ pub struct SupportReaction {
     pub moment: Vec3,
 }
 
+/// The generalized forces (∂E/∂DOF) of a rod's own terms on every vertex and edge angle, fixed
+/// or not: the forces its supports must supply, before the joints of a structure are added.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FullGradient {
+    /// ∂E/∂x_v (N) of every vertex.
+    pub vertices: Vec<Vec3>,
+    /// ∂E/∂θ_j (N m) of every edge angle.
+    pub thetas: Vec<f64>,
+    /// Moments (N m) about the clamped vertex of the start and end clamps' ghost edges.
+    pub ghost_moments: [Vec3; 2],
+}
+
 /// Resultant of the applied loads (gravity, point forces, point moments) in a state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoadResultant {
@@ -46,8 +59,18 @@ impl Rod {
     /// ∂E/∂x_v (N) of the total energy at load factor `load` for every vertex, fixed or not,
     /// and the ghost-edge moments (N m) of the start and end clamps.
     fn full_position_gradient(&self, s: &RodState, load: f64) -> (Vec<Vec3>, [Vec3; 2]) {
+        let g = self.full_gradient(s, load);
+        (g.vertices, g.ghost_moments)
+    }
+
+    /// The generalized forces of the rod's own terms on every vertex and edge angle, fixed or
+    /// not (see [`FullGradient`]).
+    pub fn full_gradient(&self, s: &RodState, load: f64) -> FullGradient {
+        let lambda = load;
+        let load = self.load_path.load_factor(load);
         let n = self.n_edges();
         let mut g = vec![Vec3::zeros(); n + 1];
+        let mut gt = vec![0.0; n];
         let mut ghost_moment = [Vec3::zeros(); 2];
         let ea = self.properties.stiffness.ea;
         let mut g6 = SVector::<f64, 6>::zeros();
@@ -81,21 +104,37 @@ impl Rod {
             let slot = |a: usize| Vec3::new(gh[a], gh[a + 1], gh[a + 2]);
             let v = hinge.vertex;
             g[v] += slot(4);
+            if let EdgeId::Real(j) = hinge.edges.0 {
+                gt[j] += gh[3];
+            }
+            if let EdgeId::Real(j) = hinge.edges.1 {
+                gt[j] += gh[7];
+            }
             match hinge.edges.0 {
                 EdgeId::Real(j) => g[j] += slot(0),
                 _ => {
                     // The ghost vertex moves with the clamp.
                     g[v] += slot(0);
-                    ghost_moment[0] += (hs.x[0] - hs.x[1]).cross(&slot(0))
-                        + s.frames.edge(hinge.edges.0).tangent * gh[3];
+                    ghost_moment[0] += clamp::ghost_moment(
+                        &hs.x[0],
+                        &hs.x[1],
+                        &slot(0),
+                        &s.frames.edge(hinge.edges.0).tangent,
+                        gh[3],
+                    );
                 }
             }
             match hinge.edges.1 {
                 EdgeId::Real(j) => g[j + 1] += slot(8),
                 _ => {
                     g[v] += slot(8);
-                    ghost_moment[1] += (hs.x[2] - hs.x[1]).cross(&slot(8))
-                        + s.frames.edge(hinge.edges.1).tangent * gh[7];
+                    ghost_moment[1] += clamp::ghost_moment(
+                        &hs.x[2],
+                        &hs.x[1],
+                        &slot(8),
+                        &s.frames.edge(hinge.edges.1).tangent,
+                        gh[7],
+                    );
                 }
             }
         }
@@ -105,7 +144,7 @@ impl Rod {
             .zip(&self.preload_forces)
             .enumerate()
         {
-            g[v] -= f * load + f0;
+            g[v] -= f * load + f0 + self.gravity_transition(v, lambda);
         }
         let mut h6 = SMatrix::<f64, 6, 6>::zeros();
         for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
@@ -114,8 +153,20 @@ impl Rod {
             m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
             g[j] += g6.fixed_rows::<3>(0);
             g[j + 1] += g6.fixed_rows::<3>(3);
+            gt[j] -= load * m.axial;
         }
-        (g, ghost_moment)
+        for (f, now) in self.followers.iter().zip(&s.followers) {
+            let j = f.edge;
+            g[f.vertex] -= now.force * load;
+            g[j + 1] -= now.couple * load;
+            g[j] += now.couple * load;
+            gt[j] -= now.torque * load;
+        }
+        FullGradient {
+            vertices: g,
+            thetas: gt,
+            ghost_moments: ghost_moment,
+        }
     }
 
     /// Reactions of every support at load factor `load`, one per fixed vertex in increasing
@@ -147,6 +198,8 @@ impl Rod {
     /// couple of their bending part on the edge's end vertices plus their axial torque about
     /// the current tangent).
     pub fn applied_loads(&self, s: &RodState, load: f64) -> LoadResultant {
+        let lambda = load;
+        let load = self.load_path.load_factor(load);
         let mut force = Vec3::zeros();
         let mut moment = Vec3::zeros();
         for (v, (f, f0)) in self
@@ -155,9 +208,17 @@ impl Rod {
             .zip(&self.preload_forces)
             .enumerate()
         {
-            let f = f * load + f0;
+            let f = f * load + f0 + self.gravity_transition(v, lambda);
             force += f;
             moment += s.positions[v].cross(&f);
+        }
+        for (f, now) in self.followers.iter().zip(&s.followers) {
+            let j = f.edge;
+            force += now.force * load;
+            moment += s.positions[f.vertex].cross(&(now.force * load));
+            let e = s.positions[j + 1] - s.positions[j];
+            moment += e.cross(&(now.couple * load));
+            moment += s.frames.edges[j].tangent * (now.torque * load);
         }
         let mut g6 = SVector::<f64, 6>::zeros();
         let mut h6 = SMatrix::<f64, 6, 6>::zeros();

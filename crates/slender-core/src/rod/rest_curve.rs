@@ -10,8 +10,10 @@ use serde::{Deserialize, Serialize};
 use crate::error::{require_positive, ModelError};
 use crate::geometry::Vec3;
 
-/// A smooth rest centerline parametrized by arc length s ∈ [0, length].
+/// A smooth rest centerline parametrized by arc length s ∈ [0, length]. This is also the
+/// `centerline` of a rod in a scene file (`kind = "straight" | "arc" | "helix" | "polyline"`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum RestCurve {
     /// Straight segment from `start` (m) along `direction` (normalized internally).
@@ -25,6 +27,7 @@ pub enum RestCurve {
     },
     /// Circular arc (possibly more than one turn) of radius `radius` (m), starting at `start`
     /// with unit tangent `tangent` and curving toward `normal`.
+    #[serde(rename = "arc", alias = "circle")]
     Circle {
         /// First point (m).
         start: [f64; 3],

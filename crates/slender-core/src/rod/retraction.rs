@@ -23,9 +23,22 @@ impl Rod {
     /// with frames transported. The solver uses [`Rod::retract`]; this is the map whose
     /// derivatives the energy's gradient and Hessian are (finite-difference tests use it).
     pub fn displace_linear(&self, state: &RodState, dx: &[f64], alpha: f64, out: &mut RodState) {
+        self.displace_linear_by(state, |i| dx[i], alpha, out);
+    }
+
+    /// As [`Self::displace_linear`] with the step of free DOF `i` given by `dx(i)` (for a rod
+    /// that is a member of a larger structure, whose step lives in the structure's DOFs).
+    pub fn displace_linear_by(
+        &self,
+        state: &RodState,
+        dx: impl Fn(usize) -> f64,
+        alpha: f64,
+        out: &mut RodState,
+    ) {
         out.positions.clone_from(&state.positions);
         out.thetas.clone_from(&state.thetas);
-        for (i, &d) in dx.iter().enumerate() {
+        for i in 0..self.dofs.n_free() {
+            let d = dx(i);
             let f = self.dofs.full_index(i);
             if f % 4 == 3 {
                 out.thetas[f / 4] += alpha * d;
@@ -49,11 +62,25 @@ impl Rod {
     /// Between two fixed vertices the walks from both ends are blended linearly in arc length,
     /// so supports stay exact and only the O(|dx|²) closure gap is spread along the segment.
     pub fn retract(&self, state: &RodState, dx: &[f64], alpha: f64, out: &mut RodState) {
+        self.retract_by(state, |i| dx[i], alpha, out);
+    }
+
+    /// As [`Self::retract`] with the step of free DOF `i` given by `dx(i)`. The walks start
+    /// from the *anchors*: the fixed vertices and any vertex a structure moves linearly (a
+    /// joint shared with another member, a slider), so that such vertices move by exactly
+    /// their step and members sharing them stay joined.
+    pub fn retract_by(
+        &self,
+        state: &RodState,
+        dx: impl Fn(usize) -> f64,
+        alpha: f64,
+        out: &mut RodState,
+    ) {
         out.thetas.clone_from(&state.thetas);
         for j in 0..self.n_edges() {
             let i = self.dofs.theta(j);
             if i != FIXED {
-                out.thetas[j] += alpha * dx[i];
+                out.thetas[j] += alpha * dx(i);
             }
         }
         let x = &state.positions;
@@ -62,7 +89,7 @@ impl Rod {
             for k in 0..3 {
                 let i = self.dofs.vertex(v, k);
                 if i != FIXED {
-                    d[k] = alpha * dx[i];
+                    d[k] = alpha * dx(i);
                 }
             }
             d
@@ -86,12 +113,15 @@ impl Rod {
         let n = self.n_edges();
         let p = &mut out.positions;
         p.clone_from(x);
-        let fixed = &self.fixed_vertices;
+        let fixed = &self.anchors;
         if fixed.is_empty() {
             for v in 0..=n {
                 p[v] += disp(v);
             }
         } else {
+            for &a in fixed {
+                p[a] += disp(a);
+            }
             let first = fixed[0];
             let last = fixed[fixed.len() - 1];
             // Free tail before the first support: walk backward.
@@ -108,14 +138,13 @@ impl Rod {
                 if b <= a + 1 {
                     continue;
                 }
-                let mut forward = x[a];
-                let mut fwd = Vec::with_capacity(b - a + 1);
-                fwd.push(forward);
-                for j in a..b {
+                // The forward walk is written into p, then blended with the backward walk.
+                let mut forward = p[a];
+                for j in a..b - 1 {
                     forward += new_edge(j);
-                    fwd.push(forward);
+                    p[j + 1] = forward;
                 }
-                let mut backward = x[b];
+                let mut backward = p[b];
                 let s_total: f64 = self.rest_lengths[a..b].iter().sum();
                 let mut s_from_b = 0.0;
                 for j in (a..b).rev() {
@@ -123,7 +152,7 @@ impl Rod {
                     s_from_b += self.rest_lengths[j];
                     if j > a {
                         let wb = 1.0 - s_from_b / s_total;
-                        p[j] = fwd[j - a] * (1.0 - wb) + backward * wb;
+                        p[j] = p[j] * (1.0 - wb) + backward * wb;
                     }
                 }
             }
@@ -135,14 +164,14 @@ impl Rod {
     }
 
     /// The largest edge-angle rotation (rad) that `alpha·dx` would cause, for the step cap.
-    pub(super) fn max_edge_rotation(&self, s: &RodState, dx: &[f64]) -> (f64, f64) {
+    pub(super) fn max_edge_rotation(&self, s: &RodState, dx: impl Fn(usize) -> f64) -> (f64, f64) {
         let n = self.n_edges();
         let disp = |v: usize| -> Vec3 {
             let mut d = Vec3::zeros();
             for k in 0..3 {
                 let i = self.dofs.vertex(v, k);
                 if i != FIXED {
-                    d[k] = dx[i];
+                    d[k] = dx(i);
                 }
             }
             d

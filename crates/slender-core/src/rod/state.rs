@@ -12,6 +12,8 @@ pub struct RodState {
     pub(super) frames: ReferenceFrames,
     /// Unwrapped angle (rad) of each moment load's edge about its axis (see `moment.rs`).
     pub(super) load_angles: Vec<f64>,
+    /// Current dead-load stand-ins of the follower loads (see `follower.rs`).
+    pub(super) followers: Vec<super::follower::FollowerState>,
 }
 
 impl RodState {
@@ -57,7 +59,27 @@ impl RodState {
                 ref_twist: self.frames.ref_twist.clone(),
             },
             load_angles: self.load_angles.clone(),
+            followers: self
+                .followers
+                .iter()
+                .map(|f| super::follower::FollowerState {
+                    force: rotation * f.force,
+                    couple: rotation * f.couple,
+                    torque: f.torque,
+                })
+                .collect(),
         }
+    }
+
+    /// Moves vertex `v` by `d` (m) without adapting the frames (see [`Rod::refresh_frames`]
+    /// (super::Rod::refresh_frames)).
+    pub(crate) fn translate_vertex(&mut self, v: usize, d: Vec3) {
+        self.positions[v] += d;
+    }
+
+    /// Turns the material frame of edge `j` about its tangent by `angle` (rad).
+    pub(crate) fn turn_edge(&mut self, j: usize, angle: f64) {
+        self.thetas[j] += angle;
     }
 
     /// Material frame (m₁, m₂, t) of edge `j`.

@@ -51,7 +51,7 @@ pub fn check_magnitudes(path: &str, spec: &RodSpec) -> Result<(), SceneError> {
             vec3(format!("{c}.direction"), direction)?;
             positive(format!("{c}.length"), *length)?;
         }
-        Centerline::Arc {
+        Centerline::Circle {
             start,
             tangent,
             normal,

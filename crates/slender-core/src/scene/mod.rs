@@ -1,19 +1,21 @@
-//! Scenes: rods described in a file (TOML or JSON, parsed by the binary), validated with
-//! errors that name the place in the file, built into rod models and solved, with prescribed
-//! support motion as a sequence of warm-started equilibria.
+//! Scenes: rods and shell strips described in a file (TOML or JSON, parsed by the binary),
+//! validated with errors that name the place in the file, compiled into structures and solved,
+//! edited and re-solved warm through a [`Session`] (prescribed motion, interactive editing).
 //!
 //! No file I/O here: the binary reads files and writes outputs.
 
 pub mod compile;
 pub mod error;
-pub mod free_motion;
 pub mod magnitudes;
+pub mod result;
+pub mod session;
 pub mod shells;
 pub mod solve;
 pub mod spec;
 
-pub use compile::{CompiledRod, CompiledScene, CompiledSupport, Segment};
+pub use compile::{CompiledRod, CompiledScene, CompiledSupport, RodPart};
 pub use error::SceneError;
+pub use result::{RodResult, SceneStep, StabilityResult, StructureResult, SupportResult};
+pub use session::{EditReport, Session, SupportPose};
 pub use shells::{CompiledShell, ShellResult};
-pub use solve::{RodResult, SceneStep, SupportResult};
 pub use spec::Scene;

@@ -28,9 +28,51 @@ pub struct Scene {
     /// rods: structures in one scene do not interact).
     #[serde(default)]
     pub shells: Vec<ShellSpec>,
+    /// Rigid connections between rod ends (branch points, splices).
+    #[serde(default)]
+    pub joints: Vec<JointSpec>,
     /// Prescribed support motion, in stages run one after the other after the initial solve.
     #[serde(default)]
     pub motion: Vec<MotionStage>,
+    /// What to do when an equilibrium is unstable (a negative Hessian eigenvalue): `"follow"`
+    /// (default) follows the unstable mode to a stable equilibrium and reports both; `"keep"`
+    /// keeps the unstable one (and says so).
+    #[serde(default)]
+    pub unstable: UnstablePolicy,
+}
+
+/// What a scene solve does with an unstable equilibrium.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum UnstablePolicy {
+    /// Follow the lowest unstable mode to a stable equilibrium (branch switching).
+    #[default]
+    Follow,
+    /// Keep the unstable equilibrium and report it as unstable.
+    Keep,
+}
+
+/// A rigid connection of rod ends at one point (their rest positions must coincide). The
+/// cable continues through it: bending and twisting are carried across, between the first end
+/// and each of the others.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct JointSpec {
+    /// The joined ends (at least two). A support at the joint goes on the first end's vertex.
+    pub ends: Vec<JointEndSpec>,
+}
+
+/// One rod end at a joint.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct JointEndSpec {
+    /// The rod: its name.
+    pub rod: String,
+    /// Which end.
+    pub end: RodEnd,
 }
 
 /// One rod: centerline, section, material, mesh, supports and loads.
@@ -68,56 +110,44 @@ pub struct RodSpec {
     /// Point moments.
     #[serde(default)]
     pub moments: Vec<PointMomentSpec>,
+    /// Distributed dead loads per unit length, besides gravity.
+    #[serde(default)]
+    pub line_loads: Vec<LineLoadSpec>,
+    /// The centerline is a closed loop (ring): its end must coincide with its start, where the
+    /// two ends are joined and the cable continues. Default false.
+    #[serde(default)]
+    pub closed: bool,
+    /// Smallest bend radius the cable allows (m): segments bent tighter are reported (and
+    /// highlighted by `slender view`). Default: none.
+    #[serde(default)]
+    pub min_bend_radius: Option<f64>,
 }
 
-/// Rest centerline generators.
+/// A distributed dead load per unit rest length (N/m): uniform over [`from`, `to`], or varying
+/// linearly between the rows of `table`. It is lumped on the vertices exactly (the integral of
+/// the piecewise-linear load against each vertex's hat function).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum Centerline {
-    /// Straight segment.
-    Straight {
-        /// First point (m).
-        start: [f64; 3],
-        /// Direction (normalized internally).
-        direction: [f64; 3],
-        /// Length (m).
-        length: f64,
-    },
-    /// Circular arc (may exceed one turn).
-    Arc {
-        /// First point (m).
-        start: [f64; 3],
-        /// Tangent at the start.
-        tangent: [f64; 3],
-        /// Direction toward the center at the start.
-        normal: [f64; 3],
-        /// Radius (m).
-        radius: f64,
-        /// Arc length (m).
-        length: f64,
-    },
-    /// Circular helix.
-    Helix {
-        /// First point (m).
-        start: [f64; 3],
-        /// Axis direction.
-        axis: [f64; 3],
-        /// Direction from the start point toward the axis.
-        normal: [f64; 3],
-        /// Radius (m).
-        radius: f64,
-        /// Rise per turn (m); negative for left-handed.
-        pitch: f64,
-        /// Arc length (m).
-        length: f64,
-    },
-    /// Polygonal line through points (m).
-    Polyline {
-        /// At least two points, consecutive points distinct.
-        points: Vec<[f64; 3]>,
-    },
+#[serde(deny_unknown_fields)]
+pub struct LineLoadSpec {
+    /// Uniform load (N/m).
+    #[serde(default)]
+    pub force_per_length: Option<[f64; 3]>,
+    /// Start of a uniform load (m of rest arc length from vertex 0). Default 0.
+    #[serde(default)]
+    pub from: Option<f64>,
+    /// End of a uniform load (m). Default: the rod's length.
+    #[serde(default)]
+    pub to: Option<f64>,
+    /// Varying load: rows [s (m), fx, fy, fz (N/m)] with increasing s; linear in between, zero
+    /// outside.
+    #[serde(default)]
+    pub table: Option<Vec<[f64; 4]>>,
 }
+
+/// Rest centerline of a rod in a scene: the model's own [`RestCurve`] (straight, arc, helix,
+/// polyline).
+pub type Centerline = crate::rod::RestCurve;
 
 /// Cross-section.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -259,6 +289,12 @@ pub enum SupportKind {
     /// Position and tangent fixed, twist free, no sliding: holds the vertex and its next
     /// vertex (the previous one at the rod's end), so that edge keeps its rest length.
     Clip,
+    /// Sliding support (roller, sleeve, sliding clip): the vertex is held across the straight
+    /// `axis` through it and slides freely along it; rotation free.
+    Slider,
+    /// Twist-only hold: the material angle of the edge starting at the vertex (the last edge
+    /// at the rod's end) is held; its position is free.
+    TwistHold,
 }
 
 /// A support on one vertex.
@@ -266,10 +302,18 @@ pub enum SupportKind {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct SupportSpec {
-    /// Clamp, pin or clip.
+    /// Clamp, pin, clip, slider or twist hold.
     pub kind: SupportKind,
-    /// The held vertex.
-    pub vertex: VertexRef,
+    /// The held vertex (or give `at`).
+    #[serde(default)]
+    pub vertex: Option<VertexRef>,
+    /// Where the support is, as rest arc length (m) from vertex 0 (instead of `vertex`): a
+    /// vertex is inserted there unless one lies within 1e-6 of the rod length.
+    #[serde(default)]
+    pub at: Option<f64>,
+    /// Slider axis (any non-zero length). Default: the rod's rest tangent at the vertex.
+    #[serde(default)]
+    pub axis: Option<[f64; 3]>,
 }
 
 /// A dead point force.
@@ -279,8 +323,13 @@ pub struct SupportSpec {
 pub struct PointForceSpec {
     /// Loaded vertex.
     pub vertex: VertexRef,
-    /// Force (N).
+    /// Force (N): fixed in space, or, with `follower`, given in the rest frame of the rod at
+    /// the vertex and turning with the rod there.
     pub force: [f64; 3],
+    /// The force turns with the rod's material frame at the vertex (a follower load). Default
+    /// false.
+    #[serde(default)]
+    pub follower: bool,
 }
 
 /// A point moment (acts on the edge that starts at the vertex; the last edge at the end).
@@ -290,8 +339,12 @@ pub struct PointForceSpec {
 pub struct PointMomentSpec {
     /// Loaded vertex.
     pub vertex: VertexRef,
-    /// Moment (N m).
+    /// Moment (N m): fixed in space, or, with `follower`, given in the rest frame of the rod
+    /// at the vertex and turning with the rod there.
     pub moment: [f64; 3],
+    /// The moment turns with the rod's material frame at the vertex. Default false.
+    #[serde(default)]
+    pub follower: bool,
 }
 
 /// One stage of prescribed motion: a support moved rigidly, in equal steps, each solved

@@ -14,7 +14,7 @@ use super::newton::{newton, IterateMeasures, NewtonWorkspace};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
 use super::report::{SolveReport, SolveStatus};
-use super::stability::{is_stable, lowest_mode_with, EigenWorkspace, LowestMode};
+use super::stability::{classify_modes, is_stable, lowest_mode_with, EigenWorkspace, LowestMode};
 
 /// A state and the report that says what it is.
 #[derive(Clone, Debug)]
@@ -31,8 +31,50 @@ pub struct Solution<S> {
 /// Largest load step (fraction of the span) that may be retried as a snap.
 const SNAP_MAX_STEP: f64 = 1.0 / 32.0;
 
+/// Halvings of a load step allowed to bracket a bifurcation crossed inside it.
+const MAX_BRACKETING: usize = 24;
+/// Bracketing stops once the step is this fraction of the whole load change.
+const BRACKET_RESOLUTION: f64 = 1.0 / 256.0;
+/// Kick of a branch switch inside the continuation: the largest coordinate change, as a
+/// fraction of the structure's size.
+const SWITCH_AMPLITUDE: f64 = 1e-2;
+
 /// Relative accuracy of the reported smallest eigenvalue.
 const EIGEN_TOLERANCE: f64 = 1e-6;
+
+/// Relative change of lagged (follower) loads below which they are settled.
+const LOAD_SETTLED: f64 = 1e-11;
+/// Newton re-solves allowed for lagged loads to settle, per load step.
+const LOAD_REFRESHES: usize = 200;
+
+/// After a converged Newton solve, refreshes the model's lagged loads (follower loads) and
+/// re-solves until they stop changing; returns the outcome (iterations accumulated).
+fn settle_loads<P: EquilibriumProblem>(
+    problem: &P,
+    state: &mut P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+    mut out: super::newton::NewtonOutcome,
+) -> super::newton::NewtonOutcome {
+    for _ in 0..LOAD_REFRESHES {
+        if !out.converged || problem.refresh_loads(state) <= LOAD_SETTLED {
+            return out;
+        }
+        let next = newton(problem, state, load, params, ws);
+        out = super::newton::NewtonOutcome {
+            iterations: out.iterations + next.iterations,
+            ..next
+        };
+    }
+    super::newton::NewtonOutcome {
+        converged: false,
+        failure: Some(format!(
+            "follower loads did not settle in {LOAD_REFRESHES} re-solves"
+        )),
+        ..out
+    }
+}
 
 /// An equilibrium solver with reusable buffers for one problem size: after the first solve,
 /// [`solve_in_place`](Self::solve_in_place) allocates nothing on the way to a converged,
@@ -127,11 +169,17 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         let mut failure: Option<String> = None;
         let mut snapped_at: Option<f64> = None;
         let mut snaps = 0;
+        // Following the stable branch (`follow_stable`): whether the last equilibrium was
+        // stable, halvings spent bracketing a bifurcation, and branch switches made.
+        let mut stable_before = true;
+        let mut bracketing = 0;
+        let mut switches = 0;
         self.mode_valid = false;
 
         // Span 0 (e.g. a warm re-solve at the same load): a single Newton solve.
         if span == 0.0 {
             let out = newton(problem, state, to, &params, &mut self.ws);
+            let out = settle_loads(problem, state, to, &params, &mut self.ws, out);
             iterations += out.iterations;
             last = out.last;
             if !out.converged {
@@ -177,8 +225,63 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                         snaps += 1;
                     }
                 }
+                let before = out.iterations;
+                let out = settle_loads(
+                    problem,
+                    &mut self.candidate,
+                    target,
+                    &params,
+                    &mut self.ws,
+                    out,
+                );
+                iterations += out.iterations - before;
+                let mut out = out;
+                if params.follow_stable && out.converged {
+                    let unstable = out.last.inertia.is_some_and(|i| i.negative > 0)
+                        && classify_modes(
+                            problem,
+                            &self.ws.hess,
+                            &mut self.scaled,
+                            &mut self.ws.ldlt,
+                        )
+                        .is_none_or(|(m, _)| m.unstable > 0);
+                    if unstable && stable_before {
+                        let negative = out.last.inertia.map_or(0, |i| i.negative);
+                        // Several modes at once may be one multiple eigenvalue (a round rod buckles
+                        // in any plane), so bracketing stops at a fine enough step anyway.
+                        if negative > 1
+                            && bracketing < MAX_BRACKETING
+                            && step.abs() > BRACKET_RESOLUTION * span.abs()
+                        {
+                            // A bifurcation was crossed inside this step, and more than one
+                            // mode went unstable: halve the step until the crossing is close.
+                            bracketing += 1;
+                            rejected += 1;
+                            step *= 0.5;
+                            continue;
+                        }
+                        // Just past it: follow the unstable mode to the stable branch.
+                        let (switched, its) = self.switch_branch(problem, target, &params);
+                        iterations += its;
+                        if let Some(o) = switched {
+                            switches += 1;
+                            out = o;
+                        }
+                    }
+                }
                 last = out.last;
                 if out.converged {
+                    if params.follow_stable {
+                        stable_before = out.last.inertia.is_some_and(|i| i.negative == 0)
+                            || classify_modes(
+                                problem,
+                                &self.ws.hess,
+                                &mut self.scaled,
+                                &mut self.ws.ldlt,
+                            )
+                            .is_some_and(|(m, _)| m.unstable == 0);
+                        bracketing = 0;
+                    }
                     load_steps += 1;
                     // previous ← state, state ← candidate (buffers rotate, nothing is copied).
                     std::mem::swap(&mut self.previous, state);
@@ -246,6 +349,11 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             )
             .is_ok();
         }
+        let modes = if failure.is_none() && params.follow_stable {
+            classify_modes(problem, &self.ws.hess, &mut self.scaled, &mut self.ws.ldlt).map(|m| m.0)
+        } else {
+            None
+        };
         let lowest = self.lowest_mode();
         SolveReport {
             status,
@@ -254,6 +362,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             load_steps,
             rejected_steps: rejected,
             snaps,
+            branch_switches: switches,
             residual: last.residual,
             relative_residual: if last.external_force > 0.0 {
                 last.residual / last.external_force
@@ -266,6 +375,77 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             inertia: last.inertia,
             lambda_min: lowest.map(|m| m.value),
             lambda_min_normalized: lowest.map(|m| m.normalized),
+            modes,
+        }
+    }
+
+    /// At the unstable equilibrium in `self.candidate` (load factor `load`), just past a
+    /// bifurcation: kicks along its lowest mode (both signs) and minimizes; puts the stable
+    /// result of lower energy into `self.candidate`. Returns its Newton outcome (None if no
+    /// kick led to a stable equilibrium) and the iterations spent.
+    fn switch_branch<P: EquilibriumProblem<State = S, Hessian = M>>(
+        &mut self,
+        problem: &P,
+        load: f64,
+        params: &SolverParams,
+    ) -> (Option<super::newton::NewtonOutcome>, usize) {
+        let mut its = 0;
+        if lowest_mode_with(
+            problem,
+            &self.ws.hess,
+            false,
+            &mut self.scaled,
+            &mut self.ws.ldlt,
+            1e-6,
+            &mut self.eigen,
+            &mut self.mode,
+        )
+        .is_err()
+        {
+            return (None, 0);
+        }
+        let length = (0..problem.n_free())
+            .filter(|&i| problem.force_length(i) == 1.0)
+            .map(|i| problem.dof_magnitude(&self.candidate, i))
+            .fold(0.0, f64::max);
+        let scale =
+            super::branch_switch::kick_scale(problem, &self.mode.shape, SWITCH_AMPLITUDE * length);
+        if !(scale > 0.0) {
+            return (None, 0);
+        }
+        let long = SolverParams {
+            max_iterations: params.snap_iterations.max(params.max_iterations),
+            ..*params
+        };
+        let start = self.candidate.clone();
+        let e0 = problem.energy(&start, load);
+        let mut best: Option<(f64, S, super::newton::NewtonOutcome)> = None;
+        let mut kicked = start.clone();
+        for sign in [1.0, -1.0] {
+            problem.displace(&start, &self.mode.shape, sign * scale, &mut kicked);
+            let out = newton(problem, &mut kicked, load, &long, &mut self.ws);
+            its += out.iterations;
+            let stable = out.last.inertia.is_some_and(|i| i.negative == 0);
+            if !(out.converged && stable) {
+                continue;
+            }
+            let e = problem.energy(&kicked, load);
+            if e <= e0 && best.as_ref().is_none_or(|b| e < b.0) {
+                best = Some((e, kicked.clone(), out));
+            }
+        }
+        match best {
+            Some((_, s, out)) => {
+                self.candidate = s;
+                // Leave the workspace at the chosen state (its Hessian and factorization).
+                let again = newton(problem, &mut self.candidate, load, params, &mut self.ws);
+                its += again.iterations;
+                (Some(again).filter(|o| o.converged).or(Some(out)), its)
+            }
+            None => {
+                self.candidate = start;
+                (None, its)
+            }
         }
     }
 

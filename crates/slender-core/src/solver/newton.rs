@@ -137,8 +137,12 @@ pub fn newton<P: EquilibriumProblem>(
         }
 
         let positive_definite = inertia.is_some_and(|i| i.is_positive_definite());
+        // At a saddle the unshifted step is kept only if it descends: with several unstable
+        // modes the gradient may be orthogonal to the lowest one and not to the others.
         if positive_definite
-            || (inertia.is_some() && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
+            || (inertia.is_some()
+                && dot(&ws.grad, &ws.dx) < 0.0
+                && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
         {
             // Positive definite: the Newton step. At a symmetric saddle (the gradient has no
             // component along the unstable mode, e.g. a planar state under planar loads) the
@@ -294,7 +298,14 @@ fn converged<P: EquilibriumProblem>(
     }
     let tiny_step = last.inertia.is_some()
         && (0..ws.dx.len()).all(|i| ws.dx[i].abs() <= TINY_STEP * problem.dof_magnitude(state, i));
-    last.decrement <= params.energy_tolerance * info.external_work.abs() || tiny_step
+    // The decrement is measured against the work of the loads; a structure moved by its
+    // supports alone has none, and then the elastic energy is the scale.
+    let scale = if info.external_work != 0.0 {
+        info.external_work.abs()
+    } else {
+        info.energy_magnitude
+    };
+    last.decrement <= params.energy_tolerance * scale || tiny_step
 }
 
 /// After convergence: up to `params.polish_iterations` full Newton steps, each kept only if it

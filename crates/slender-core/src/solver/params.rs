@@ -48,6 +48,14 @@ pub struct SolverParams {
     /// balance the loads to round-off). `None`: the caller's default (0 for benchmarks, 3 for
     /// scenes).
     pub polish_iterations: Option<usize>,
+    /// Follow the stable branch along the load path: when a load step crosses a bifurcation
+    /// (its equilibrium turns unstable), the step is halved until the crossing is bracketed and
+    /// the solver follows the unstable mode to the stable branch. Not part of the scene file:
+    /// scenes set it from their `unstable` policy; benchmarks keep it off (they follow the
+    /// symmetric branch on purpose).
+    #[serde(skip)]
+    #[cfg_attr(feature = "schema", schemars(skip))]
+    pub follow_stable: bool,
 }
 
 impl Default for SolverParams {
@@ -66,6 +74,7 @@ impl Default for SolverParams {
             compute_lambda_min: true,
             snap_iterations: 300,
             polish_iterations: None,
+            follow_stable: false,
         }
     }
 }

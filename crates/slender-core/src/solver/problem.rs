@@ -129,6 +129,14 @@ pub trait EquilibriumProblem: MassMetric {
         let _ = (state, from, to, guess);
     }
 
+    /// Refreshes loads that depend on the state but are frozen during a Newton solve (follower
+    /// loads, applied lagged) and returns their largest relative change; the solver re-solves
+    /// until it is below round-off. Default: no such loads (0).
+    fn refresh_loads(&self, state: &mut Self::State) -> f64 {
+        let _ = state;
+        0.0
+    }
+
     /// Largest α ∈ (0, 1] such that `alpha·dx` respects the model's step caps (e.g. no edge
     /// turns by more than π/4 in one step).
     fn max_step(&self, state: &Self::State, dx: &[f64]) -> f64;

@@ -33,6 +33,10 @@ pub struct SolveReport {
     pub rejected_steps: usize,
     /// Load steps that needed a long minimization (the structure snapped past a fold).
     pub snaps: usize,
+    /// Bifurcations crossed where the solver followed the unstable mode to the stable branch
+    /// (with `follow_stable`).
+    #[serde(default)]
+    pub branch_switches: usize,
     /// Largest residual force (N; moments divided by a length) of the returned state at the
     /// requested load: small when converged, large when the state is not an equilibrium.
     pub residual: f64,
@@ -51,6 +55,10 @@ pub struct SolveReport {
     pub lambda_min: Option<f64>,
     /// `lambda_min` divided by EI/(ρA L⁴): a mesh-independent distance to instability.
     pub lambda_min_normalized: Option<f64>,
+    /// Unstable and null modes told apart with a round-off band around zero (computed when the
+    /// solver follows the stable branch, i.e. in scenes); `None` otherwise.
+    #[serde(default)]
+    pub modes: Option<super::stability::ModeCounts>,
 }
 
 impl SolveReport {
@@ -59,11 +67,16 @@ impl SolveReport {
         self.status == SolveStatus::Converged
     }
 
-    /// `Some(true)` if the converged equilibrium is stable (no negative Hessian eigenvalue),
-    /// `Some(false)` if unstable, `None` if not converged or the inertia is unknown.
+    /// `Some(true)` if the converged equilibrium is stable (no negative Hessian eigenvalue; with
+    /// `modes` known, null modes within round-off of zero allowed), `Some(false)` if unstable,
+    /// `None` if not converged or the inertia is unknown.
     pub fn stable(&self) -> Option<bool> {
         if !self.converged() {
             return None;
+        }
+        if let Some(m) = self.modes {
+            // Null modes (symmetries) do not make an equilibrium unstable.
+            return Some(m.unstable == 0);
         }
         self.inertia.map(|i| super::stability::is_stable(&i))
     }

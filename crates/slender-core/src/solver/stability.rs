@@ -17,6 +17,54 @@ pub fn is_stable(inertia: &Inertia) -> bool {
     inertia.negative == 0 && inertia.zero == 0
 }
 
+/// How many eigenvalues of H v = λ M v are clearly negative (unstable modes) and how many lie
+/// within round-off of zero (null modes: symmetries that cost no energy, such as a round ring
+/// rolling through itself, or a bifurcation point met exactly).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct ModeCounts {
+    /// Eigenvalues below −τ.
+    pub unstable: usize,
+    /// Eigenvalues in [−τ, τ].
+    pub null: usize,
+}
+
+/// Width of the band around zero in units of ε × max_i H_ii/M_ii (an upper bound of the
+/// largest eigenvalue): the eigenvalues of a Hessian assembled in floating point are only
+/// known to about ε times the largest.
+const NULL_BAND: f64 = 1e4;
+
+/// Counts the unstable and null modes of `hess` by the inertia of H ± τM (two factorizations
+/// in `scratch` and `ldlt`); returns them with τ (1/s²). `None` if a factorization fails.
+pub fn classify_modes<P: EquilibriumProblem>(
+    problem: &P,
+    hess: &P::Hessian,
+    scratch: &mut P::Hessian,
+    ldlt: &mut <P::Hessian as SymmetricMatrix>::Factor,
+) -> Option<(ModeCounts, f64)> {
+    let n = hess.dim();
+    let scale = (0..n)
+        .map(|i| hess.diagonal(i).abs() / problem.inertia_metric(i))
+        .fold(0.0, f64::max);
+    let tau = NULL_BAND * f64::EPSILON * scale;
+    let mut count = |shift: f64| -> Option<usize> {
+        scratch.clone_from(hess);
+        for i in 0..n {
+            scratch.add(i, i, shift * problem.inertia_metric(i));
+        }
+        let i = ldlt.factorize(scratch, 0.0).ok()?;
+        Some(i.negative + i.zero)
+    };
+    let below_minus = count(tau)?;
+    let below_plus = count(-tau)?;
+    Some((
+        ModeCounts {
+            unstable: below_minus,
+            null: below_plus.saturating_sub(below_minus),
+        },
+        tau,
+    ))
+}
+
 /// Lowest eigenpair of H v = λ M v.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LowestMode {

@@ -11,6 +11,7 @@ use slender_core::ModelError;
 use super::acceptance::Check;
 use super::master_curve::master_ratio;
 use super::shell_case::ShellCantileverCase;
+use super::shell_sweep::ShellCantileverRecord;
 use super::sweep::log_space;
 use crate::materials::OMEGA_COMBINED;
 use crate::shell_model::ShellModel;
@@ -60,6 +61,40 @@ pub fn acceptance_case(model: ShellModel, n_length: usize, gamma: f64) -> ShellC
         grading: cantilever_grading(model, gamma),
         gamma,
     }
+}
+
+impl From<&ShellCantileverRecord> for ShellErrorPoint {
+    fn from(r: &ShellCantileverRecord) -> Self {
+        Self {
+            n_length: r.n_length,
+            gamma: r.gamma,
+            rel_error: r.rel_error,
+            iterations: r.iterations,
+            seconds: r.seconds,
+        }
+    }
+}
+
+/// Γ of the targets: 13 log-spaced values from 0.1 to 10³.
+fn acceptance_gammas() -> Vec<f64> {
+    log_space(0.1, 1e3, 13)
+}
+
+/// The cases the targets of `models` measure, in a fixed order: per model,
+/// [`acceptance_case`] on each of its [`acceptance_meshes`], each over Γ ∈ [0.1, 10³] (13
+/// log-spaced values).
+pub fn acceptance_cases(models: &[ShellModel]) -> Vec<ShellCantileverCase> {
+    let gammas = acceptance_gammas();
+    models
+        .iter()
+        .flat_map(|&m| {
+            let gammas = gammas.clone();
+            acceptance_meshes(m).iter().flat_map(move |&n| {
+                let gammas = gammas.clone();
+                gammas.into_iter().map(move |g| acceptance_case(m, n, g))
+            })
+        })
+        .collect()
 }
 
 /// Relative errors of the acceptance case over `gammas` at `n_length`.
@@ -112,54 +147,90 @@ fn check(description: String, measured: f64, limit: f64) -> Check {
     }
 }
 
+/// The meshes n_L of a model's targets: the mid-edge shell's fine (within 1 % for Γ ≤ 100) and
+/// coarse ones, the B-spline shell's coarse one.
+pub fn acceptance_meshes(model: ShellModel) -> &'static [usize] {
+    match model {
+        ShellModel::Midedge => &[15, 8],
+        ShellModel::Bspline => &[8],
+    }
+}
+
 /// The targets, each a measurement over 13 log-spaced Γ from 0.1 to 10³: for the mid-edge
 /// shell (issue 4) n_L = 15 within 1 % for Γ ≤ 100 and n_L = 8 within 2 % for Γ ≤ 10³ (and,
 /// separately, over the cable range [10, 10³]); for the C¹ B-spline shell (issue 13) n_L = 8
-/// within 1 % for Γ ≤ 10³.
+/// within 1 % for Γ ≤ 10³. Computes the cases; see [`checks_from_records`] for records
+/// computed elsewhere.
 pub fn shell_cantilever_checks(
     models: &[ShellModel],
     params: &SolverParams,
 ) -> Result<Vec<Check>, ModelError> {
-    let gammas = log_space(0.1, 1e3, 13);
+    let gammas = acceptance_gammas();
     let mut checks = Vec::new();
     for &model in models {
-        match model {
-            ShellModel::Midedge => {
-                let fine = shell_error_sweep(model, 15, &gammas, params)?;
-                let coarse = shell_error_sweep(model, 8, &gammas, params)?;
-                let label = "mid-edge shell, Ω_combined with ν = 0, w/L = 0.1, quadratic grading, exact director clamp";
-                checks.push(check(
+        let points: Vec<Vec<ShellErrorPoint>> = acceptance_meshes(model)
+            .iter()
+            .map(|&n| shell_error_sweep(model, n, &gammas, params))
+            .collect::<Result<_, _>>()?;
+        checks.extend(checks_from_points(model, &points));
+    }
+    Ok(checks)
+}
+
+/// The targets of `models` from the records of [`acceptance_cases`] (any order).
+pub fn checks_from_records(models: &[ShellModel], records: &[ShellCantileverRecord]) -> Vec<Check> {
+    let mut checks = Vec::new();
+    for &model in models {
+        let points: Vec<Vec<ShellErrorPoint>> = acceptance_meshes(model)
+            .iter()
+            .map(|&n| {
+                records
+                    .iter()
+                    .filter(|r| r.model == model && r.n_length == n)
+                    .map(ShellErrorPoint::from)
+                    .collect()
+            })
+            .collect();
+        checks.extend(checks_from_points(model, &points));
+    }
+    checks
+}
+
+/// The checks of one model from its points on [`acceptance_meshes`] (in that order).
+fn checks_from_points(model: ShellModel, points: &[Vec<ShellErrorPoint>]) -> Vec<Check> {
+    match model {
+        ShellModel::Midedge => {
+            let (fine, coarse) = (&points[0], &points[1]);
+            let label = "mid-edge shell, Ω_combined with ν = 0, w/L = 0.1, quadratic grading, exact director clamp";
+            vec![
+                check(
                     format!(
                         "{label}, n_L × n_W = 15 × 2: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 100]"
                     ),
-                    worst_percent(&fine, 0.1, 100.0),
+                    worst_percent(fine, 0.1, 100.0),
                     1.0,
-                ));
-                checks.push(check(
+                ),
+                check(
                     format!("{label}, n_L × n_W = 8 × 2: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 10³]{SEED_COARSE}"),
-                    worst_percent(&coarse, 0.1, 1e3),
+                    worst_percent(coarse, 0.1, 1e3),
                     2.0,
-                ));
-                checks.push(check(
+                ),
+                check(
                     format!("{label}, n_L × n_W = 8 × 2: worst |Δy/Δx error| (%) over the cable range Γ ∈ [10, 10³]{SEED_COARSE}"),
-                    worst_percent(&coarse, 10.0, 1e3),
+                    worst_percent(coarse, 10.0, 1e3),
                     2.0,
-                ));
-            }
-            ShellModel::Bspline => {
-                let coarse = shell_error_sweep(model, 8, &gammas, params)?;
-                let label = "C¹ B-spline shell (cubic), Ω_combined with ν = 0, w/L = 0.1, boundary-layer grading, clamp on two control rows";
-                checks.push(check(
-                    format!(
-                        "{label}, n_L × n_W = 8 × 1: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 10³]"
-                    ),
-                    worst_percent(&coarse, 0.1, 1e3),
-                    1.0,
-                ));
-            }
+                ),
+            ]
+        }
+        ShellModel::Bspline => {
+            let label = "C¹ B-spline shell (cubic), Ω_combined with ν = 0, w/L = 0.1, boundary-layer grading, clamp on two control rows";
+            vec![check(
+                format!("{label}, n_L × n_W = 8 × 1: worst |Δy/Δx error| (%) over Γ ∈ [0.1, 10³]"),
+                worst_percent(&points[0], 0.1, 1e3),
+                1.0,
+            )]
         }
     }
-    Ok(checks)
 }
 
 /// What the seed reports for its own shells on coarse meshes, shown beside the mid-edge

@@ -15,7 +15,7 @@ use crate::materials::ShellMaterialSet;
 use crate::shell_model::{ShellModel, Strip, StripModel, StripSpec};
 
 /// Parameters of one shell cantilever run.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ShellCantileverCase {
     /// Shell discretization.
     pub model: ShellModel,

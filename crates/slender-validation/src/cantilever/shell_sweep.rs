@@ -95,13 +95,8 @@ impl ShellCantileverSweep {
         cases
     }
 
-    /// Runs every case on the current rayon pool; records in [`Self::cases`] order whatever
-    /// the thread count. `progress` is called once per finished case.
-    pub fn run(
-        &self,
-        params: &SolverParams,
-        progress: &(dyn Fn() + Sync),
-    ) -> Result<Vec<ShellCantileverRecord>, SweepError> {
+    /// Checks the grid; errors name the field.
+    pub fn validate(&self) -> Result<(), SweepError> {
         if self.gammas.is_empty()
             || self.element_counts.is_empty()
             || self.materials.is_empty()
@@ -111,35 +106,55 @@ impl ShellCantileverSweep {
                 "gammas, element counts, materials and models must all be non-empty".into(),
             ));
         }
+        Ok(())
+    }
+
+    /// Runs every case on the current rayon pool; records in [`Self::cases`] order whatever
+    /// the thread count. `progress` is called once per finished case.
+    pub fn run(
+        &self,
+        params: &SolverParams,
+        progress: &(dyn Fn() + Sync),
+    ) -> Result<Vec<ShellCantileverRecord>, SweepError> {
+        self.validate()?;
         params.validate()?;
         self.cases()
             .par_iter()
             .map(|case| {
-                let run = case.run(params)?;
+                let r = run_shell_case(case, params);
                 progress();
-                let master = master_ratio(case.gamma)?;
-                let (converged, failure) = match &run.report.status {
-                    SolveStatus::Converged => (true, String::new()),
-                    SolveStatus::NotConverged { reason } => (false, reason.clone()),
-                };
-                Ok(ShellCantileverRecord {
-                    model: case.model,
-                    material: case.material.name.to_string(),
-                    poisson: case.material.poisson,
-                    n_length: case.n_length,
-                    n_width: case.n_width,
-                    width_ratio: case.width_ratio,
-                    gamma: case.gamma,
-                    ratio: run.ratio,
-                    master,
-                    rel_error: run.ratio / master - 1.0,
-                    converged,
-                    iterations: run.report.iterations,
-                    seconds: run.seconds,
-                    negative_eigenvalues: run.report.inertia.map(|i| i.negative),
-                    failure,
-                })
+                r
             })
             .collect()
     }
+}
+
+/// Runs one shell case and scores it against the master curve (stiffness D·w) at its Γ.
+pub fn run_shell_case(
+    case: &ShellCantileverCase,
+    params: &SolverParams,
+) -> Result<ShellCantileverRecord, SweepError> {
+    let run = case.run(params)?;
+    let master = master_ratio(case.gamma)?;
+    let (converged, failure) = match &run.report.status {
+        SolveStatus::Converged => (true, String::new()),
+        SolveStatus::NotConverged { reason } => (false, reason.clone()),
+    };
+    Ok(ShellCantileverRecord {
+        model: case.model,
+        material: case.material.name.to_string(),
+        poisson: case.material.poisson,
+        n_length: case.n_length,
+        n_width: case.n_width,
+        width_ratio: case.width_ratio,
+        gamma: case.gamma,
+        ratio: run.ratio,
+        master,
+        rel_error: run.ratio / master - 1.0,
+        converged,
+        iterations: run.report.iterations,
+        seconds: run.seconds,
+        negative_eigenvalues: run.report.inertia.map(|i| i.negative),
+        failure,
+    })
 }

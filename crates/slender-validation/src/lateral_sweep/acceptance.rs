@@ -251,6 +251,83 @@ fn model_sensitivity_checks(
     checks
 }
 
+/// Where a branch switch is checked: a strip at Γ = 1.2 Γ_c of its mesh.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct BranchSwitchCase {
+    /// Shell discretization.
+    pub model: ShellModel,
+    /// Aspect ratio w/L.
+    pub width_ratio: f64,
+    /// Elements along the length.
+    pub n_length: usize,
+    /// Γ_shell of the switch (1.2 Γ_c).
+    pub gamma: f64,
+}
+
+/// The branch-switch cases of the targets: w/L = 0.1 and w = L at 1.2 Γ_c, on the mesh of
+/// `critical`, for the aspect ratios whose Γ_c is finite there.
+pub fn branch_switch_cases(critical: &[super::CriticalRecord]) -> Vec<BranchSwitchCase> {
+    [0.1, 1.0]
+        .into_iter()
+        .filter_map(|w| {
+            critical
+                .iter()
+                .find(|c| c.width_ratio == w && c.gamma_c.is_finite())
+                .map(|c| BranchSwitchCase {
+                    model: c.model,
+                    width_ratio: w,
+                    n_length: c.n_length,
+                    gamma: 1.2 * c.gamma_c,
+                })
+        })
+        .collect()
+}
+
+/// Runs the branch switch of `case` (see [`super::LateralBucklingCase::branch_switch`]).
+pub fn branch_switch(
+    material: ShellMaterialSet,
+    case: &BranchSwitchCase,
+    params: &slender_core::solver::SolverParams,
+) -> Result<Option<super::BuckledState>, slender_core::ModelError> {
+    super::LateralBucklingCase {
+        material,
+        width_ratio: case.width_ratio,
+        n_length: case.n_length,
+        model: case.model,
+    }
+    .branch_switch(case.gamma, params)
+}
+
+/// The target on one branch switch: the kick along the unstable mode must land on a stable
+/// equilibrium of lower energy whose free end has left the plane (|y_tip|/L > 1e-3).
+pub fn branch_switch_check(
+    material: &ShellMaterialSet,
+    case: &BranchSwitchCase,
+    buckled: Option<&super::BuckledState>,
+) -> Check {
+    let (tip, ok, about) = match buckled {
+        Some(b) => (
+            b.tip_deviation.abs(),
+            b.stable == Some(true) && b.energy_drop < 0.0 && b.tip_deviation.abs() > 1e-3,
+            format!(
+                "stable {:?}, energy change {:.3e} J",
+                b.stable, b.energy_drop
+            ),
+        ),
+        None => (f64::NAN, false, "no converged switch".into()),
+    };
+    let (w, gamma) = (case.width_ratio, case.gamma);
+    check(
+        format!(
+            "{}, {}, w/L = {w}, n_L = {}: branch switch at 1.2 Γ_c = {gamma:.3} from the unstable planar state, |y_tip|/L of the buckled state ({about})",
+            material.label, case.model.label(), case.n_length
+        ),
+        tip,
+        "> 1e-3, stable, lower energy",
+        ok,
+    )
+}
+
 /// The stability route's branch switch (design.md §4.5) at 1.2 Γ_c for w/L = 0.1 and w = L on
 /// the mesh of `critical`: the kick along the unstable mode must land on a stable equilibrium
 /// of lower energy whose free end has left the plane (|y_tip|/L > 1e-3).
@@ -259,42 +336,11 @@ pub fn branch_switch_checks(
     critical: &[super::CriticalRecord],
     params: &slender_core::solver::SolverParams,
 ) -> Result<Vec<Check>, slender_core::ModelError> {
-    let mut checks = Vec::new();
-    for w in [0.1, 1.0] {
-        let Some(c) = critical
-            .iter()
-            .find(|c| c.width_ratio == w && c.gamma_c.is_finite())
-        else {
-            continue;
-        };
-        let case = super::LateralBucklingCase {
-            material,
-            width_ratio: w,
-            n_length: c.n_length,
-            model: c.model,
-        };
-        let gamma = 1.2 * c.gamma_c;
-        let b = case.branch_switch(gamma, params)?;
-        let (tip, ok, about) = match &b {
-            Some(b) => (
-                b.tip_deviation.abs(),
-                b.stable == Some(true) && b.energy_drop < 0.0 && b.tip_deviation.abs() > 1e-3,
-                format!(
-                    "stable {:?}, energy change {:.3e} J",
-                    b.stable, b.energy_drop
-                ),
-            ),
-            None => (f64::NAN, false, "no converged switch".into()),
-        };
-        checks.push(check(
-            format!(
-                "{}, {}, w/L = {w}, n_L = {}: branch switch at 1.2 Γ_c = {gamma:.3} from the unstable planar state, |y_tip|/L of the buckled state ({about})",
-                material.label, c.model.label(), c.n_length
-            ),
-            tip,
-            "> 1e-3, stable, lower energy",
-            ok,
-        ));
-    }
-    Ok(checks)
+    branch_switch_cases(critical)
+        .iter()
+        .map(|case| {
+            let b = branch_switch(material, case, params)?;
+            Ok(branch_switch_check(&material, case, b.as_ref()))
+        })
+        .collect()
 }

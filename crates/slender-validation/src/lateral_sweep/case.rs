@@ -39,7 +39,7 @@ pub struct ProtocolOutcome {
 }
 
 /// The buckled state the stability route's branch switch lands on.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BuckledState {
     /// y of the free end's centre / L (signed).
     pub tip_deviation: f64,

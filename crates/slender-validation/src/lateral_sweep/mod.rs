@@ -11,7 +11,8 @@ pub mod sensitivity;
 pub mod sweep;
 
 pub use acceptance::{
-    branch_switch_checks, convergence_checks, decision_checks, decision_target, sensitivity_checks,
+    branch_switch, branch_switch_cases, branch_switch_check, branch_switch_checks,
+    convergence_checks, decision_checks, decision_target, sensitivity_checks, BranchSwitchCase,
 };
 pub use case::{BuckledState, LateralBucklingCase, ProtocolOutcome};
 pub use convergence::{richardson, CriticalConvergence, Extrapolation};

@@ -63,11 +63,12 @@ fn check(description: String, measured: f64, target: &str, passed: bool) -> Chec
 pub fn scene_checks() -> Result<Vec<Check>> {
     let mut checks = Vec::new();
     for (name, text) in EXAMPLES {
-        let compiled = match parse_scene(text, Syntax::Toml, name)?.compile() {
+        let spec = parse_scene(text, Syntax::Toml, name)?;
+        let compiled = match spec.compile() {
             Ok(c) => c,
             Err(e) => bail!("{name}: {e}"),
         };
-        let (mut solver, first) = SceneSolver::new(&compiled);
+        let (mut solver, first) = SceneSolver::new(&spec, &compiled);
         let mut steps = vec![first];
         for k in 1..=solver.motion_steps() {
             steps.push(solver.run_motion_step(k));
@@ -147,7 +148,7 @@ fn shell_example_checks() -> Result<Vec<Check>> {
     let d = m.young * spec.thickness.powi(3) / (12.0 * (1.0 - nu * nu));
     let g = slender_core::geometry::Vec3::from(scene.gravity).norm();
     let gamma = m.density * spec.thickness * g * spec.length.powi(3) / d;
-    let (_, step) = SceneSolver::new(&compiled);
+    let (_, step) = SceneSolver::new(&scene, &compiled);
     let shell = &step.shells[0];
     let master = master_ratio(gamma)?;
     let error = (centre_line_ratio(shell) - master) / master;

@@ -56,7 +56,7 @@ pub fn run(args: &SolveArgs) -> Result<bool> {
         .map_err(|e| anyhow::anyhow!("{}: {e}", args.scene.display()))?;
     check_out_dir(&args.out)?;
     let tmp = temp_dir_for(&args.out)?;
-    let result = solve_into(&compiled, &tmp, !args.no_preview);
+    let result = solve_into(&scene, &compiled, &tmp, !args.no_preview);
     match result {
         Ok(ok) => {
             if args.out.exists() {
@@ -253,10 +253,15 @@ struct RodSummary<'a> {
     reports: &'a [slender_core::solver::SolveReport],
 }
 
-fn solve_into(scene: &CompiledScene, dir: &Path, preview: bool) -> Result<bool> {
+fn solve_into(
+    spec: &slender_core::scene::Scene,
+    scene: &CompiledScene,
+    dir: &Path,
+    preview: bool,
+) -> Result<bool> {
     let clock = Instant::now();
     let t0 = Instant::now();
-    let (mut solver, mut first) = SceneSolver::new(scene);
+    let (mut solver, mut first) = SceneSolver::new(spec, scene);
     first.seconds = t0.elapsed().as_secs_f64();
     let mut steps = vec![first];
     write_step(scene, dir, &steps[0])?;

@@ -11,16 +11,12 @@ use crate::plot::{plot_shape_views, Polyline3};
 /// Writes `<stem>.png` and `<stem>.svg`.
 pub fn write_preview(scene: &CompiledScene, steps: &[SceneStep], stem: &Path) -> Result<()> {
     let mut shapes = Vec::new();
-    for rod in &scene.rods {
-        let mut rest = Vec::new();
-        for seg in &rod.segments {
-            let skip = usize::from(!rest.is_empty());
-            rest.extend(
-                seg.rod.rest_state().positions()[skip..]
-                    .iter()
-                    .map(|p| [p.x, p.y, p.z]),
-            );
-        }
+    for (r, rod) in scene.rods.iter().enumerate() {
+        let rest: Vec<[f64; 3]> = scene
+            .rest_positions(r)
+            .iter()
+            .map(|p| [p.x, p.y, p.z])
+            .collect();
         shapes.push(Polyline3 {
             label: format!("{} at rest", rod.name),
             points: rest,

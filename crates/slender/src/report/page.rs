@@ -1,5 +1,6 @@
-//! The validation report page `index.html`: the acceptance table, every figure of every
-//! benchmark, run times, machine and version, and the command that reproduces it.
+//! The validation report page `index.html`: the acceptance table, the run times of the
+//! sections, every figure of every section, machine and version, and the command that
+//! reproduces it.
 //!
 //! Plain HTML and CSS (no script, no external resource), so that it opens from disk, offline,
 //! in any browser, and can be archived with the run's data files next to it.
@@ -11,23 +12,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use slender_validation::cantilever::Check;
 
+use super::checks::format_measured;
+use super::Section;
 use crate::output::write_atomic;
 use crate::store::record::CODE_VERSION;
-use crate::store::runner::RunStats;
-
-/// One benchmark's part of the report.
-pub struct Section {
-    /// Title.
-    pub title: String,
-    /// Subdirectory of the report directory with its files.
-    pub dir: String,
-    /// Wall time of the benchmark in this run (s).
-    pub wall_seconds: f64,
-    /// Cases computed and reused.
-    pub stats: RunStats,
-    /// What it checks, one sentence.
-    pub about: String,
-}
 
 /// Everything the page shows besides the files it finds.
 pub struct Report<'a> {
@@ -67,102 +55,6 @@ pub fn command_line() -> String {
     let _ = args.next();
     let rest: Vec<String> = args.map(|a| shell_quote(&a)).collect();
     format!("slender {}", rest.join(" "))
-}
-
-/// A caption for a figure file of a benchmark, naming the seed's figure it corresponds to.
-fn caption(dir: &str, stem: &str) -> String {
-    let words = |s: &str| s.replace('_', " ");
-    match dir {
-        "cantilever" => {
-            if let Some(rest) = stem.strip_prefix("ratio_") {
-                format!(
-                    "Counterpart of the seed's Fig. 2: Δy/Δx against Γ ({}), every element count, \
-                     with the heavy-elastica master curve computed in code.",
-                    words(rest)
-                )
-            } else if let Some(rest) = stem.strip_prefix("error_") {
-                format!(
-                    "Relative error of Δy/Δx against the master curve ({}); the band marks Γ ∈ [10, 10³].",
-                    words(rest)
-                )
-            } else if stem.starts_with("shape_") {
-                format!(
-                    "Counterpart of the seed's Figs. 3 and 5: equilibrium shapes on coarse meshes ({}).",
-                    words(stem)
-                )
-            } else {
-                words(stem)
-            }
-        }
-        "bend-twist" => match stem {
-            "height_xi_y" => "Counterpart of the seed's Fig. 7: height map of Ξ₁[ξ_y] over (X, Y) \
-                              with the master curve."
-                .into(),
-            "height_xi_tau" => "Counterpart of the seed's Fig. 8a: height map of Ξ₁[ξ_τ] with the \
-                                master curve."
-                .into(),
-            "height_lambda_min" => "Smallest out-of-plane eigenvalue of the planar equilibrium \
-                                    (negative: unstable, 3-D) with the master curve."
-                .into(),
-            "phase_protocol" => "Counterpart of the seed's Fig. 8b: 2-D/3-D decisions of the \
-                                 seed's protocol against the master curve."
-                .into(),
-            "phase_stability" => "2-D/3-D decided by stability (Hessian inertia) against the \
-                                  master curve."
-                .into(),
-            "shape_buckled" => "3-D shape of a buckled coil (branch switched from the unstable \
-                                planar state)."
-                .into(),
-            _ => words(stem),
-        },
-        "cantilever-shell" => {
-            if stem == "fig2_rod_and_shell" {
-                "Counterpart of the seed's Fig. 2: rods (Ω_bundle) and shells of Table 2 along the \
-                 master curve."
-                    .into()
-            } else if let Some(rest) = stem.strip_prefix("ratio_") {
-                format!(
-                    "Shell Δy/Δx against Γ_shell ({}), with the heavy elastica.",
-                    words(rest)
-                )
-            } else if let Some(rest) = stem.strip_prefix("error_") {
-                format!("Relative error of the shell's Δy/Δx ({}).", words(rest))
-            } else if stem.starts_with("shell_shape") {
-                format!(
-                    "Counterpart of the seed's Fig. 4: shell equilibrium ({}).",
-                    words(stem)
-                )
-            } else {
-                words(stem)
-            }
-        }
-        "sensitivity" => {
-            "Counterpart of the seed's Fig. 12: share of correct 2-D/3-D decisions per \
-                          configuration, grouped by shell set Ω, elements n_L, load steps m_ls and \
-                          clamp rotation σ (w = L excluded)."
-                .into()
-        }
-        "lateral-buckling" | "lateral-buckling-n30" => match stem {
-            "phase_diagram" => "Counterpart of the seed's Figs. 9b–11b: 2-D/3-D decisions of the \
-                                seed's protocol over (w/L, Γ_shell) on the plate master curve's \
-                                ground truth, with Γ_c from the Hessian inertia and the Vlasov \
-                                band."
-                .into(),
-            "height_map" => "Counterpart of the seed's Figs. 9a–11a: the free end's y-deviation \
-                             after the protocol; its steep descent should follow the master curve."
-                .into(),
-            "convergence" => {
-                "Γ_c from the Hessian inertia against the mesh, relative to the plate \
-                              master curve, with the Richardson-extrapolated converged values."
-                    .into()
-            }
-            "master_curves" => "Ground truth of the seed's Figs. 10–11: critical Γ_shell against \
-                                w/L, Kirchhoff plate and Vlasov beam (both weak-axis stiffnesses)."
-                .into(),
-            _ => words(stem),
-        },
-        _ => words(stem),
-    }
 }
 
 /// PNG figures of `dir`, sorted.
@@ -290,7 +182,7 @@ pub fn write_report(out: &Path, r: &Report) -> Result<PathBuf> {
             if c.passed { "PASS" } else { "FAIL" },
             esc(&c.benchmark),
             esc(&c.description),
-            crate::validate::format_measured(c.measured),
+            format_measured(c.measured),
             esc(&c.target)
         )?;
     }
@@ -301,16 +193,17 @@ pub fn write_report(out: &Path, r: &Report) -> Result<PathBuf> {
         writeln!(
             w,
             "<tr><td>{}</td><td class=\"num\">{:.1}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{:.1}</td></tr>",
-            esc(&s.title),
-            s.wall_seconds,
-            s.stats.computed,
-            s.stats.reused,
-            s.stats.case_seconds
+            esc(&s.spec.title),
+            s.tally.wall_seconds,
+            s.tally.stats.computed,
+            s.tally.stats.reused,
+            s.tally.stats.case_seconds
         )?;
     }
     writeln!(w, "</table>")?;
 
     for s in &r.sections {
+        let s = &s.spec;
         let dir = out.join(&s.dir);
         writeln!(
             w,
@@ -345,7 +238,7 @@ pub fn write_report(out: &Path, r: &Report) -> Result<PathBuf> {
                 esc(&target),
                 esc(&png),
                 esc(&stem),
-                esc(&caption(&s.dir, &stem))
+                esc(&(s.caption)(&stem))
             )?;
         }
     }

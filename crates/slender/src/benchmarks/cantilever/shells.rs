@@ -1,36 +1,64 @@
-//! The shell part of `slender cantilever`: the strip sets of seed Table 2 against the master
-//! curve, drawn on the same Fig. 2 plot as the rods, plus shape pictures (seed Fig. 4).
+//! The shells of the cantilever benchmark: the strip sets of seed Table 2 through the store,
+//! against the master curve, drawn on the same Fig. 2 plot as the rods, plus shape pictures
+//! (seed Fig. 4).
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
-use slender_core::rod::Grading;
+use anyhow::{Context as _, Result};
+use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::master_curve::heavy_elastica;
+use slender_validation::cantilever::shell_acceptance::cantilever_grading;
 use slender_validation::cantilever::{
-    log_space, CantileverRecord, ShellCantileverCase, ShellCantileverRecord, ShellCantileverSweep,
-    CABLE_RANGE,
+    log_space, run_shell_case, CantileverRecord, ShellCantileverCase, ShellCantileverRecord,
+    ShellCantileverSweep, CABLE_RANGE,
 };
 use slender_validation::materials::{ShellMaterialSet, OMEGA_COMBINED, OMEGA_IPS};
+use slender_validation::shell_model::ShellModel;
 
+use crate::benchmarks::{words, Context};
 use crate::output::write_csv;
 use crate::plot::{plot_cantilever_ratio, plot_relative_error, plot_shape_views, Curve, Polyline3};
-use crate::progress::Progress;
 
-/// Runs the shell sweep, writes `shell_results.csv`, the per-set ratio and error plots, the
-/// combined Fig. 2 (`fig2_rod_and_shell`, with the rod `records` of `rod_material` on the
-/// graded mesh) and the shape pictures. Returns the shell records.
-pub fn run(
+/// The store of shell cantilever records.
+const STORE: &str = "cantilever-shell";
+
+/// Everything a shell cantilever record depends on: the store key.
+#[derive(Serialize)]
+struct ShellCantileverKey {
+    case: ShellCantileverCase,
+    solver: SolverParams,
+}
+
+/// The records of `cases` (in order) through the store; `None` if this run computes one shard.
+pub(super) fn records(
+    cases: &[ShellCantileverCase],
+    cx: &mut Context,
+) -> Result<Option<Vec<ShellCantileverRecord>>> {
+    let solver = SolverParams::default();
+    solver.validate()?;
+    let keys: Vec<ShellCantileverKey> = cases
+        .iter()
+        .map(|&case| ShellCantileverKey {
+            case,
+            solver: solver.clone(),
+        })
+        .collect();
+    cx.cases(STORE, &keys, |k| Ok(run_shell_case(&k.case, &k.solver)?))
+}
+
+/// Writes `shell_results.csv`, the per-set ratio and error plots, the combined Fig. 2
+/// (`fig2_rod_and_shell`, with the rod `rod_records` of `rod_material` on the graded mesh)
+/// and the shape pictures under `out`, and prints the summary.
+pub(super) fn write(
     sweep: &ShellCantileverSweep,
+    records: &[ShellCantileverRecord],
     rod_records: &[CantileverRecord],
     rod_material: Option<&str>,
     out: &Path,
-) -> Result<Vec<ShellCantileverRecord>> {
-    let params = SolverParams::default();
-    let progress = Progress::new("shells", sweep.cases().len());
-    let records = sweep.run(&params, &|| progress.tick())?;
-    progress.finish();
-    write_csv(&out.join("shell_results.csv"), &records)?;
+    cx: &mut Context,
+) -> Result<()> {
+    write_csv(&out.join("shell_results.csv"), records)?;
     let lo = sweep.gammas.iter().cloned().fold(f64::INFINITY, f64::min);
     let hi = sweep.gammas.iter().cloned().fold(0.0, f64::max);
     let master: Vec<(f64, f64)> = log_space(lo, hi, 200)
@@ -39,14 +67,15 @@ pub fn run(
         .collect();
     let shell_curves = |set: &ShellMaterialSet, error: bool| -> Vec<Curve> {
         sweep
-            .element_counts
+            .models
             .iter()
-            .map(|&n| {
+            .flat_map(|&m| sweep.element_counts.iter().map(move |&n| (m, n)))
+            .map(|(model, n)| {
                 let rows = records
                     .iter()
-                    .filter(|r| r.material == set.name && r.n_length == n);
+                    .filter(|r| r.model == model && r.material == set.name && r.n_length == n);
                 Curve {
-                    label: format!("shell {}, n_L = {n}", set.label),
+                    label: format!("{model} shell {}, n_L = {n}", set.label),
                     points: rows
                         .map(|r| (r.gamma, if error { 100.0 * r.rel_error } else { r.ratio }))
                         .collect(),
@@ -137,16 +166,46 @@ pub fn run(
         Some(CABLE_RANGE),
     )
     .with_context(|| format!("plotting {}", stem.display()))?;
-    plot_shapes(sweep, out)?;
-    Ok(records)
+    plot_shapes(sweep, out, cx)?;
+    print_summary(records);
+    Ok(())
 }
 
-/// The deformed strip as a wire frame (lines along the length and across the width).
+/// Caption of a figure of the shells' section.
+pub(super) fn caption(stem: &str) -> String {
+    if stem == "fig2_rod_and_shell" {
+        "Counterpart of the seed's Fig. 2: rods (Ω_bundle) and shells of Table 2 along the \
+         master curve."
+            .into()
+    } else if let Some(rest) = stem.strip_prefix("ratio_") {
+        format!(
+            "Shell Δy/Δx against Γ_shell ({}), with the heavy elastica.",
+            words(rest)
+        )
+    } else if let Some(rest) = stem.strip_prefix("error_") {
+        format!("Relative error of the shell's Δy/Δx ({}).", words(rest))
+    } else if stem.starts_with("shell_shape") {
+        format!(
+            "Counterpart of the seed's Fig. 4: shell equilibrium ({}).",
+            words(stem)
+        )
+    } else {
+        words(stem)
+    }
+}
+
+/// The deformed strip as a wire frame (lines along the length and across the width) through
+/// the surface points of a run: the mid-edge shell's vertices, the B-spline shell's
+/// tessellation (4 × 4 points per element).
 fn wire_frame(
     case: &ShellCantileverCase,
     positions: &[slender_core::geometry::Vec3],
 ) -> Vec<Polyline3> {
-    let (nl, nw) = (case.n_length, case.n_width);
+    let k = match case.model {
+        ShellModel::Midedge => 1,
+        ShellModel::Bspline => 4,
+    };
+    let (nl, nw) = (k * case.n_length, k * case.n_width);
     let at = |i: usize, j: usize| {
         let p = positions[i * (nw + 1) + j];
         [p.x, p.y, p.z]
@@ -155,7 +214,10 @@ fn wire_frame(
     for j in 0..=nw {
         lines.push(Polyline3 {
             label: if j == 0 {
-                format!("{} × {} elements", nl, nw)
+                format!(
+                    "{}, {} × {} elements",
+                    case.model, case.n_length, case.n_width
+                )
             } else {
                 String::new()
             },
@@ -173,21 +235,35 @@ fn wire_frame(
     lines
 }
 
-/// Shapes as in the seed's Fig. 4 (an IPS-default strip with fifteen elements), at a large Γ
-/// where coarse meshes struggle, and the Ω_combined strip, each with the exact centre line.
-fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path) -> Result<()> {
+/// Shapes as in the seed's Fig. 4 (an IPS-default strip with fifteen elements; eight for the
+/// B-spline shell), at a large Γ where coarse meshes struggle, and the Ω_combined strip, each
+/// with the exact centre line.
+fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path, cx: &mut Context) -> Result<()> {
     let params = SolverParams::default();
-    for (set, gamma) in [(OMEGA_IPS, 1e3), (OMEGA_IPS, 1e4), (OMEGA_COMBINED, 61.3)] {
-        let n_length = 15;
+    let shapes = sweep.models.iter().flat_map(|&m| {
+        [(OMEGA_IPS, 1e3), (OMEGA_IPS, 1e4), (OMEGA_COMBINED, 61.3)]
+            .into_iter()
+            .map(move |(set, gamma)| (m, set, gamma))
+    });
+    for (model, set, gamma) in shapes {
+        let n_length = match model {
+            ShellModel::Midedge => 15,
+            ShellModel::Bspline => 8,
+        };
         let case = ShellCantileverCase {
+            model,
             material: set,
             width_ratio: sweep.width_ratio,
             n_length,
-            n_width: ShellCantileverCase::default_width_elements(sweep.width_ratio, n_length),
-            grading: Grading::Power { exponent: 2.0 },
+            n_width: ShellCantileverCase::default_width_elements(
+                model,
+                sweep.width_ratio,
+                n_length,
+            ),
+            grading: cantilever_grading(model, gamma),
             gamma,
         };
-        let run = case.run(&params)?;
+        let run = cx.compute(1, || Ok(case.run(&params)?))?;
         let l = set.length;
         let mut lines = wire_frame(&case, &run.positions);
         if let Ok(exact) = heavy_elastica(gamma) {
@@ -206,15 +282,22 @@ fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path) -> Result<()> {
         } else {
             "not converged".into()
         };
+        // The mid-edge shell keeps its file names of before the B-spline shell.
+        let prefix = match model {
+            ShellModel::Midedge => "shell_shape".to_string(),
+            ShellModel::Bspline => format!("shell_shape_{model}"),
+        };
         let stem = out.join(format!(
-            "shell_shape_{}_n{}_gamma{}",
+            "{prefix}_{}_n{}_gamma{}",
             set.name, n_length, gamma
         ));
         plot_shape_views(
             &stem,
             &format!(
-                "Shell cantilever, {}, w/L = {}, Γ = {gamma}: {status}",
-                set.label, sweep.width_ratio
+                "Shell cantilever ({}), {}, w/L = {}, Γ = {gamma}: {status}",
+                model.label(),
+                set.label,
+                sweep.width_ratio
             ),
             &lines,
         )
@@ -224,20 +307,20 @@ fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path) -> Result<()> {
 }
 
 /// Prints the worst errors per shell discretization against the D·w master curve.
-pub fn print_summary(records: &[ShellCantileverRecord]) {
+fn print_summary(records: &[ShellCantileverRecord]) {
     println!(
-        "{:<8} {:>5} {:>4} {:>4}  {:>22}  {:>16}  {:>9}",
-        "shell", "ν", "n_L", "n_W", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
+        "{:<8} {:<8} {:>5} {:>4} {:>4}  {:>22}  {:>16}  {:>9}",
+        "model", "shell", "ν", "n_L", "n_W", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
     );
-    let mut keys: Vec<(String, usize)> = records
+    let mut keys: Vec<(ShellModel, String, usize)> = records
         .iter()
-        .map(|r| (r.material.clone(), r.n_length))
+        .map(|r| (r.model, r.material.clone(), r.n_length))
         .collect();
     keys.dedup();
-    for (material, n) in keys {
+    for (model, material, n) in keys {
         let rows: Vec<&ShellCantileverRecord> = records
             .iter()
-            .filter(|r| r.material == material && r.n_length == n)
+            .filter(|r| r.model == model && r.material == material && r.n_length == n)
             .collect();
         let worst = |lo: f64, hi: f64| {
             rows.iter()
@@ -246,7 +329,8 @@ pub fn print_summary(records: &[ShellCantileverRecord]) {
                 .fold(0.0, f64::max)
         };
         println!(
-            "{:<8} {:>5} {:>4} {:>4}  {:>22.3}  {:>16.3}  {:>9}",
+            "{:<8} {:<8} {:>5} {:>4} {:>4}  {:>22.3}  {:>16.3}  {:>9}",
+            model.name(),
             material,
             rows[0].poisson,
             n,

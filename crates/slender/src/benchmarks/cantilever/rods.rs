@@ -1,9 +1,10 @@
-//! `slender cantilever`: runs the sweep and writes results.csv, summary.csv, the Fig. 2
-//! counterparts (one per material and mesh family), error plots and deformed shapes.
+//! The rods of the cantilever benchmark: the sweep's cases through the store, results.csv,
+//! summary.csv, the Fig. 2 counterparts (one per material and mesh family), error plots and
+//! deformed shapes.
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::{Context as _, Result};
 use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::master_curve::heavy_elastica;
@@ -12,21 +13,12 @@ use slender_validation::cantilever::{
     DiscretizationSummary, MeshKind, CABLE_RANGE,
 };
 
+use crate::benchmarks::{words, Context};
 use crate::output::write_csv;
 use crate::plot::{plot_cantilever_ratio, plot_relative_error, plot_shapes_2d, Curve};
-use crate::store::runner::RunStats;
-use crate::store::runner::{run_cases, StoreOptions};
-use crate::store::BenchmarkStore;
 
-/// What the cantilever benchmark produced.
-pub struct CantileverOutput {
-    /// One record per case.
-    pub records: Vec<CantileverRecord>,
-    /// Worst errors per discretization.
-    pub summary: Vec<DiscretizationSummary>,
-    /// Cases computed, reused and their compute time.
-    pub stats: RunStats,
-}
+/// The store of rod cantilever records.
+const STORE: &str = "cantilever";
 
 /// Everything a cantilever record depends on: the store key.
 #[derive(Serialize)]
@@ -35,46 +27,65 @@ struct CantileverKey {
     solver: SolverParams,
 }
 
-/// Runs `sweep` through the store and writes everything under `out`; `None` if this run
-/// computed one shard only (no report).
-pub fn run(
-    sweep: &CantileverSweep,
-    out: &Path,
-    store: &StoreOptions,
-) -> Result<Option<CantileverOutput>> {
+/// The records of `cases` (in order) through the store; `None` if this run computes one shard.
+pub(super) fn records(
+    cases: &[CantileverCase],
+    cx: &mut Context,
+) -> Result<Option<Vec<CantileverRecord>>> {
     let solver = SolverParams::default();
-    sweep.validate()?;
     solver.validate()?;
-    let keys: Vec<CantileverKey> = sweep
-        .cases()
-        .into_iter()
-        .map(|case| CantileverKey {
+    let keys: Vec<CantileverKey> = cases
+        .iter()
+        .map(|&case| CantileverKey {
             case,
             solver: solver.clone(),
         })
         .collect();
-    let bench = BenchmarkStore::new(&store.root, "cantilever");
-    let run = run_cases(&bench, store.shard, &keys, |k| {
-        Ok(run_case(&k.case, &k.solver)?)
-    })?;
-    let stats = RunStats::of(&run);
-    let Some(records) = run.complete() else {
-        return Ok(None);
-    };
-    write_csv(&out.join("results.csv"), &records)?;
-    let summary = summarize(&records);
+    cx.cases(STORE, &keys, |k| Ok(run_case(&k.case, &k.solver)?))
+}
+
+/// Writes results.csv, summary.csv and the figures of the sweep's `records` under `out`, and
+/// prints the summary.
+pub(super) fn write(
+    sweep: &CantileverSweep,
+    records: &[CantileverRecord],
+    out: &Path,
+    cx: &mut Context,
+) -> Result<()> {
+    write_csv(&out.join("results.csv"), records)?;
+    let summary = summarize(records);
     write_csv(&out.join("summary.csv"), &summary)?;
-    plot_ratios(sweep, &records, out)?;
-    plot_coarse_shapes(sweep, out)?;
-    Ok(Some(CantileverOutput {
-        records,
-        summary,
-        stats,
-    }))
+    plot_ratios(sweep, records, out)?;
+    plot_coarse_shapes(sweep, out, cx)?;
+    print_summary(&summary);
+    Ok(())
+}
+
+/// Caption of a figure of the rods' section.
+pub(super) fn caption(stem: &str) -> String {
+    if let Some(rest) = stem.strip_prefix("ratio_") {
+        format!(
+            "Counterpart of the seed's Fig. 2: Δy/Δx against Γ ({}), every element count, \
+             with the heavy-elastica master curve computed in code.",
+            words(rest)
+        )
+    } else if let Some(rest) = stem.strip_prefix("error_") {
+        format!(
+            "Relative error of Δy/Δx against the master curve ({}); the band marks Γ ∈ [10, 10³].",
+            words(rest)
+        )
+    } else if stem.starts_with("shape_") {
+        format!(
+            "Counterpart of the seed's Figs. 3 and 5: equilibrium shapes on coarse meshes ({}).",
+            words(stem)
+        )
+    } else {
+        words(stem)
+    }
 }
 
 /// Prints the worst errors per discretization.
-pub fn print_summary(summary: &[DiscretizationSummary]) {
+fn print_summary(summary: &[DiscretizationSummary]) {
     println!(
         "{:<8} {:<10} {:>4}  {:>22}  {:>16}  {:>9}",
         "material", "mesh", "N", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
@@ -155,7 +166,7 @@ fn plot_ratios(sweep: &CantileverSweep, records: &[CantileverRecord], out: &Path
 
 /// Deformed shapes at Γ = 10⁴ on the coarsest meshes (the seed's Figs. 3 and 5), with the
 /// exact heavy elastica.
-fn plot_coarse_shapes(sweep: &CantileverSweep, out: &Path) -> Result<()> {
+fn plot_coarse_shapes(sweep: &CantileverSweep, out: &Path, cx: &mut Context) -> Result<()> {
     let gamma = 1e4;
     let exact = heavy_elastica(gamma)?;
     let reference = Curve {
@@ -172,13 +183,13 @@ fn plot_coarse_shapes(sweep: &CantileverSweep, out: &Path) -> Result<()> {
         for &n in &counts {
             let mut shapes = Vec::new();
             for mesh in MeshKind::ALL {
-                let run = CantileverCase {
+                let case = CantileverCase {
                     material: *material,
                     mesh,
                     n_elements: n,
                     gamma,
-                }
-                .run(&params)?;
+                };
+                let run = cx.compute(1, || Ok(case.run(&params)?))?;
                 let l = material.length;
                 shapes.push(Curve {
                     label: format!(

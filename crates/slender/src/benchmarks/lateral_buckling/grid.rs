@@ -1,39 +1,42 @@
-//! `slender lateral-buckling`: the seed's §5 — Γ_shell × w/L decided 2-D or 3-D by the
-//! protocol, scored against the master curve and compared with the shell's own stability;
-//! the mesh convergence of Γ_c. Written as CSV and drawn as a decision diagram (Figs. 9b–11b),
-//! a height map of the end point's y-deviation (Figs. 9a–11a) and a convergence plot.
+//! The lateral-buckling grid (seed §5): Γ_shell × w/L decided 2-D or 3-D by the seed's
+//! protocol, scored against the master curve and compared with the shell's own stability
+//! (Γ_c per aspect ratio from the Hessian inertia). Written as CSV and drawn as a decision
+//! diagram (Figs. 9b–11b) and a height map of the end point's y-deviation (Figs. 9a–11a).
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::{Context as _, Result};
 use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::log_space;
-use slender_validation::lateral_buckling::{critical_gamma, sample_master_curve, MasterCurve};
-use slender_validation::lateral_sweep::sweep::GAMMA_C_BRACKET;
+use slender_validation::lateral_buckling::{sample_master_curve, MasterCurve};
+use slender_validation::lateral_sweep::sweep::{GAMMA_C_BRACKET, SWEEP_TOLERANCE};
 use slender_validation::lateral_sweep::vlasov_band;
 use slender_validation::lateral_sweep::{
-    critical_record, score_decisions, CriticalConvergence, CriticalRecord, DecisionScore,
-    LateralBucklingRecord, LateralBucklingSweep,
+    score_decisions, CriticalRecord, DecisionScore, LateralBucklingRecord, LateralBucklingSweep,
 };
 use slender_validation::materials::ShellMaterialSet;
+use slender_validation::shell_model::ShellModel;
 
+use crate::benchmarks::Context;
 use crate::output::write_csv;
-use crate::plot::{
-    plot_height_map, plot_lines, plot_phase_diagram, Curve, LineAxes, Overlay, Phase, PhasePoint,
-    Scale,
-};
-use crate::store::runner::{run_cases, StoreOptions};
-use crate::store::BenchmarkStore;
+use crate::plot::{plot_height_map, plot_phase_diagram, Overlay, Phase, PhasePoint};
 
-/// What the benchmark produced.
-pub struct LateralBucklingOutput {
+/// The store of protocol points (shared with the sensitivity study).
+pub(crate) const PROTOCOL_STORE: &str = "lateral-buckling";
+/// The store of Γ_c records (shared with the convergence study).
+pub(super) const CRITICAL_STORE: &str = "lateral-buckling-critical";
+
+/// What the grid produced.
+pub struct GridRecords {
     /// Γ_c per aspect ratio.
     pub critical: Vec<CriticalRecord>,
     /// Protocol points.
     pub records: Vec<LateralBucklingRecord>,
     /// Decisions scored against the master curve, over the whole grid.
     pub score: DecisionScore,
+    /// (w/L, Γ_c of the plate master curve) per aspect ratio.
+    master: Vec<(f64, f64)>,
 }
 
 /// One row of `decisions.csv`: the score of one aspect ratio (w/L = NaN: the whole grid).
@@ -68,12 +71,15 @@ impl DecisionRow {
 
 /// Everything a Γ_c record depends on: its store key.
 #[derive(Serialize)]
-struct CriticalKey {
-    material: ShellMaterialSet,
-    n_length: usize,
-    width_ratio: f64,
+pub(super) struct CriticalKey {
+    pub(super) material: ShellMaterialSet,
+    pub(super) model: ShellModel,
+    pub(super) n_length: usize,
+    pub(super) width_ratio: f64,
     bracket: (f64, f64),
-    solver: SolverParams,
+    /// Relative width of the bisection.
+    pub(super) tolerance: f64,
+    pub(super) solver: SolverParams,
 }
 
 /// Everything a protocol point depends on (not the threshold: it is applied afterwards).
@@ -81,6 +87,7 @@ struct CriticalKey {
 #[derive(Serialize)]
 pub(crate) struct ProtocolKey {
     pub(crate) material: ShellMaterialSet,
+    pub(crate) model: ShellModel,
     pub(crate) n_length: usize,
     pub(crate) width_ratio: f64,
     pub(crate) gamma: f64,
@@ -89,31 +96,36 @@ pub(crate) struct ProtocolKey {
     pub(crate) solver: SolverParams,
 }
 
-/// Runs `sweep` through the store, writes `critical.csv`, `results.csv` and
-/// `phase_diagram.{png,svg}` under `out`; `None` if this run computed one shard only.
-pub fn run(
+/// The grid's Γ_c records and protocol points through the store; `None` if this run
+/// computes one shard only.
+pub(super) fn records(
     sweep: &LateralBucklingSweep,
-    out: &Path,
-    store: &StoreOptions,
-) -> Result<Option<LateralBucklingOutput>> {
+    cx: &mut Context,
+) -> Result<Option<GridRecords>> {
     let params = slender_validation::lateral_sweep::solver_params();
     params.validate()?;
     let critical_keys: Vec<CriticalKey> = sweep
         .width_ratios
         .iter()
-        .map(|&width_ratio| critical_key(sweep.material, sweep.n_length, width_ratio))
+        .map(|&width_ratio| {
+            critical_key(
+                sweep.material,
+                sweep.model,
+                sweep.n_length,
+                width_ratio,
+                SWEEP_TOLERANCE,
+            )
+        })
         .collect();
-    let critical_run = run_cases(
-        &BenchmarkStore::new(&store.root, "lateral-buckling-critical"),
-        store.shard,
-        &critical_keys,
-        |k| Ok(sweep.critical_at(k.width_ratio, &k.solver)?),
-    )?;
+    let critical = cx.cases(CRITICAL_STORE, &critical_keys, |k| {
+        Ok(sweep.critical_at(k.width_ratio, &k.solver)?)
+    })?;
     let points = sweep.points();
     let protocol_keys: Vec<ProtocolKey> = points
         .iter()
         .map(|&(width_ratio, gamma)| ProtocolKey {
             material: sweep.material,
+            model: sweep.model,
             n_length: sweep.n_length,
             width_ratio,
             gamma,
@@ -122,26 +134,35 @@ pub fn run(
             solver: params.clone(),
         })
         .collect();
-    let protocol_run = run_cases(
-        &BenchmarkStore::new(&store.root, "lateral-buckling"),
-        store.shard,
-        &protocol_keys,
-        |k| Ok(sweep.protocol_at(k.width_ratio, k.gamma, &k.solver)?),
-    )?;
-    let (Some(critical), Some(protocol)) = (critical_run.complete(), protocol_run.complete())
-    else {
+    let protocol = cx.cases(PROTOCOL_STORE, &protocol_keys, |k| {
+        Ok(sweep.protocol_at(k.width_ratio, k.gamma, &k.solver)?)
+    })?;
+    let (Some(critical), Some(protocol)) = (critical, protocol) else {
         return Ok(None);
     };
-    write_csv(&out.join("critical.csv"), &critical)?;
     let master = sweep.master_critical();
     let records: Vec<LateralBucklingRecord> = points
         .iter()
         .zip(&protocol)
         .map(|(&wg, p)| sweep.record(wg, p, &critical, &master))
         .collect();
-    write_csv(&out.join("results.csv"), &records)?;
     let score = score_decisions(&records);
-    let mut rows: Vec<DecisionRow> = master
+    Ok(Some(GridRecords {
+        critical,
+        records,
+        score,
+        master,
+    }))
+}
+
+/// Writes `critical.csv`, `results.csv`, `decisions.csv`, `phase_diagram.{png,svg}` and
+/// `height_map.{png,svg}` under `out`.
+pub(super) fn write(sweep: &LateralBucklingSweep, g: &GridRecords, out: &Path) -> Result<()> {
+    let (critical, records, score) = (&g.critical, &g.records, &g.score);
+    write_csv(&out.join("critical.csv"), critical)?;
+    write_csv(&out.join("results.csv"), records)?;
+    let mut rows: Vec<DecisionRow> = g
+        .master
         .iter()
         .map(|&(w, gc)| {
             DecisionRow::new(
@@ -151,9 +172,8 @@ pub fn run(
             )
         })
         .collect();
-    rows.push(DecisionRow::new(f64::NAN, f64::NAN, &score));
+    rows.push(DecisionRow::new(f64::NAN, f64::NAN, score));
     write_csv(&out.join("decisions.csv"), &rows)?;
-
     let curve: Vec<(f64, f64)> = critical
         .iter()
         .filter(|c| c.gamma_c.is_finite())
@@ -196,7 +216,10 @@ pub fn run(
             color: Some(plotters::style::RGBColor(200, 30, 30)),
         },
         Overlay {
-            label: format!("Γ_c from the Hessian inertia (n_L = {})", sweep.n_length),
+            label: format!(
+                "Γ_c from the Hessian inertia ({}, n_L = {})",
+                sweep.model, sweep.n_length
+            ),
             points: curve.clone(),
             dashed: false,
             color: None,
@@ -220,7 +243,8 @@ pub fn run(
     plot_phase_diagram(
         &stem,
         &format!(
-            "Lateral buckling, {} (ν = {}), n_L = {}: protocol σ = {}, m_ls = {}, ε = {}",
+            "Lateral buckling, {}, {} (ν = {}), n_L = {}: protocol σ = {}, m_ls = {}, ε = {}",
+            sweep.model.label(),
             sweep.material.label,
             sweep.material.poisson,
             sweep.n_length,
@@ -259,8 +283,12 @@ pub fn run(
     plot_height_map(
         &stem,
         &format!(
-            "{}, n_L = {}: free-end y-deviation after the protocol (σ = {}, m_ls = {})",
-            sweep.material.label, sweep.n_length, sweep.sigma, sweep.load_steps
+            "{}, {}, n_L = {}: free-end y-deviation after the protocol (σ = {}, m_ls = {})",
+            sweep.model.label(),
+            sweep.material.label,
+            sweep.n_length,
+            sweep.sigma,
+            sweep.load_steps
         ),
         "w / L",
         "Γ_shell",
@@ -272,11 +300,7 @@ pub fn run(
         &overlays[..2],
     )
     .with_context(|| format!("plotting {}", stem.display()))?;
-    Ok(Some(LateralBucklingOutput {
-        critical,
-        records,
-        score,
-    }))
+    Ok(())
 }
 
 /// Linear interpolation of log y against log x through `curve` (x ascending); None outside.
@@ -291,177 +315,26 @@ fn log_interpolate(curve: &[(f64, f64)], x: f64) -> Option<f64> {
 }
 
 /// Everything a Γ_c record depends on, as in [`CriticalKey`] (shared store).
-fn critical_key(material: ShellMaterialSet, n_length: usize, width_ratio: f64) -> CriticalKey {
+pub(super) fn critical_key(
+    material: ShellMaterialSet,
+    model: ShellModel,
+    n_length: usize,
+    width_ratio: f64,
+    tolerance: f64,
+) -> CriticalKey {
     CriticalKey {
         material,
+        model,
         n_length,
         width_ratio,
         bracket: GAMMA_C_BRACKET,
+        tolerance,
         solver: slender_validation::lateral_sweep::solver_params(),
     }
 }
 
-/// One row of `convergence.csv`.
-#[derive(Serialize)]
-struct ConvergenceRow {
-    width_ratio: f64,
-    /// Elements along the length; 0 marks the extrapolated value.
-    n_length: usize,
-    gamma_c: f64,
-    master_gamma_c: f64,
-    relative_to_master: f64,
-}
-
-/// Γ_c of `material` at each of `widths` on each mesh of `meshes` (through the store, shared
-/// with the sweep's Γ_c records), extrapolated; writes `convergence.csv` and
-/// `convergence.{png,svg}`. `None` if this run computed one shard only.
-pub fn run_convergence(
-    material: ShellMaterialSet,
-    widths: &[f64],
-    meshes: &[usize],
-    out: &Path,
-    store: &StoreOptions,
-) -> Result<Option<Vec<CriticalConvergence>>> {
-    let mut meshes = meshes.to_vec();
-    meshes.sort_unstable();
-    meshes.dedup();
-    let cases: Vec<(f64, usize)> = meshes
-        .iter()
-        .flat_map(|&n| widths.iter().map(move |&w| (w, n)))
-        .collect();
-    let keys: Vec<CriticalKey> = cases
-        .iter()
-        .map(|&(w, n)| critical_key(material, n, w))
-        .collect();
-    let run = run_cases(
-        &BenchmarkStore::new(&store.root, "lateral-buckling-critical"),
-        store.shard,
-        &keys,
-        |k| {
-            Ok(critical_record(
-                k.material,
-                k.width_ratio,
-                k.n_length,
-                &k.solver,
-            )?)
-        },
-    )?;
-    let Some(records) = run.complete() else {
-        return Ok(None);
-    };
-    let mut result = Vec::new();
-    let mut rows = Vec::new();
-    for &w in widths {
-        let gamma_c: Vec<f64> = meshes
-            .iter()
-            .map(|&n| {
-                records
-                    .iter()
-                    .find(|r| r.width_ratio == w && r.n_length == n)
-                    .map_or(f64::NAN, |r| r.gamma_c)
-            })
-            .collect();
-        let master =
-            critical_gamma(w, material.poisson, MasterCurve::KirchhoffPlate).unwrap_or(f64::NAN);
-        let c = CriticalConvergence::new(w, meshes.clone(), gamma_c, master);
-        for (&n, &g) in c.n_lengths.iter().zip(&c.gamma_c) {
-            rows.push(ConvergenceRow {
-                width_ratio: w,
-                n_length: n,
-                gamma_c: g,
-                master_gamma_c: master,
-                relative_to_master: g / master,
-            });
-        }
-        if let Some(e) = c.extrapolation {
-            rows.push(ConvergenceRow {
-                width_ratio: w,
-                n_length: 0,
-                gamma_c: e.value,
-                master_gamma_c: master,
-                relative_to_master: e.value / master,
-            });
-        }
-        result.push(c);
-    }
-    write_csv(&out.join("convergence.csv"), &rows)?;
-    let mut curves: Vec<Curve> = result
-        .iter()
-        .map(|c| Curve {
-            label: format!("w/L = {}: Γ_c(n_L) / Γ_c(master)", c.width_ratio),
-            points: c
-                .n_lengths
-                .iter()
-                .zip(&c.gamma_c)
-                .map(|(&n, &g)| (n as f64, g / c.master))
-                .collect(),
-            dashed: false,
-            markers: true,
-        })
-        .collect();
-    for c in &result {
-        if let Some(e) = c.extrapolation {
-            let last = *c.n_lengths.last().expect("three meshes") as f64;
-            curves.push(Curve {
-                label: format!(
-                    "w/L = {}: extrapolated Γ_∞ / Γ_c(master) = {:.4}",
-                    c.width_ratio,
-                    e.value / c.master
-                ),
-                points: vec![
-                    (c.n_lengths[0] as f64, e.value / c.master),
-                    (last, e.value / c.master),
-                ],
-                dashed: true,
-                markers: false,
-            });
-        }
-    }
-    let stem = out.join("convergence");
-    plot_lines(
-        &stem,
-        &format!(
-            "{}: Γ_c from the inertia against the mesh, relative to the master curve",
-            material.label
-        ),
-        LineAxes {
-            x_desc: "elements along the length n_L",
-            y_desc: "Γ_c / Γ_c(master)",
-            x_scale: Scale::Log,
-            y_scale: Scale::Linear,
-        },
-        &curves,
-    )
-    .with_context(|| format!("plotting {}", stem.display()))?;
-    Ok(Some(result))
-}
-
-/// Prints Γ_c per mesh, the extrapolated value and the master curve.
-pub fn print_convergence(conv: &[CriticalConvergence]) {
-    for c in conv {
-        let per_mesh: Vec<String> = c
-            .n_lengths
-            .iter()
-            .zip(&c.gamma_c)
-            .map(|(n, g)| format!("n_L {n}: {g:.3}"))
-            .collect();
-        println!(
-            "w/L = {}: Γ_c {}; extrapolated {}; master curve {:.3}",
-            c.width_ratio,
-            per_mesh.join(", "),
-            c.extrapolation.map_or("—".into(), |e| format!(
-                "{:.3} (p = {:.2}{})",
-                e.value,
-                e.order,
-                if e.assumed_order { ", assumed" } else { "" }
-            )),
-            c.master
-        );
-    }
-}
-
 /// Prints Γ_c per aspect ratio and the protocol's agreement with stability.
-pub fn print_summary(out: &LateralBucklingOutput) {
+pub(super) fn print_summary(out: &GridRecords) {
     println!("{:>6} {:>4} {:>4} {:>10}", "w/L", "n_L", "n_W", "Γ_c");
     for c in &out.critical {
         println!(

@@ -1,6 +1,7 @@
-//! `slender bend-twist`: the bend–twist sweep (seed §4, Figs. 6–8): results.csv, height maps
-//! of both measures with the master curve, phase diagrams of the stability and protocol
-//! decisions, a 3-D picture of a buckled coil, and the score against the master curve.
+//! The bend–twist bifurcation (seed §4, Figs. 6–8): the grid's cases through the store,
+//! results.csv, height maps of both measures with the master curve, phase diagrams of the
+//! stability and protocol decisions, a 3-D picture of a buckled coil, the criticality of the
+//! boundaries, and the score against the master curve.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -8,37 +9,63 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
-use anyhow::{Context, Result};
-use serde::Serialize;
+use anyhow::{Context as _, Result};
+use serde::{Deserialize, Serialize};
 use slender_core::solver::SolverParams;
-use slender_validation::bend_twist::acceptance::{summarize, BendTwistSummary};
+use slender_validation::bend_twist::acceptance::{bend_twist_checks, summarize, BendTwistSummary};
 use slender_validation::bend_twist::case::BendTwistCase;
 use slender_validation::bend_twist::criticality::{criticality, Criticality};
 use slender_validation::bend_twist::master_curve::{critical_boundaries, StabilityBoundary};
 use slender_validation::bend_twist::protocol::ProtocolSettings;
 use slender_validation::bend_twist::stability::decide_by_stability;
 use slender_validation::bend_twist::sweep::{run_point, BendTwistRecord, BendTwistSweep};
-use slender_validation::cantilever::log_space;
+use slender_validation::cantilever::{log_space, Check};
 
+use super::{words, Benchmark, Context, Preset, SectionSpec};
 use crate::output::{write_atomic, write_csv};
 use crate::plot::{
     plot_height_map, plot_phase_diagram, plot_shape_views, Overlay, Phase, PhasePoint, Polyline3,
 };
-use crate::store::runner::{run_cases, RunStats, StoreOptions};
-use crate::store::BenchmarkStore;
+
+/// Section (and output directory).
+const SECTION: &str = "bend-twist";
+/// The store of grid points.
+const STORE: &str = "bend-twist";
+/// The store of criticality rows.
+const CRITICALITY_STORE: &str = "bend-twist-criticality";
+
+/// The bend–twist benchmark.
+pub struct BendTwist {
+    /// The grid.
+    pub sweep: BendTwistSweep,
+}
+
+/// What the cases produced.
+pub struct BendTwistRecords {
+    /// One per grid point, in sweep order.
+    records: Vec<BendTwistRecord>,
+    /// Scores and disagreements.
+    summary: BendTwistSummary,
+    /// Both boundaries at each of [`CRITICALITY_ROWS`].
+    criticality: Vec<Criticality>,
+}
+
+impl BendTwist {
+    /// The grid of `preset`: 12 × 12 at 20·Y elements, or the seed's 25 × 25 at 100·Y.
+    pub fn for_preset(preset: Preset) -> Self {
+        Self {
+            sweep: match preset {
+                Preset::Quick => BendTwistSweep::quick(),
+                Preset::Full => BendTwistSweep::full(),
+            },
+        }
+    }
+}
 
 /// GJ/EI of the benchmark's material (Ω_rod).
 fn torsion_ratio(sweep: &BendTwistSweep) -> f64 {
     let case = sweep.cases()[0];
     case.material.properties.stiffness.gj / case.material.properties.stiffness.ei_min()
-}
-
-/// What the bend–twist benchmark produced.
-pub struct BendTwistOutput {
-    /// Scores and disagreements.
-    pub summary: BendTwistSummary,
-    /// Cases computed, reused and their compute time.
-    pub stats: RunStats,
 }
 
 /// Everything a bend–twist record depends on: the store key.
@@ -49,69 +76,146 @@ struct BendTwistKey {
     solver: SolverParams,
 }
 
-/// Runs `sweep` through the store and writes everything under `out`; `None` if this run
-/// computed one shard only (no report).
-pub fn run(
-    sweep: &BendTwistSweep,
-    out: &Path,
-    store: &StoreOptions,
-) -> Result<Option<BendTwistOutput>> {
-    let params = SolverParams::default();
-    params.validate()?;
-    let keys: Vec<BendTwistKey> = sweep
-        .cases()
-        .into_iter()
-        .map(|case| BendTwistKey {
-            case,
-            protocol: sweep.protocol,
-            solver: params.clone(),
-        })
-        .collect();
-    // The master curve once per row of the grid; each record carries its row's boundaries.
-    let c = torsion_ratio(sweep);
-    let boundaries: Vec<StabilityBoundary> = sweep
-        .ys
-        .par_iter()
-        .map(|&y| critical_boundaries(y, c))
-        .collect::<Result<_, _>>()?;
-    let bench = BenchmarkStore::new(&store.root, "bend-twist");
-    let run = run_cases(&bench, store.shard, &keys, |k| {
-        let row = sweep
+/// Everything a criticality row depends on: its store key.
+#[derive(Serialize)]
+struct CriticalityKey {
+    y: f64,
+    elements_per_turn: f64,
+    solver: SolverParams,
+}
+
+/// The stored criticality of both boundaries of one row.
+#[derive(Serialize, Deserialize)]
+struct CriticalityRecord {
+    boundaries: Vec<Criticality>,
+}
+
+impl Benchmark for BendTwist {
+    type Records = BendTwistRecords;
+
+    fn sections(&self) -> Vec<SectionSpec> {
+        let s = &self.sweep;
+        vec![SectionSpec {
+            dir: SECTION.into(),
+            title: "Bend–twist bifurcation of a naturally curved rod".into(),
+            about: format!(
+                "A coil clamped at the top, hanging under gravity: 2-D or 3-D over a {}×{} grid \
+                 in (X, Y) with {}·Y elements, decided by the seed's protocol and by stability, \
+                 against the master curve from the linearized stability ODE.",
+                s.xs.len(),
+                s.ys.len(),
+                s.elements_per_turn
+            ),
+            caption,
+        }]
+    }
+
+    fn records(&self, cx: &mut Context) -> Result<Option<BendTwistRecords>> {
+        cx.enter(SECTION);
+        let sweep = &self.sweep;
+        let params = SolverParams::default();
+        params.validate()?;
+        let keys: Vec<BendTwistKey> = sweep
+            .cases()
+            .into_iter()
+            .map(|case| BendTwistKey {
+                case,
+                protocol: sweep.protocol,
+                solver: params.clone(),
+            })
+            .collect();
+        // The master curve once per row of the grid; each record carries its row's boundaries.
+        let c = torsion_ratio(sweep);
+        let boundaries: Vec<StabilityBoundary> = sweep
             .ys
+            .par_iter()
+            .map(|&y| critical_boundaries(y, c))
+            .collect::<Result<_, _>>()?;
+        let records = cx.cases(STORE, &keys, |k| {
+            let row = sweep
+                .ys
+                .iter()
+                .position(|&y| y == k.case.y)
+                .context("grid row of a case")?;
+            Ok(run_point(
+                &k.case,
+                &boundaries[row],
+                &k.protocol,
+                &k.solver,
+            )?)
+        })?;
+        // Sub- or supercritical: the buckled branch followed toward both boundaries.
+        let keys: Vec<CriticalityKey> = CRITICALITY_ROWS
             .iter()
-            .position(|&y| y == k.case.y)
-            .context("grid row of a case")?;
-        Ok(run_point(
-            &k.case,
-            &boundaries[row],
-            &k.protocol,
-            &k.solver,
-        )?)
-    })?;
-    let stats = RunStats::of(&run);
-    let Some(records) = run.complete() else {
-        return Ok(None);
-    };
-    write_csv(&out.join("results.csv"), &records)?;
-    let summary = summarize(&records, sweep.elements_per_turn);
-    write_csv(&out.join("disagreements.csv"), &summary.disagreements)?;
-    write_atomic(
-        &out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)?.as_bytes(),
-    )?;
-    plots(sweep, &records, c, out)?;
-    // Sub- or supercritical: the buckled branch followed toward both boundaries.
-    let criticality: Vec<Criticality> = CRITICALITY_ROWS
-        .par_iter()
-        .map(|&y| criticality(y, CRITICALITY_ELEMENTS_PER_TURN, &params))
-        .collect::<Result<Vec<_>, _>>()?
-        .into_iter()
-        .flatten()
-        .collect();
-    let rows: Vec<CriticalityRow> = criticality.iter().map(CriticalityRow::from).collect();
-    write_csv(&out.join("criticality.csv"), &rows)?;
-    print_criticality(&criticality);
-    Ok(Some(BendTwistOutput { summary, stats }))
+            .map(|&y| CriticalityKey {
+                y,
+                elements_per_turn: CRITICALITY_ELEMENTS_PER_TURN,
+                solver: params.clone(),
+            })
+            .collect();
+        let rows = cx.cases(CRITICALITY_STORE, &keys, |k| {
+            Ok(CriticalityRecord {
+                boundaries: criticality(k.y, k.elements_per_turn, &k.solver)?,
+            })
+        })?;
+        let (Some(records), Some(rows)) = (records, rows) else {
+            return Ok(None);
+        };
+        let summary = summarize(&records, sweep.elements_per_turn);
+        Ok(Some(BendTwistRecords {
+            records,
+            summary,
+            criticality: rows.into_iter().flat_map(|r| r.boundaries).collect(),
+        }))
+    }
+
+    fn write(&self, r: &BendTwistRecords, cx: &mut Context) -> Result<()> {
+        cx.enter(SECTION);
+        let out = cx.dir(SECTION);
+        let sweep = &self.sweep;
+        write_csv(&out.join("results.csv"), &r.records)?;
+        write_csv(&out.join("disagreements.csv"), &r.summary.disagreements)?;
+        write_atomic(
+            &out.join("summary.json"),
+            serde_json::to_string_pretty(&r.summary)?.as_bytes(),
+        )?;
+        plots(sweep, &r.records, torsion_ratio(sweep), &out, cx)?;
+        let rows: Vec<CriticalityRow> = r.criticality.iter().map(CriticalityRow::from).collect();
+        write_csv(&out.join("criticality.csv"), &rows)?;
+        print_criticality(&r.criticality);
+        print_summary(&r.summary);
+        Ok(())
+    }
+
+    fn checks(&self, r: &BendTwistRecords, cx: &mut Context) -> Result<Vec<Check>> {
+        cx.enter(SECTION);
+        Ok(bend_twist_checks(&r.summary))
+    }
+}
+
+/// Caption of a figure of the section.
+fn caption(stem: &str) -> String {
+    match stem {
+        "height_xi_y" => "Counterpart of the seed's Fig. 7: height map of Ξ₁[ξ_y] over (X, Y) \
+                          with the master curve."
+            .into(),
+        "height_xi_tau" => "Counterpart of the seed's Fig. 8a: height map of Ξ₁[ξ_τ] with the \
+                            master curve."
+            .into(),
+        "height_lambda_min" => "Smallest out-of-plane eigenvalue of the planar equilibrium \
+                                (negative: unstable, 3-D) with the master curve."
+            .into(),
+        "phase_protocol" => "Counterpart of the seed's Fig. 8b: 2-D/3-D decisions of the \
+                             seed's protocol against the master curve."
+            .into(),
+        "phase_stability" => "2-D/3-D decided by stability (Hessian inertia) against the \
+                              master curve."
+            .into(),
+        "shape_buckled" => "3-D shape of a buckled coil (branch switched from the unstable \
+                            planar state)."
+            .into(),
+        _ => words(stem),
+    }
 }
 
 /// Rows of Y at which the criticality of both boundaries is measured.
@@ -167,7 +271,7 @@ fn print_criticality(cs: &[Criticality]) {
 }
 
 /// Prints the scores and the disagreements.
-pub fn print_summary(s: &BendTwistSummary) {
+fn print_summary(s: &BendTwistSummary) {
     println!(
         "bend-twist: {} points ({} outside the ±5 % band), {}·Y elements",
         s.points, s.outside_band, s.elements_per_turn
@@ -263,7 +367,13 @@ fn overlays(c: f64, y_range: (f64, f64), x_range: (f64, f64)) -> Result<Vec<Over
     Ok(v)
 }
 
-fn plots(sweep: &BendTwistSweep, records: &[BendTwistRecord], c: f64, out: &Path) -> Result<()> {
+fn plots(
+    sweep: &BendTwistSweep,
+    records: &[BendTwistRecord],
+    c: f64,
+    out: &Path,
+    cx: &mut Context,
+) -> Result<()> {
     let xr = (sweep.xs[0], *sweep.xs.last().expect("non-empty"));
     let yr = (sweep.ys[0], *sweep.ys.last().expect("non-empty"));
     let ov = overlays(c, yr, xr)?;
@@ -379,7 +489,9 @@ fn plots(sweep: &BendTwistSweep, records: &[BendTwistRecord], c: f64, out: &Path
         })
     {
         let case = BendTwistCase::new(r.x, r.y, sweep.elements_per_turn);
-        let (_, positions) = decide_by_stability(&case, &SolverParams::default())?;
+        let (_, positions) = cx.compute(1, || {
+            Ok(decide_by_stability(&case, &SolverParams::default())?)
+        })?;
         let rest = case.build(Default::default(), Default::default())?;
         let stem = out.join("shape_buckled");
         plot_shape_views(

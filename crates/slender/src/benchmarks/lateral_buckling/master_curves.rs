@@ -15,7 +15,7 @@ use crate::output::write_csv;
 use crate::plot::{plot_lines, Curve, LineAxes, Scale};
 
 /// Poisson's ratio of the seed's flat cable (design.md §1.3 tables).
-pub const NU: f64 = 0.35;
+pub(super) const NU: f64 = 0.35;
 
 /// One row of `master_curves.csv`.
 #[derive(Serialize)]
@@ -28,7 +28,7 @@ struct Row {
 
 /// Computes the curves on w/L ∈ [0.02, 1], writes `master_curves.csv` and
 /// `master_curves.{png,svg}` under `out`, and returns the master-curve checks.
-pub fn run(out: &Path) -> Result<Vec<Check>> {
+pub(super) fn write_and_check(out: &Path) -> Result<Vec<Check>> {
     let grid = linear_samples(0.02, 1.0, 50);
     let m = master_curves(NU, &grid)?;
     let rows: Vec<Row> = (0..grid.len())

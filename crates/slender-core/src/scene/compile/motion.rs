@@ -1,0 +1,94 @@
+//! Validation of prescribed support motion.
+
+use crate::geometry::Vec3;
+
+use super::super::error::SceneError;
+use super::super::spec::{MotionStage, SupportKind};
+use super::rod::CompiledRod;
+
+/// Largest rotation (rad) of a support per load step of a motion step.
+pub const MAX_STEP_ROTATION: f64 = 0.2;
+/// Largest translation per load step, as a fraction of the moving part's length.
+pub const MAX_STEP_TRANSLATION: f64 = 0.05;
+/// Largest number of load steps one motion step may need.
+const MAX_PIECES_PER_STEP: f64 = 1000.0;
+
+fn finite3(path: &str, v: [f64; 3]) -> Result<Vec3, SceneError> {
+    if v.iter().all(|c| c.is_finite()) {
+        Ok(Vec3::from(v))
+    } else {
+        Err(SceneError::new(
+            path,
+            format!("{v:?}: every component must be a finite number"),
+        ))
+    }
+}
+
+/// Checks motion stage `k` against the compiled rods (`shortest[r]`: the shortest part of rod
+/// r, which sets the largest translation per load step).
+pub(super) fn check_stage(
+    k: usize,
+    stage: &MotionStage,
+    rods: &[CompiledRod],
+    shortest: &[f64],
+) -> Result<(), SceneError> {
+    let path = format!("motion[{k}]");
+    let Some(rod) = rods.get(stage.rod) else {
+        return Err(SceneError::new(
+            format!("{path}.rod"),
+            format!("{}: must be < {} (number of rods)", stage.rod, rods.len()),
+        ));
+    };
+    let Some(support) = rod.supports.get(stage.support) else {
+        return Err(SceneError::new(
+            format!("{path}.support"),
+            format!(
+                "{}: must be < {} (supports of rod {})",
+                stage.support,
+                rod.supports.len(),
+                stage.rod
+            ),
+        ));
+    };
+    let t = finite3(&format!("{path}.translate"), stage.translate)?;
+    let rot = finite3(&format!("{path}.rotate"), stage.rotate)?;
+    match support.kind {
+        SupportKind::Pin | SupportKind::Slider if rot.norm() > 0.0 => {
+            return Err(SceneError::new(
+                format!("{path}.rotate"),
+                "a pin or slider has no orientation to rotate; rotate clamps or clips, translate pins and sliders",
+            ));
+        }
+        SupportKind::TwistHold if t.norm() > 0.0 => {
+            return Err(SceneError::new(
+                format!("{path}.translate"),
+                "a twist hold has no position to translate; rotate it about its edge",
+            ));
+        }
+        _ => {}
+    }
+    if stage.steps == 0 || stage.steps > 10_000 {
+        return Err(SceneError::new(
+            format!("{path}.steps"),
+            format!("{}: must be in 1..=10000", stage.steps),
+        ));
+    }
+    // Each step is solved in load steps small enough for Newton; bound their number so that
+    // an absurd motion is an error, not an endless run.
+    let per_step = |v: Vec3| v.norm() / stage.steps as f64;
+    let pieces = (per_step(rot) / MAX_STEP_ROTATION)
+        .max(per_step(t) / (MAX_STEP_TRANSLATION * shortest[stage.rod]));
+    if !(pieces <= MAX_PIECES_PER_STEP) {
+        return Err(SceneError::new(
+            path,
+            format!(
+                "the motion per step is too large ({:.3e} rad, {:.3e} m per step would need {pieces:.3e} solves); at most {} rad and {} m per step here: use more steps",
+                per_step(rot),
+                per_step(t),
+                MAX_PIECES_PER_STEP * MAX_STEP_ROTATION,
+                MAX_PIECES_PER_STEP * MAX_STEP_TRANSLATION * shortest[stage.rod]
+            ),
+        ));
+    }
+    Ok(())
+}

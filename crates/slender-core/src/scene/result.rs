@@ -1,0 +1,456 @@
+//! What a scene solve reports: per rod its shape, strains, bend radius, reactions and the load
+//! balance of the structures it belongs to; per structure its solve and stability.
+
+use serde::Serialize;
+
+use crate::geometry::Vec3;
+use crate::rod::{FullGradient, Rod, RodState};
+use crate::solver::SolveReport;
+use crate::structure::{MemberState, Structure, StructureState};
+
+use super::compile::{CompiledRod, CompiledScene};
+use super::spec::SupportKind;
+
+/// The reaction of one support.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SupportResult {
+    /// Index in the rod's `supports`.
+    pub support: usize,
+    /// Clamp, pin, clip, slider or twist hold.
+    pub kind: SupportKind,
+    /// The support's vertex.
+    pub vertex: usize,
+    /// Its position (m).
+    pub position: [f64; 3],
+    /// Force the support applies to the rod (N).
+    pub force: [f64; 3],
+    /// Moment the support applies to the rod, about its vertex (N m).
+    pub moment: [f64; 3],
+}
+
+/// Stability of an equilibrium as a scene solve reports it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StabilityResult {
+    /// True if the returned equilibrium is stable (no negative Hessian eigenvalue; exact null
+    /// modes, e.g. a free roll of a round ring, counted apart).
+    pub stable: bool,
+    /// Negative eigenvalues of the returned equilibrium's Hessian.
+    pub unstable_modes: usize,
+    /// Zero eigenvalues (null modes: symmetries that cost no energy).
+    pub null_modes: usize,
+    /// True if the solve first reached an unstable equilibrium and followed its unstable mode
+    /// to the returned one.
+    pub followed_unstable_mode: bool,
+    /// Negative eigenvalues of the unstable equilibrium that was left (0 if none).
+    pub left_unstable_modes: usize,
+    /// Energy of the returned equilibrium minus the unstable one's (J; 0 if none).
+    pub energy_drop: f64,
+}
+
+impl StabilityResult {
+    /// The stability of a report's equilibrium (no branch switch).
+    pub fn of(report: &SolveReport) -> Self {
+        let i = report.inertia.unwrap_or_default();
+        let (unstable, null) = match report.modes {
+            Some(m) => (m.unstable, m.null),
+            None => (i.negative, i.zero),
+        };
+        Self {
+            stable: report.stable() == Some(true),
+            unstable_modes: unstable,
+            null_modes: null,
+            followed_unstable_mode: false,
+            left_unstable_modes: 0,
+            energy_drop: 0.0,
+        }
+    }
+}
+
+/// One structure's solve.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StructureResult {
+    /// The rods (names) it is made of.
+    pub rods: Vec<String>,
+    /// Solver report.
+    pub report: SolveReport,
+    /// Stability.
+    pub stability: StabilityResult,
+    /// |Σ reactions + Σ applied forces| (N).
+    pub force_imbalance: f64,
+    /// |Σ moments of reactions and applied loads| about the centroid (N m).
+    pub moment_imbalance: f64,
+    /// `force_imbalance` over Σ|forces| involved.
+    pub relative_force_imbalance: f64,
+    /// `moment_imbalance` over Σ|moments| involved.
+    pub relative_moment_imbalance: f64,
+}
+
+/// Equilibrium of one rod.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RodResult {
+    /// Rod name.
+    pub name: String,
+    /// Vertex positions (m).
+    pub positions: Vec<[f64; 3]>,
+    /// Material frame (m₁, m₂, t) of every edge.
+    pub frames: Vec<[[f64; 3]; 3]>,
+    /// Material curvatures (κ₁, κ₂) at every vertex (1/m; 0 at a free end).
+    pub curvature: Vec<[f64; 2]>,
+    /// Twist rate at every vertex (rad/m; 0 at a free end).
+    pub twist: Vec<f64>,
+    /// Axial strain of every edge.
+    pub edge_strain: Vec<f64>,
+    /// Smallest bend radius along the rod (m; infinite if straight).
+    pub min_bend_radius: f64,
+    /// Vertices bent tighter than the rod's allowed `min_bend_radius` (empty if none given).
+    pub tight_vertices: Vec<usize>,
+    /// Reactions, in the order of the rod's supports.
+    pub supports: Vec<SupportResult>,
+    /// Resultant applied force (N) on this rod: gravity, point, line and follower loads.
+    pub applied_force: [f64; 3],
+    /// Resultant applied moment about the rod's centroid (N m).
+    pub applied_moment: [f64; 3],
+    /// Worst |Σ reactions + Σ applied forces| (N) over the structures the rod belongs to (the
+    /// rod alone unless joined to others).
+    pub force_imbalance: f64,
+    /// Worst moment imbalance (N m) over those structures.
+    pub moment_imbalance: f64,
+    /// `force_imbalance` relative to the forces involved.
+    pub relative_force_imbalance: f64,
+    /// `moment_imbalance` relative to the moments involved.
+    pub relative_moment_imbalance: f64,
+    /// Solver report of every part of the rod between interior clamps (its structure's).
+    pub reports: Vec<SolveReport>,
+    /// True if every part converged.
+    pub converged: bool,
+    /// True if every part's equilibrium is stable.
+    pub stable: bool,
+}
+
+/// One equilibrium of the sequence: step 0 is the loaded scene, then one per motion step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SceneStep {
+    /// Step number (0 = initial equilibrium).
+    pub step: usize,
+    /// Motion stage of this step (None for step 0).
+    pub stage: Option<usize>,
+    /// Progress through the stage (1 at its end).
+    pub stage_fraction: f64,
+    /// Wall time of the solve (s); filled by the caller that has a clock (0 otherwise).
+    pub seconds: f64,
+    /// Load steps the motion step was split into to converge (1 for step 0).
+    pub pieces: usize,
+    /// Every rod.
+    pub rods: Vec<RodResult>,
+    /// Every structure (groups of rod parts solved together).
+    pub structures: Vec<StructureResult>,
+    /// Every shell strip.
+    pub shells: Vec<super::shells::ShellResult>,
+    /// True if every rod and shell converged.
+    pub converged: bool,
+    /// True if every equilibrium is stable.
+    pub stable: bool,
+}
+
+fn arr(v: Vec3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+fn der<'a>(s: &Structure, st: &'a StructureState, m: usize) -> (&'a RodState, Rod) {
+    let r = s.members()[m].as_der().expect("rod").clone();
+    let MemberState::Der(rs) = &st.members[m];
+    (rs, r)
+}
+
+/// Generalized forces of every member's vertices and angles, joints included.
+fn structure_gradients(s: &Structure, st: &StructureState) -> Vec<FullGradient> {
+    let mut out: Vec<FullGradient> = (0..s.members().len())
+        .map(|m| {
+            let (rs, r) = der(s, st, m);
+            r.full_gradient(rs, 1.0)
+        })
+        .collect();
+    s.add_joint_gradients(st, &mut out);
+    out
+}
+
+/// Force and moment balance of a structure: (imbalance, relative) for force and moment.
+fn balance(
+    scene: &CompiledScene,
+    k: usize,
+    st: &StructureState,
+    grads: &[FullGradient],
+) -> [f64; 4] {
+    let s = &scene.structures[k];
+    let mut total_f = Vec3::zeros();
+    let mut total_m = Vec3::zeros();
+    let mut f_scale = 0.0;
+    let mut m_scale = 0.0;
+    let mut length = 0.0;
+    // Applied loads about the origin, then reactions.
+    for m in 0..s.members().len() {
+        let (rs, r) = der(s, st, m);
+        let l = r.applied_loads(rs, 1.0);
+        total_f += l.force;
+        total_m += l.moment;
+        f_scale += l.force.norm();
+        m_scale += l.moment.norm();
+        length += r.length();
+    }
+    let mut reaction_moments = 0.0;
+    for rod in &scene.rods {
+        for (si, sup) in rod.supports.iter().enumerate() {
+            let _ = sup;
+            let Some((_, f, mo, x)) = support_reaction(scene, rod, si, k, grads, st) else {
+                continue;
+            };
+            total_f += f;
+            total_m += x.cross(&f) + mo;
+            f_scale += f.norm();
+            m_scale += x.norm() * f.norm() + mo.norm();
+            reaction_moments += mo.norm();
+        }
+    }
+    // A moment M at a support is carried by forces of order M/L inside the rod: count it in
+    // the force scale, so that a rod bent by its clamps alone has a meaningful one.
+    f_scale += reaction_moments / length.max(f64::MIN_POSITIVE);
+    let rel = |x: f64, s: f64| if s > 0.0 { x / s } else { x };
+    [
+        total_f.norm(),
+        total_m.norm(),
+        rel(total_f.norm(), f_scale),
+        rel(total_m.norm(), m_scale),
+    ]
+}
+
+/// The reaction (part index, force, moment about the support's vertex, position) of support
+/// `si` of `rod` if it acts on structure `k`.
+fn support_reaction(
+    scene: &CompiledScene,
+    rod: &CompiledRod,
+    si: usize,
+    k: usize,
+    grads: &[FullGradient],
+    st: &StructureState,
+) -> Option<(usize, Vec3, Vec3, Vec3)> {
+    let sup = &rod.supports[si];
+    let s = &scene.structures[k];
+    let mut force = Vec3::zeros();
+    let mut moment = Vec3::zeros();
+    let mut found = None;
+    let mut xv = Vec3::zeros();
+    for (pi, part) in rod.parts.iter().enumerate() {
+        if part.structure != k {
+            continue;
+        }
+        let (rs, r) = der(s, st, part.member);
+        let g = &grads[part.member];
+        let n = r.n_edges();
+        let local = |v: usize| v - part.first_vertex;
+        if part.contains(sup.vertex) {
+            xv = rs.positions()[local(sup.vertex)];
+            found = Some(pi);
+        }
+        match sup.kind {
+            SupportKind::TwistHold => {
+                let e = sup.edge.expect("edge");
+                if e >= part.first_vertex && e < part.first_vertex + n {
+                    let j = e - part.first_vertex;
+                    let t = rs
+                        .frames()
+                        .edge(crate::rod::frames::EdgeId::Real(j))
+                        .tangent;
+                    moment += t * g.thetas[j];
+                    found = Some(pi);
+                }
+            }
+            _ => {
+                for &h in &sup.held {
+                    if !part.contains(h) {
+                        continue;
+                    }
+                    let lv = local(h);
+                    let f = g.vertices[lv];
+                    force += f;
+                    moment += (rs.positions()[lv] - xv).cross(&f);
+                    if sup.kind == SupportKind::Clamp {
+                        if lv == 0 && rs.frames().ghost_start.is_some() {
+                            moment += g.ghost_moments[0];
+                        }
+                        if lv == n && rs.frames().ghost_end.is_some() {
+                            moment += g.ghost_moments[1];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    found.map(|p| (p, force, moment, xv))
+}
+
+/// Builds the results of every rod and structure from the structures' states.
+pub fn scene_results(
+    scene: &CompiledScene,
+    states: &[StructureState],
+    reports: &[SolveReport],
+    stability: &[StabilityResult],
+) -> (Vec<RodResult>, Vec<StructureResult>) {
+    let grads: Vec<Vec<FullGradient>> = scene
+        .structures
+        .iter()
+        .zip(states)
+        .map(|(s, st)| structure_gradients(s, st))
+        .collect();
+    let balances: Vec<[f64; 4]> = (0..scene.structures.len())
+        .map(|k| balance(scene, k, &states[k], &grads[k]))
+        .collect();
+    let structures = (0..scene.structures.len())
+        .map(|k| {
+            let mut rods: Vec<String> = scene
+                .rods
+                .iter()
+                .filter(|r| r.parts.iter().any(|p| p.structure == k))
+                .map(|r| r.name.clone())
+                .collect();
+            rods.dedup();
+            StructureResult {
+                rods,
+                report: reports[k].clone(),
+                stability: stability[k].clone(),
+                force_imbalance: balances[k][0],
+                moment_imbalance: balances[k][1],
+                relative_force_imbalance: balances[k][2],
+                relative_moment_imbalance: balances[k][3],
+            }
+        })
+        .collect();
+    let rods = scene
+        .rods
+        .iter()
+        .map(|rod| rod_result(scene, rod, states, reports, stability, &grads, &balances))
+        .collect();
+    (rods, structures)
+}
+
+fn rod_result(
+    scene: &CompiledScene,
+    rod: &CompiledRod,
+    states: &[StructureState],
+    reports: &[SolveReport],
+    stability: &[StabilityResult],
+    grads: &[Vec<FullGradient>],
+    balances: &[[f64; 4]],
+) -> RodResult {
+    let nv = rod.n_edges + 1;
+    let mut positions = vec![Vec3::zeros(); nv];
+    let mut frames = Vec::with_capacity(rod.n_edges);
+    let mut curvature = vec![[0.0; 2]; nv];
+    let mut twist = vec![0.0; nv];
+    let mut hits = vec![0usize; nv];
+    let mut edge_strain = Vec::with_capacity(rod.n_edges);
+    let mut applied_force = Vec3::zeros();
+    let mut applied_moment_origin = Vec3::zeros();
+    let mut part_reports = Vec::new();
+    let mut structures_of_rod = Vec::new();
+    for part in &rod.parts {
+        let s = &scene.structures[part.structure];
+        let (rs, r) = der(s, &states[part.structure], part.member);
+        let a = part.first_vertex;
+        for (k, p) in rs.positions().iter().enumerate() {
+            positions[a + k] = *p;
+        }
+        for j in 0..r.n_edges() {
+            let f = rs.material_frame(j);
+            frames.push([arr(f[0]), arr(f[1]), arr(f[2])]);
+        }
+        for h in r.hinge_strains(rs) {
+            let v = a + h.vertex;
+            curvature[v][0] += h.curvature[0];
+            curvature[v][1] += h.curvature[1];
+            twist[v] += h.twist;
+            hits[v] += 1;
+        }
+        edge_strain.extend(r.edge_strains(rs));
+        let l = r.applied_loads(rs, 1.0);
+        applied_force += l.force;
+        applied_moment_origin += l.moment;
+        part_reports.push(reports[part.structure].clone());
+        if !structures_of_rod.contains(&part.structure) {
+            structures_of_rod.push(part.structure);
+        }
+    }
+    // A vertex shared by two parts (interior clamp) has a half hinge on each side.
+    for v in 0..nv {
+        if hits[v] > 1 {
+            let w = 1.0 / hits[v] as f64;
+            curvature[v][0] *= w;
+            curvature[v][1] *= w;
+            twist[v] *= w;
+        }
+    }
+    let kappa_max = curvature
+        .iter()
+        .map(|c| (c[0] * c[0] + c[1] * c[1]).sqrt())
+        .fold(0.0, f64::max);
+    let tight_vertices = match rod.min_bend_radius {
+        Some(r_min) => (0..nv)
+            .filter(|&v| {
+                let k = (curvature[v][0].powi(2) + curvature[v][1].powi(2)).sqrt();
+                k * r_min > 1.0
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    let centroid = positions.iter().sum::<Vec3>() / nv as f64;
+    let applied_moment = applied_moment_origin - centroid.cross(&applied_force);
+    let mut supports = Vec::with_capacity(rod.supports.len());
+    for (si, sup) in rod.supports.iter().enumerate() {
+        let mut force = Vec3::zeros();
+        let mut moment = Vec3::zeros();
+        for &k in &structures_of_rod {
+            if let Some((_, f, m, _)) = support_reaction(scene, rod, si, k, &grads[k], &states[k]) {
+                force += f;
+                moment += m;
+            }
+        }
+        supports.push(SupportResult {
+            support: si,
+            kind: sup.kind,
+            vertex: sup.vertex,
+            position: arr(positions[sup.vertex]),
+            force: arr(force),
+            moment: arr(moment),
+        });
+    }
+    let worst = |i: usize| {
+        structures_of_rod
+            .iter()
+            .map(|&k| balances[k][i])
+            .fold(0.0, f64::max)
+    };
+    let converged = part_reports.iter().all(|r| r.converged());
+    RodResult {
+        name: rod.name.clone(),
+        positions: positions.iter().map(|p| arr(*p)).collect(),
+        frames,
+        curvature,
+        twist,
+        edge_strain,
+        min_bend_radius: if kappa_max > 0.0 {
+            1.0 / kappa_max
+        } else {
+            f64::INFINITY
+        },
+        tight_vertices,
+        supports,
+        applied_force: arr(applied_force),
+        applied_moment: arr(applied_moment),
+        force_imbalance: worst(0),
+        moment_imbalance: worst(1),
+        relative_force_imbalance: worst(2),
+        relative_moment_imbalance: worst(3),
+        reports: part_reports,
+        converged,
+        stable: structures_of_rod.iter().all(|&k| stability[k].stable),
+    }
+}

@@ -1,0 +1,962 @@
+//! The incremental simulation API: a compiled scene with its last equilibrium, edited and
+//! re-solved warm — the engine behind interactive cable editing (`slender view`) and behind
+//! `slender solve`'s prescribed motion (one code path).
+//!
+//! A [`Session`] owns the scene as edited (so that it can be saved), its structures, one state,
+//! one backup state and one solver (Newton workspace, symbolic factorization, eigen buffers)
+//! per structure. Moving a support is a load path of the structures that hold it (the
+//! solver's continuation splits a large move into steps); a re-solve that does not converge
+//! restores the last equilibrium and says so; an equilibrium that is unstable is, by default,
+//! followed along its unstable mode to a stable one (and reported). Edits that change the
+//! structure (adding a clip, removing a support) recompile the scene and carry the last
+//! equilibrium over (see [`RodSnapshot`](crate::rod::RodSnapshot)).
+
+use nalgebra::Rotation3;
+
+use crate::geometry::Vec3;
+use crate::linalg::AdaptiveMatrix;
+use crate::rod::{ClampHold, RodSnapshot};
+use crate::solver::{follow_unstable_mode, EquilibriumSolver, SolveReport, SolveStatus};
+use crate::structure::{MemberState, StructureState};
+
+use super::compile::{CompiledScene, MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
+use super::error::SceneError;
+use super::result::{scene_results, SceneStep, StabilityResult};
+use super::shells::{solve_shell, ShellResult};
+use super::spec::{MotionStage, Scene, SupportKind, SupportSpec, UnstablePolicy};
+
+/// Kick of a branch switch: the largest coordinate change, as a fraction of the structure's
+/// length.
+const SWITCH_AMPLITUDE: f64 = 1e-2;
+/// Newton iterations allowed for the minimization after a branch-switch kick.
+const SWITCH_ITERATIONS: usize = 2000;
+/// Largest number of load steps one edit may need before it is refused as too large.
+const MAX_EDIT_STEPS: f64 = 1000.0;
+
+/// Where a support is: its vertex position and its orientation relative to the file's rest
+/// orientation (identity for pins and sliders; for a twist hold, a rotation about its edge).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SupportPose {
+    /// Position (m) of the support's vertex.
+    pub position: Vec3,
+    /// Orientation relative to rest.
+    pub rotation: Rotation3<f64>,
+}
+
+/// The outcome of one edit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EditReport {
+    /// True if every re-solved structure converged (else the last equilibrium was kept).
+    pub converged: bool,
+    /// Why not, if not.
+    pub reason: Option<String>,
+    /// Structures re-solved.
+    pub structures: Vec<usize>,
+    /// Newton iterations over them.
+    pub iterations: usize,
+    /// Load steps over them.
+    pub load_steps: usize,
+    /// Largest relative residual of the re-solved structures.
+    pub relative_residual: f64,
+    /// True if every equilibrium of the scene is stable now.
+    pub stable: bool,
+    /// True if an unstable equilibrium was followed to a stable one during this edit.
+    pub followed_unstable_mode: bool,
+}
+
+struct Run {
+    state: StructureState,
+    backup: StructureState,
+    solver: EquilibriumSolver<StructureState, AdaptiveMatrix>,
+    report: SolveReport,
+    stability: StabilityResult,
+}
+
+/// A scene being solved and edited (see the module docs).
+pub struct Session {
+    spec: Scene,
+    scene: CompiledScene,
+    runs: Vec<Run>,
+    shells: Vec<ShellResult>,
+    /// Per rod, per support: where it is now.
+    poses: Vec<Vec<SupportPose>>,
+    /// Per rod, per support: where it was at rest (the saved scene moves it from there).
+    rest_poses: Vec<Vec<SupportPose>>,
+    unstable: UnstablePolicy,
+    /// Pose of the moving support when the current motion stage started.
+    stage_start: Option<SupportPose>,
+}
+
+impl Session {
+    /// Compiles `spec` and solves the loaded scene (loads ramped from the rest state).
+    pub fn new(spec: Scene) -> Result<Self, SceneError> {
+        let scene = spec.compile()?;
+        Ok(Self::from_compiled(spec, scene))
+    }
+
+    /// Solves the loaded scene `scene`, compiled from `spec`.
+    pub fn from_compiled(spec: Scene, scene: CompiledScene) -> Self {
+        let unstable = scene.unstable;
+        let mut runs = Vec::with_capacity(scene.structures.len());
+        for s in &scene.structures {
+            let rest = s.rest_state().clone();
+            let mut solver = EquilibriumSolver::new(s, &rest, scene.solver);
+            let mut state = rest.clone();
+            let report = solver.solve_in_place(s, &mut state, 0.0, 1.0);
+            runs.push(Run {
+                backup: state.clone(),
+                stability: StabilityResult::of(&report),
+                state,
+                solver,
+                report,
+            });
+        }
+        let shells = scene
+            .shells
+            .iter()
+            .map(|s| solve_shell(s, &scene.solver))
+            .collect();
+        let poses = rest_poses(&scene, &runs);
+        let mut me = Self {
+            spec,
+            rest_poses: poses.clone(),
+            poses,
+            scene,
+            runs,
+            shells,
+            unstable,
+            stage_start: None,
+        };
+        for k in 0..me.runs.len() {
+            me.stabilize(k);
+        }
+        me
+    }
+
+    /// The scene as edited (save it to get the same equilibrium back: see [`Self::saved`]).
+    pub fn spec(&self) -> &Scene {
+        &self.spec
+    }
+
+    /// The compiled scene.
+    pub fn compiled(&self) -> &CompiledScene {
+        &self.scene
+    }
+
+    /// The state of structure `k`.
+    pub fn state(&self, k: usize) -> &StructureState {
+        &self.runs[k].state
+    }
+
+    /// The last solve report of structure `k`.
+    pub fn report(&self, k: usize) -> &SolveReport {
+        &self.runs[k].report
+    }
+
+    /// Where support `support` of rod `rod` is now.
+    pub fn pose(&self, rod: usize, support: usize) -> Option<SupportPose> {
+        self.poses.get(rod)?.get(support).copied()
+    }
+
+    /// What to do with unstable equilibria from now on.
+    pub fn set_unstable_policy(&mut self, p: UnstablePolicy) {
+        self.unstable = p;
+        self.spec.unstable = p;
+        for run in self.runs.iter_mut() {
+            run.solver.params.follow_stable = p == UnstablePolicy::Follow;
+        }
+    }
+
+    /// The results of the current equilibria (allocates: for output, not for re-solves).
+    pub fn results(
+        &self,
+        step: usize,
+        stage: Option<usize>,
+        stage_fraction: f64,
+        pieces: usize,
+    ) -> SceneStep {
+        let states: Vec<StructureState> = self.runs.iter().map(|r| r.state.clone()).collect();
+        let reports: Vec<SolveReport> = self.runs.iter().map(|r| r.report.clone()).collect();
+        let stability: Vec<StabilityResult> =
+            self.runs.iter().map(|r| r.stability.clone()).collect();
+        let (rods, structures) = scene_results(&self.scene, &states, &reports, &stability);
+        let converged = rods.iter().all(|r| r.converged) && self.shells.iter().all(|s| s.converged);
+        let stable = structures.iter().all(|s| s.stability.stable);
+        SceneStep {
+            step,
+            stage,
+            stage_fraction,
+            seconds: 0.0,
+            pieces,
+            rods,
+            structures,
+            shells: self.shells.clone(),
+            converged,
+            stable,
+        }
+    }
+
+    /// Follows an unstable equilibrium of structure `k` to a stable one when the policy says
+    /// so; records what happened.
+    fn stabilize(&mut self, k: usize) -> bool {
+        let run = &mut self.runs[k];
+        run.stability = StabilityResult::of(&run.report);
+        if self.unstable != UnstablePolicy::Follow
+            || !run.report.converged()
+            || run.stability.unstable_modes == 0
+        {
+            return false;
+        }
+        let s = &self.scene.structures[k];
+        let length: f64 = s
+            .members()
+            .iter()
+            .filter_map(|m| m.as_der())
+            .map(|r| r.length())
+            .sum();
+        let left = run.stability.unstable_modes;
+        match follow_unstable_mode(
+            s,
+            &mut run.solver,
+            &mut run.state,
+            1.0,
+            SWITCH_AMPLITUDE * length,
+            SWITCH_ITERATIONS,
+        ) {
+            Some(switch) => {
+                run.report = switch.report;
+                run.stability = StabilityResult {
+                    followed_unstable_mode: true,
+                    left_unstable_modes: left,
+                    energy_drop: switch.energy_drop,
+                    ..StabilityResult::of(&run.report)
+                };
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Makes the unstable equilibria stable now (branch switch), whatever the policy.
+    pub fn follow_stable(&mut self) -> EditReport {
+        let policy = self.unstable;
+        self.unstable = UnstablePolicy::Follow;
+        let mut followed = false;
+        let ks: Vec<usize> = (0..self.runs.len()).collect();
+        for &k in &ks {
+            followed |= self.stabilize(k);
+        }
+        self.unstable = policy;
+        let mut r = self.summary(&ks, None);
+        r.followed_unstable_mode = followed;
+        r
+    }
+
+    fn summary(&self, ks: &[usize], reason: Option<String>) -> EditReport {
+        let mut r = EditReport {
+            converged: reason.is_none(),
+            reason,
+            structures: ks.to_vec(),
+            iterations: 0,
+            load_steps: 0,
+            relative_residual: 0.0,
+            stable: self.runs.iter().all(|r| r.stability.stable),
+            followed_unstable_mode: false,
+        };
+        for &k in ks {
+            let rep = &self.runs[k].report;
+            r.iterations += rep.iterations;
+            r.load_steps += rep.load_steps;
+            r.relative_residual = r.relative_residual.max(rep.relative_residual);
+            r.followed_unstable_mode |= self.runs[k].stability.followed_unstable_mode;
+        }
+        r
+    }
+
+    /// Moves support `support` of rod `rod` to `target` and re-solves warm from the last
+    /// equilibrium. A move that does not converge leaves the support and the equilibrium where
+    /// they were and says so. Errors (nothing changed): an unknown support, a non-finite pose,
+    /// a rotation of a pin or slider, a translation of a twist hold, a move too large.
+    pub fn move_support(
+        &mut self,
+        rod: usize,
+        support: usize,
+        target: SupportPose,
+    ) -> Result<EditReport, SceneError> {
+        let path = format!("rods[{rod}].supports[{support}]");
+        let Some(cur) = self.pose(rod, support) else {
+            return Err(SceneError::new(
+                path,
+                format!(
+                    "no such support (rods: {}, supports of this rod: {})",
+                    self.scene.rods.len(),
+                    self.scene.rods.get(rod).map_or(0, |r| r.supports.len())
+                ),
+            ));
+        };
+        if target.position.iter().any(|c| !c.is_finite())
+            || target.rotation.matrix().iter().any(|c| !c.is_finite())
+        {
+            return Err(SceneError::new(path, "the target pose must be finite"));
+        }
+        let rotation = (target.rotation * cur.rotation.inverse()).scaled_axis();
+        let translation = target.position - cur.position;
+        let crod = &self.scene.rods[rod];
+        let sup = crod.supports[support].clone();
+        match sup.kind {
+            SupportKind::Pin | SupportKind::Slider if rotation.norm() > 1e-12 => {
+                return Err(SceneError::new(
+                    format!("{path}.rotation"),
+                    "a pin or slider has no orientation: only translate it",
+                ));
+            }
+            SupportKind::TwistHold if translation.norm() > 0.0 => {
+                return Err(SceneError::new(
+                    format!("{path}.position"),
+                    "a twist hold has no position: only turn it about its edge",
+                ));
+            }
+            _ => {}
+        }
+        let shortest = crod
+            .parts
+            .iter()
+            .map(|p| {
+                self.scene.structures[p.structure].members()[p.member]
+                    .as_der()
+                    .map_or(f64::INFINITY, |r| r.length())
+            })
+            .fold(f64::INFINITY, f64::min);
+        let steps = (rotation.norm() / MAX_STEP_ROTATION)
+            .max(translation.norm() / (MAX_STEP_TRANSLATION * shortest))
+            .ceil()
+            .max(1.0);
+        if !(steps <= MAX_EDIT_STEPS) {
+            return Err(SceneError::new(
+                path,
+                format!(
+                    "the move ({:.3e} m, {:.3e} rad) is too large for one edit (at most {} m and {} rad)",
+                    translation.norm(),
+                    rotation.norm(),
+                    MAX_EDIT_STEPS * MAX_STEP_TRANSLATION * shortest,
+                    MAX_EDIT_STEPS * MAX_STEP_ROTATION
+                ),
+            ));
+        }
+        // Set the load paths of the parts holding the support.
+        let mut affected: Vec<usize> = Vec::new();
+        for part in &crod.parts {
+            let k = part.structure;
+            let structure = &mut self.scene.structures[k];
+            let local = |v: usize| v - part.first_vertex;
+            let run = &self.runs[k];
+            let MemberState::Der(rs) = &run.state.members[part.member];
+            match sup.kind {
+                SupportKind::Clamp | SupportKind::Pin | SupportKind::Clip => {
+                    let held: Vec<usize> = sup
+                        .held
+                        .iter()
+                        .filter(|&&h| part.contains(h))
+                        .map(|&h| local(h))
+                        .collect();
+                    if held.is_empty() {
+                        continue;
+                    }
+                    let pivot = if part.contains(sup.vertex) {
+                        rs.positions()[local(sup.vertex)]
+                    } else {
+                        cur.position
+                    };
+                    let r = structure.member_mut(part.member).as_der_mut().expect("rod");
+                    r.set_support_motion(&held, pivot, rotation, translation)
+                        .map_err(|e| SceneError::model(path.clone(), e))?;
+                }
+                SupportKind::Slider => {
+                    if !part.contains(sup.vertex) {
+                        continue;
+                    }
+                    let lv = local(sup.vertex);
+                    let Some(i) = structure
+                        .sliders()
+                        .iter()
+                        .position(|s| s.member == part.member && s.vertex == lv)
+                    else {
+                        continue;
+                    };
+                    structure.set_slider_motion(i, translation);
+                }
+                SupportKind::TwistHold => {
+                    let e = sup.edge.expect("edge");
+                    if !(e >= part.first_vertex && e + 1 < part.first_vertex + part.n_vertices) {
+                        continue;
+                    }
+                    let le = e - part.first_vertex;
+                    let Some(i) = structure
+                        .holds()
+                        .iter()
+                        .position(|h| h.member == part.member && h.edge == le)
+                    else {
+                        continue;
+                    };
+                    let t = rs
+                        .frames()
+                        .edge(crate::rod::frames::EdgeId::Real(le))
+                        .tangent;
+                    structure.set_hold_motion(i, rotation.dot(&t));
+                }
+            }
+            if !affected.contains(&k) {
+                affected.push(k);
+            }
+        }
+        let mut reason = None;
+        for &k in &affected {
+            let run = &mut self.runs[k];
+            let s = &self.scene.structures[k];
+            run.backup.clone_from(&run.state);
+            let user = run.solver.params;
+            let piece = 1.0 / steps;
+            run.solver.params.initial_load_step = user.initial_load_step.min(piece);
+            run.solver.params.max_load_step = user.max_load_step.min(piece);
+            let report = run.solver.solve_in_place(s, &mut run.state, 0.0, 1.0);
+            run.solver.params = user;
+            if !report.converged() {
+                if reason.is_none() {
+                    reason = Some(match &report.status {
+                        SolveStatus::NotConverged { reason } => reason.clone(),
+                        SolveStatus::Converged => String::new(),
+                    });
+                }
+            }
+            run.report = report;
+        }
+        for &k in &affected {
+            let structure = &mut self.scene.structures[k];
+            structure.clear_paths();
+        }
+        if reason.is_some() {
+            // Back to the last equilibrium: the support stays where it was.
+            for &k in &affected {
+                let run = &mut self.runs[k];
+                run.state.clone_from(&run.backup);
+                run.report.status = SolveStatus::NotConverged {
+                    reason: format!(
+                        "the move did not converge ({}); the last equilibrium is kept",
+                        reason.as_deref().unwrap_or("")
+                    ),
+                };
+            }
+            return Ok(self.summary(&affected, reason));
+        }
+        self.poses[rod][support] = target;
+        let mut followed = false;
+        for &k in &affected {
+            followed |= self.stabilize(k);
+        }
+        let mut r = self.summary(&affected, None);
+        r.followed_unstable_mode = followed;
+        Ok(r)
+    }
+
+    /// Moves a support by a rotation vector (rad, about its vertex) and a translation (m).
+    pub fn move_support_by(
+        &mut self,
+        rod: usize,
+        support: usize,
+        rotation: Vec3,
+        translation: Vec3,
+    ) -> Result<EditReport, SceneError> {
+        let Some(cur) = self.pose(rod, support) else {
+            return self.move_support(
+                rod,
+                support,
+                SupportPose {
+                    position: Vec3::zeros(),
+                    rotation: Rotation3::identity(),
+                },
+            );
+        };
+        self.move_support(
+            rod,
+            support,
+            SupportPose {
+                position: cur.position + translation,
+                rotation: Rotation3::new(rotation) * cur.rotation,
+            },
+        )
+    }
+
+    /// Changes gravity (m/s²) and re-solves warm (the change is a load path).
+    pub fn set_gravity(&mut self, g: [f64; 3]) -> Result<EditReport, SceneError> {
+        if g.iter().any(|c| !c.is_finite())
+            || g.iter()
+                .any(|c| c.abs() > super::magnitudes::MAGNITUDE_LIMIT)
+        {
+            return Err(SceneError::new(
+                "gravity",
+                format!("{g:?}: must be finite and of sensible magnitude"),
+            ));
+        }
+        let g = Vec3::from(g);
+        let old = Vec3::from(self.spec.gravity);
+        let ks: Vec<usize> = (0..self.runs.len()).collect();
+        for s in self.scene.structures.iter_mut() {
+            for m in 0..s.members().len() {
+                if let Some(r) = s.member_mut(m).as_der_mut() {
+                    r.set_gravity(g);
+                    r.set_load_path(crate::rod::RodLoadPath::gravity_change(old))
+                        .map_err(|e| SceneError::model("gravity", e))?;
+                }
+            }
+        }
+        let mut reason = None;
+        for &k in &ks {
+            let run = &mut self.runs[k];
+            let s = &self.scene.structures[k];
+            run.backup.clone_from(&run.state);
+            let report = run.solver.solve_in_place(s, &mut run.state, 0.0, 1.0);
+            if !report.converged() && reason.is_none() {
+                reason = Some(format!("{:?}", report.status));
+            }
+            run.report = report;
+        }
+        for s in self.scene.structures.iter_mut() {
+            s.clear_paths();
+        }
+        if reason.is_some() {
+            for s in self.scene.structures.iter_mut() {
+                for m in 0..s.members().len() {
+                    if let Some(r) = s.member_mut(m).as_der_mut() {
+                        r.set_gravity(old);
+                    }
+                }
+            }
+            for run in self.runs.iter_mut() {
+                run.state.clone_from(&run.backup);
+            }
+            return Ok(self.summary(&ks, reason));
+        }
+        self.spec.gravity = [g.x, g.y, g.z];
+        self.scene.gravity = self.spec.gravity;
+        let mut followed = false;
+        for &k in &ks {
+            followed |= self.stabilize(k);
+        }
+        let mut r = self.summary(&ks, None);
+        r.followed_unstable_mode = followed;
+        Ok(r)
+    }
+
+    /// Adds a support to rod `rod` where the rod is now (a clip or pin holds the current
+    /// position and tangent; a slider or twist hold its current line or angle) and re-solves.
+    /// Clamps are added in the scene file, not here.
+    pub fn add_support(
+        &mut self,
+        rod: usize,
+        support: SupportSpec,
+    ) -> Result<EditReport, SceneError> {
+        if support.kind == SupportKind::Clamp {
+            return Err(SceneError::new(
+                format!("rods[{rod}].supports"),
+                "clamps are added in the scene file; add a clip, pin, slider or twist hold here",
+            ));
+        }
+        let mut spec = self.spec.clone();
+        let Some(r) = spec.rods.get_mut(rod) else {
+            return Err(SceneError::new("rods", format!("{rod}: no such rod")));
+        };
+        r.supports.push(support);
+        self.rebuild(spec)
+    }
+
+    /// Removes support `support` of rod `rod` and re-solves from the current shape.
+    pub fn remove_support(&mut self, rod: usize, support: usize) -> Result<EditReport, SceneError> {
+        let mut spec = self.spec.clone();
+        let n = spec.rods.get(rod).map_or(0, |r| r.supports.len());
+        if support >= n {
+            return Err(SceneError::new(
+                format!("rods[{rod}].supports[{support}]"),
+                format!("no such support (the rod has {n})"),
+            ));
+        }
+        spec.rods[rod].supports.remove(support);
+        // Motion stages of that rod's supports are renumbered (the saved scene re-derives
+        // them from the poses).
+        spec.motion
+            .retain(|m| !(m.rod == rod && m.support == support));
+        for m in spec.motion.iter_mut() {
+            if m.rod == rod && m.support > support {
+                m.support -= 1;
+            }
+        }
+        self.rebuild_removing(spec, rod, support)
+    }
+
+    fn rebuild_removing(
+        &mut self,
+        spec: Scene,
+        rod: usize,
+        support: usize,
+    ) -> Result<EditReport, SceneError> {
+        let mut poses = self.poses.clone();
+        let mut rest = self.rest_poses.clone();
+        poses[rod].remove(support);
+        rest[rod].remove(support);
+        self.rebuild_with(spec, poses, rest)
+    }
+
+    fn rebuild(&mut self, spec: Scene) -> Result<EditReport, SceneError> {
+        let poses = self.poses.clone();
+        let rest = self.rest_poses.clone();
+        self.rebuild_with(spec, poses, rest)
+    }
+
+    /// Recompiles `spec` and carries the current equilibrium over; the new supports hold the
+    /// rod where it is.
+    fn rebuild_with(
+        &mut self,
+        spec: Scene,
+        mut poses: Vec<Vec<SupportPose>>,
+        mut rest: Vec<Vec<SupportPose>>,
+    ) -> Result<EditReport, SceneError> {
+        let mut scene = spec.compile()?;
+        // Supports keep their current poses: the scene's rest positions are where the file
+        // has them, so carry the moved ones by shapes, not by the file.
+        let stitched: Vec<(RodSnapshot, Vec<InteriorClamp>)> = (0..self.scene.rods.len())
+            .map(|r| self.rod_snapshot(r))
+            .collect();
+        let snapshots: Vec<RodSnapshot> = stitched.iter().map(|s| s.0.clone()).collect();
+        let mut runs = Vec::with_capacity(scene.structures.len());
+        for (k, s) in scene.structures.iter().enumerate() {
+            let mut state = s.rest_state().clone();
+            for (r, rod) in scene.rods.iter().enumerate() {
+                let old = &self.scene.rods[r];
+                let snap = &snapshots[r];
+                // Old and new vertices: the new mesh may have more (a vertex inserted for a
+                // support given by arc length); map each new vertex to the old shape.
+                let mapped = remesh(snap, &old.node_arclengths, &rod.node_arclengths);
+                for part in rod.parts.iter().filter(|p| p.structure == k) {
+                    let a = part.first_vertex;
+                    let b = a + part.n_vertices - 1;
+                    let holds = [
+                        clamp_hold_at(&stitched[r], &self.scene, r, a, true),
+                        clamp_hold_at(&stitched[r], &self.scene, r, b, false),
+                    ];
+                    let sub = mapped.slice(a, b, holds);
+                    let member = s.members()[part.member].as_der().expect("rod");
+                    state.members[part.member] = MemberState::Der(member.state_from_snapshot(&sub));
+                }
+            }
+            s.reset_joint_twists(&mut state);
+            let mut solver = EquilibriumSolver::new(s, &state, scene.solver);
+            let report = solver.solve_in_place(s, &mut state, 1.0, 1.0);
+            runs.push(Run {
+                backup: state.clone(),
+                stability: StabilityResult::of(&report),
+                state,
+                solver,
+                report,
+            });
+        }
+        if let Some((k, r)) = runs.iter().enumerate().find(|(_, r)| !r.report.converged()) {
+            return Err(SceneError::new(
+                "supports",
+                format!("the edited scene does not converge from the current shape (structure {k}: {:?}); nothing was changed", r.report.status),
+            ));
+        }
+        // New supports hold the rod where it is now; their rest pose is where the file's
+        // geometry has them, so that the saved scene moves them there from it.
+        for (r, rod) in scene.rods.iter().enumerate() {
+            while poses[r].len() < rod.supports.len() {
+                let s = &rod.supports[poses[r].len()];
+                let now = remesh(
+                    &snapshots[r],
+                    &self.scene.rods[r].node_arclengths,
+                    &rod.node_arclengths,
+                );
+                let part = rod
+                    .parts
+                    .iter()
+                    .find(|p| p.contains(s.vertex))
+                    .expect("part");
+                let member = scene.structures[part.structure].members()[part.member]
+                    .as_der()
+                    .expect("rod");
+                let rest_x = member.rest_state().positions();
+                let lv = s.vertex - part.first_vertex;
+                let mut rotation = Rotation3::identity();
+                if s.kind == SupportKind::Clip {
+                    let (a, b) = if s.vertex == rod.n_edges {
+                        (s.vertex - 1, s.vertex)
+                    } else {
+                        (s.vertex, s.vertex + 1)
+                    };
+                    let (la, lb) = (
+                        a - part.first_vertex,
+                        b.min(part.first_vertex + part.n_vertices - 1) - part.first_vertex,
+                    );
+                    let t0 = (rest_x[lb] - rest_x[la]).normalize();
+                    let t1 = (now.positions[b] - now.positions[a]).normalize();
+                    rotation =
+                        Rotation3::rotation_between(&t0, &t1).unwrap_or_else(Rotation3::identity);
+                }
+                poses[r].push(SupportPose {
+                    position: now.positions[s.vertex],
+                    rotation,
+                });
+                rest[r].push(SupportPose {
+                    position: rest_x[lv],
+                    rotation: Rotation3::identity(),
+                });
+            }
+        }
+        std::mem::swap(&mut self.scene, &mut scene);
+        self.spec = spec;
+        self.runs = runs;
+        self.poses = poses;
+        self.rest_poses = rest;
+        let ks: Vec<usize> = (0..self.runs.len()).collect();
+        let mut followed = false;
+        for &k in &ks {
+            followed |= self.stabilize(k);
+        }
+        let mut r = self.summary(&ks, None);
+        r.followed_unstable_mode = followed;
+        Ok(r)
+    }
+
+    /// The whole rod `r` as one snapshot, stitched from its parts, with the holds of its
+    /// interior clamps.
+    fn rod_snapshot(&self, r: usize) -> (RodSnapshot, Vec<InteriorClamp>) {
+        let rod = &self.scene.rods[r];
+        let n = rod.n_edges;
+        let mut snap = RodSnapshot {
+            positions: vec![Vec3::zeros(); n + 1],
+            m1: vec![Vec3::zeros(); n],
+            twists: vec![0.0; n.saturating_sub(1)],
+            clamps: [None, None],
+            load_angles: Vec::new(),
+        };
+        let mut boundary: Vec<(usize, f64)> = Vec::new();
+        let mut interior: Vec<InteriorClamp> = Vec::new();
+        for (pi, part) in rod.parts.iter().enumerate() {
+            let s = &self.scene.structures[part.structure];
+            let member = s.members()[part.member].as_der().expect("rod");
+            let MemberState::Der(rs) = &self.runs[part.structure].state.members[part.member];
+            let ps = member.snapshot(rs);
+            let a = part.first_vertex;
+            for (k, p) in ps.positions.iter().enumerate() {
+                snap.positions[a + k] = *p;
+            }
+            for (k, m) in ps.m1.iter().enumerate() {
+                snap.m1[a + k] = *m;
+            }
+            for (k, t) in ps.twists.iter().enumerate() {
+                snap.twists[a + k] = *t;
+            }
+            // Clamp hinges at interior clamps: the two halves' twists add up to the hinge
+            // across the clamp, should the clamp go.
+            if pi > 0 {
+                if let Some(c) = ps.clamps[0] {
+                    boundary.push((a, c.twist));
+                    interior.push(InteriorClamp {
+                        vertex: a,
+                        starts: Some(c),
+                        ends: None,
+                    });
+                }
+            } else {
+                snap.clamps[0] = ps.clamps[0];
+            }
+            if pi + 1 < rod.parts.len() {
+                if let Some(c) = ps.clamps[1] {
+                    let v = a + part.n_vertices - 1;
+                    boundary.push((v, c.twist));
+                    interior.push(InteriorClamp {
+                        vertex: v,
+                        starts: None,
+                        ends: Some(c),
+                    });
+                }
+            } else {
+                snap.clamps[1] = ps.clamps[1];
+            }
+        }
+        for (v, t) in boundary {
+            if v >= 1 && v < n {
+                snap.twists[v - 1] += t;
+            }
+        }
+        (snap, interior)
+    }
+
+    /// Number of motion steps over all stages of the scene file.
+    pub fn motion_steps(&self) -> usize {
+        self.scene.motion.iter().map(|m| m.steps).sum()
+    }
+
+    /// Runs step `step` (1-based over all stages) of the scene file's prescribed motion: the
+    /// support is moved to where the stage puts it at this step (from where the stage found
+    /// it), so a step that failed is made up by the next. Returns the step's results.
+    pub fn run_motion_step(&mut self, step: usize) -> SceneStep {
+        let (stage_index, k) = self.locate(step);
+        let stage: MotionStage = self.scene.motion[stage_index].clone();
+        if k == 0 {
+            self.stage_start = self.pose(stage.rod, stage.support);
+        }
+        let start = self.stage_start.expect("stage start");
+        let f = (k + 1) as f64 / stage.steps as f64;
+        let target = SupportPose {
+            position: start.position + Vec3::from(stage.translate) * f,
+            rotation: Rotation3::new(Vec3::from(stage.rotate) * f) * start.rotation,
+        };
+        let pieces = match self.move_support(stage.rod, stage.support, target) {
+            Ok(r) => r.load_steps,
+            Err(_) => 0,
+        };
+        self.results(step, Some(stage_index), f, pieces)
+    }
+
+    /// (stage, step within the stage) of global motion step `step` ≥ 1.
+    fn locate(&self, step: usize) -> (usize, usize) {
+        let mut left = step - 1;
+        for (i, m) in self.scene.motion.iter().enumerate() {
+            if left < m.steps {
+                return (i, left);
+            }
+            left -= m.steps;
+        }
+        panic!("motion step {step} is past the last stage");
+    }
+
+    /// The edited scene as a file: the supports as edited, gravity as set, and one motion
+    /// stage per moved support taking it from its rest pose to where it is now. Loading it
+    /// solves to the same equilibrium (for a structure with one stable equilibrium per pose).
+    pub fn saved(&self) -> Scene {
+        let mut spec = self.spec.clone();
+        spec.motion.clear();
+        for (r, poses) in self.poses.iter().enumerate() {
+            for (s, pose) in poses.iter().enumerate() {
+                let rest = self.rest_poses[r][s];
+                let rotation = (pose.rotation * rest.rotation.inverse()).scaled_axis();
+                let translation = pose.position - rest.position;
+                if rotation.norm() == 0.0 && translation.norm() == 0.0 {
+                    continue;
+                }
+                let length = self.scene.rods[r]
+                    .node_arclengths
+                    .last()
+                    .copied()
+                    .unwrap_or(1.0);
+                let steps = (rotation.norm() / MAX_STEP_ROTATION)
+                    .max(translation.norm() / (MAX_STEP_TRANSLATION * length))
+                    .ceil()
+                    .max(1.0) as usize;
+                spec.motion.push(MotionStage {
+                    rod: r,
+                    support: s,
+                    translate: [translation.x, translation.y, translation.z],
+                    rotate: [rotation.x, rotation.y, rotation.z],
+                    steps,
+                });
+            }
+        }
+        spec
+    }
+}
+
+/// The rest poses of every support (vertex positions of the solved loaded scene are where
+/// supports hold them; orientation identity).
+fn rest_poses(scene: &CompiledScene, runs: &[Run]) -> Vec<Vec<SupportPose>> {
+    scene
+        .rods
+        .iter()
+        .map(|rod| {
+            rod.supports
+                .iter()
+                .map(|s| {
+                    let part = rod
+                        .parts
+                        .iter()
+                        .find(|p| p.contains(s.vertex))
+                        .expect("vertex on a part");
+                    let st = &runs[part.structure].state.members[part.member];
+                    SupportPose {
+                        position: st.positions()[s.vertex - part.first_vertex],
+                        rotation: Rotation3::identity(),
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The holds of an interior clamp on the parts that end (`ends`) and start (`starts`) there.
+#[derive(Clone, Copy, Debug)]
+struct InteriorClamp {
+    vertex: usize,
+    starts: Option<ClampHold>,
+    ends: Option<ClampHold>,
+}
+
+/// The clamp hold of the old rod `r` at whole-rod vertex `v` (for the part that starts at it
+/// if `start`, else the one that ends there), if a clamp held it: at the rod's ends, or an
+/// interior clamp (either side's hold: both are the same clamp).
+fn clamp_hold_at(
+    stitched: &(RodSnapshot, Vec<InteriorClamp>),
+    scene: &CompiledScene,
+    r: usize,
+    v: usize,
+    start: bool,
+) -> Option<ClampHold> {
+    let n = scene.rods[r].n_edges;
+    if start && v == 0 {
+        return stitched.0.clamps[0];
+    }
+    if !start && v == n {
+        return stitched.0.clamps[1];
+    }
+    let at: Vec<&InteriorClamp> = stitched.1.iter().filter(|c| c.vertex == v).collect();
+    let own = at
+        .iter()
+        .find_map(|c| if start { c.starts } else { c.ends });
+    own.or_else(|| at.iter().find_map(|c| c.starts.or(c.ends)))
+}
+
+/// The snapshot on a mesh with nodes `new` (rest arc lengths) from one on nodes `old`; new
+/// nodes inside an old edge are placed on that edge (positions interpolated, the edge's
+/// material frame and no twist at the new hinge).
+fn remesh(snap: &RodSnapshot, old: &[f64], new: &[f64]) -> RodSnapshot {
+    if old.len() == new.len() {
+        return snap.clone();
+    }
+    let n = new.len() - 1;
+    let mut out = RodSnapshot {
+        positions: Vec::with_capacity(n + 1),
+        m1: Vec::with_capacity(n),
+        twists: Vec::with_capacity(n.saturating_sub(1)),
+        clamps: snap.clamps,
+        load_angles: snap.load_angles.clone(),
+    };
+    let edge_of = |s: f64| -> usize {
+        old.partition_point(|&x| x <= s)
+            .saturating_sub(1)
+            .min(old.len() - 2)
+    };
+    for &s in new {
+        let j = edge_of(s);
+        let u = (s - old[j]) / (old[j + 1] - old[j]);
+        out.positions
+            .push(snap.positions[j] * (1.0 - u) + snap.positions[j + 1] * u);
+    }
+    for w in new.windows(2) {
+        out.m1.push(snap.m1[edge_of(0.5 * (w[0] + w[1]))]);
+    }
+    for &s in &new[1..n] {
+        match old.iter().position(|&x| x == s) {
+            Some(v) if v >= 1 && v < old.len() - 1 => out.twists.push(snap.twists[v - 1]),
+            _ => out.twists.push(0.0),
+        }
+    }
+    out
+}

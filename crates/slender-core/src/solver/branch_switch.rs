@@ -1,0 +1,111 @@
+//! Branch switching: from a converged *unstable* equilibrium, follow its lowest mode to a stable
+//! one (design.md §4.5). The state is kicked along ± the mode and minimized from both kicks; the
+//! stable result of lower energy wins (in symmetric problems the two are mirror images). Where
+//! the result is still unstable (several unstable modes), the switch is repeated along the new
+//! lowest mode.
+
+use super::continuation::EquilibriumSolver;
+use super::problem::EquilibriumProblem;
+use super::report::SolveReport;
+
+/// Largest number of successive switches (each along the lowest mode of the last result).
+const MAX_SWITCHES: usize = 6;
+
+/// What a branch switch did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BranchSwitch {
+    /// Energy of the new equilibrium minus that of the unstable one (J; negative).
+    pub energy_drop: f64,
+    /// Number of switches made (successive unstable modes followed).
+    pub switches: usize,
+    /// The solve report of the new equilibrium.
+    pub report: SolveReport,
+}
+
+/// The kick scale that moves the largest coordinate DOF of `mode` (DOFs with force length 1)
+/// by `amplitude` (m).
+pub fn kick_scale<P: EquilibriumProblem>(problem: &P, mode: &[f64], amplitude: f64) -> f64 {
+    let largest = (0..mode.len())
+        .filter(|&i| problem.force_length(i) == 1.0)
+        .map(|i| mode[i].abs())
+        .fold(0.0, f64::max);
+    if largest > 0.0 {
+        amplitude / largest
+    } else {
+        0.0
+    }
+}
+
+/// From the converged unstable equilibrium `state` at load factor `load` (the solver's last
+/// solve, with its lowest mode computed), follows the lowest mode to a stable equilibrium with
+/// minimizations of at most `max_iterations` Newton iterations, kicking by `amplitude` (m, the
+/// largest coordinate change). On success `state` is the new equilibrium; on failure it is left
+/// unchanged and `None` returned.
+pub fn follow_unstable_mode<P: EquilibriumProblem>(
+    problem: &P,
+    solver: &mut EquilibriumSolver<P::State, P::Hessian>,
+    state: &mut P::State,
+    load: f64,
+    amplitude: f64,
+    max_iterations: usize,
+) -> Option<BranchSwitch> {
+    let e0 = problem.energy(state, load);
+    let saved = solver.params;
+    solver.params.max_iterations = saved.max_iterations.max(max_iterations);
+    solver.params.compute_lambda_min = true;
+    let mut current = state.clone();
+    let mut result = None;
+    for switch in 1..=MAX_SWITCHES {
+        let Some(mode) = solver.lowest_mode().map(|m| m.shape.clone()) else {
+            break;
+        };
+        let scale = kick_scale(problem, &mode, amplitude);
+        if !(scale > 0.0) {
+            break;
+        }
+        let mut best: Option<(f64, P::State, SolveReport)> = None;
+        let mut kicked = current.clone();
+        for sign in [1.0, -1.0] {
+            problem.displace(&current, &mode, sign * scale, &mut kicked);
+            let report = solver.solve_in_place(problem, &mut kicked, load, load);
+            if !report.converged() {
+                continue;
+            }
+            let e = problem.energy(&kicked, load);
+            let better = match &best {
+                None => true,
+                Some((eb, _, rb)) => {
+                    let (s_new, s_old) = (report.stable() == Some(true), rb.stable() == Some(true));
+                    (s_new && !s_old) || (s_new == s_old && e < *eb)
+                }
+            };
+            if better {
+                best = Some((e, kicked.clone(), report));
+            }
+        }
+        let Some((e, s, report)) = best else { break };
+        current = s;
+        let stable = report.stable() == Some(true);
+        result = Some(BranchSwitch {
+            energy_drop: e - e0,
+            switches: switch,
+            report,
+        });
+        if stable {
+            break;
+        }
+        // Re-solve at the new state so that the solver holds its lowest mode for the next switch.
+        let r = solver.solve_in_place(problem, &mut current, load, load);
+        if !r.converged() {
+            break;
+        }
+    }
+    solver.params = saved;
+    match result {
+        Some(r) if r.energy_drop <= 0.0 => {
+            *state = current;
+            Some(r)
+        }
+        _ => None,
+    }
+}
