@@ -444,3 +444,38 @@ fn the_membrane_rule_leaves_no_zero_energy_mode() {
         assert!(sol.report.lambda_min.unwrap() > 0.0);
     }
 }
+
+#[test]
+fn strongly_bent_strips_on_graded_meshes_are_stable() {
+    // Regression for the membrane rule: with Greville points across the width too, a strongly
+    // bent strip on the boundary-layer mesh (elements 30 times longer across than along near
+    // the clamp) showed in-plane mechanisms turned unstable by the membrane stress (negative
+    // eigenvalues of order −10⁶ D/(ρhL⁴)). A hanging cantilever is stable.
+    let p = ShellProperties {
+        length: 0.1,
+        width: 0.01,
+        thickness: 0.2e-3,
+        young: 10530e6,
+        poisson: 0.35,
+        density: 1000.0,
+    };
+    for (n_length, n_width, gamma) in [(30, 3, 522.0), (30, 1, 522.0), (8, 1, 3070.0)] {
+        let shell = BsplineShellBuilder::new(p)
+            .elements(n_length, n_width)
+            .grading(Grading::BoundaryLayer { gamma })
+            .gravity(Vector3::new(0.0, -p.gravity_for_gamma(gamma), 0.0))
+            .build()
+            .unwrap();
+        let start = shell.rest_state();
+        let mut solver = EquilibriumSolver::new(&shell, &start, SolverParams::default());
+        let sol = solver.solve(&shell, &start, 0.0, 1.0);
+        assert!(sol.report.converged(), "{:?}", sol.report.status);
+        assert_eq!(
+            sol.report.inertia.map(|i| i.negative),
+            Some(0),
+            "{n_length} × {n_width}, Γ = {gamma}: λ_min = {:?}",
+            sol.report.lambda_min_normalized
+        );
+        assert!(sol.report.iterations <= 60, "{}", sol.report.iterations);
+    }
+}

@@ -24,19 +24,24 @@ use super::quadrature::gauss_legendre;
 /// spline surface sampled at (p+1)² Gauss points per element cannot keep its membrane strain
 /// zero at all of them while it bends — it *locks*: far too stiff on coarse meshes. Measured
 /// on the shell cantilever (ν = 0, L/h = 500, cubic, n_L = 8): Δy/Δx −6.3 % at Γ = 10, −22 %
-/// at Γ = 10³ with Gauss points; reduced Gauss rules (3×3, 2×2) do not cure it. Sampling
-/// the membrane once per B-spline of one degree lower — at its Greville abscissa, weighted by
-/// its integral — leaves as many membrane constraints as a strain field of degree p − 1 has
-/// coefficients, the count of locking-free strain projections (Zou et al., CMAME 380 (2021),
-/// "Alleviating locking with Greville quadratures"): +0.03 % at Γ = 10 on the same mesh.
+/// at Γ = 10³ with Gauss points; reduced Gauss rules (3×3, 2×2) do not cure it. Sampling the
+/// membrane along the length once per B-spline of one degree lower — at its Greville
+/// abscissa, weighted by its integral — leaves as many membrane constraints along the strip
+/// as a strain field of degree p − 1 has coefficients, the count of locking-free strain
+/// projections (Zou et al., CMAME 380 (2021), "Alleviating locking with Greville
+/// quadratures"): +0.03 % at Γ = 10 on the same mesh. Across the width the rule stays Gauss:
+/// the Greville rule there left in-plane mechanisms that the membrane stress of a strongly
+/// bent strip turns unstable (measured: 2–10 negative Hessian eigenvalues of order −10⁶
+/// D/(ρhL⁴) at Γ ≥ 500 on the boundary-layer meshes of n_L = 30, none with Gauss across),
+/// while the strip's locking is in its bending along the length.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MembraneRule {
-    /// The patch-wide Greville rule of the degree-(p − 1) splines (default).
+    /// Along the length, the patch-wide Greville rule of the degree-(p − 1) splines; across
+    /// the width, p + 1 Gauss points per element (default).
     #[default]
     Greville,
-    /// The bending term's (p+1) × (p+1) Gauss points per element (locks on thin strips; kept
-    /// to measure locking).
+    /// (p+1) × (p+1) Gauss points per element (locks on thin strips; kept to measure locking).
     Gauss,
 }
 
@@ -341,7 +346,7 @@ fn element_terms<const NB: usize, const D: usize>(
     let (membrane_u, membrane_v) = match membrane_rule {
         MembraneRule::Greville => (
             greville_points(&patch.knots_u),
-            greville_points(&patch.knots_v),
+            gauss_points(&patch.knots_v, p + 1),
         ),
         MembraneRule::Gauss => (
             gauss_points(&patch.knots_u, p + 1),

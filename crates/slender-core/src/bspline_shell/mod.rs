@@ -12,8 +12,8 @@
 //! clamp, the combination that lets a shell reach the coarse-mesh accuracy the seed
 //! attributes to GeoXShell (eight elements along the length).
 //!
-//! The membrane energy is sampled at patch-wide Greville points (see [`MembraneRule`]): at
-//! the bending term's Gauss points a thin strip locks.
+//! The membrane energy is sampled at patch-wide Greville points along the length (see
+//! [`MembraneRule`]): at the bending term's Gauss points a thin strip locks.
 //!
 //! Geometry: length along x (parameter u ∈ [0, L], graded toward the start like the other
 //! models), width along z (v ∈ [−w/2, w/2]), rest normal +y. The Newton iteration uses the
