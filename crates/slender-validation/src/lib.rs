@@ -10,3 +10,4 @@ pub mod lateral_buckling;
 pub mod lateral_sweep;
 pub mod materials;
 pub mod ode;
+pub mod shell_model;
