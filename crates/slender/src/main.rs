@@ -22,8 +22,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use commands::{
-    bend_twist, cantilever, lateral_buckling, merge, scene_schema, sensitivity, solve as solve_cmd,
-    validate, view as view_cmd,
+    bend_twist, cantilever, lateral_buckling, master_curve, merge, scene_schema, sensitivity,
+    solve as solve_cmd, validate, view as view_cmd,
 };
 
 /// Large deformations of cables, hoses and flat cables, with the validation to prove them.
@@ -42,6 +42,9 @@ enum Command {
     /// The bend–twist bifurcation benchmark (seed §4, Figs. 6–8): 2-D or 3-D over a grid in
     /// (X, Y), decided by the seed's protocol and by stability, against the master curve.
     BendTwist(bend_twist::BendTwistArgs),
+    /// The bend–twist master curve alone at chosen Y and GJ/EI: the critical X_c1, X_c2 from
+    /// the linearized stability ODE (CSV, table, PNG + SVG), no rod discretization.
+    MasterCurve(master_curve::MasterCurveArgs),
     /// Run every benchmark and write the validation report OUT/index.html with a pass/fail
     /// table of the acceptance targets (exit code 1 if a target fails).
     Validate(validate::ValidateArgs),
@@ -69,6 +72,7 @@ fn run(cli: Cli) -> Result<bool> {
     match &cli.command {
         Command::Cantilever(a) => cantilever::run(a),
         Command::BendTwist(a) => bend_twist::run(a),
+        Command::MasterCurve(a) => master_curve::run(a),
         Command::Validate(a) => validate::run(a),
         Command::Merge(a) => merge::run(a),
         Command::Solve(a) => solve_cmd::run(a),

@@ -175,6 +175,7 @@ impl Benchmark for BendTwist {
         let sweep = &self.sweep;
         write_csv(&out.join("results.csv"), &r.records)?;
         write_csv(&out.join("disagreements.csv"), &r.summary.disagreements)?;
+        write_csv(&out.join("flagged.csv"), &r.summary.flagged)?;
         write_atomic(
             &out.join("summary.json"),
             serde_json::to_string_pretty(&r.summary)?.as_bytes(),
@@ -288,6 +289,15 @@ fn print_summary(s: &BendTwistSummary) {
             score.correct,
             score.scored,
             score.unclassified
+        );
+    }
+    if !s.flagged.is_empty() {
+        println!(
+            "  {} points not scored (out of regime or under-resolved; flagged.csv), e.g. X {:.4} Y {:.4}: {}",
+            s.flagged.len(),
+            s.flagged[0].x,
+            s.flagged[0].y,
+            s.flagged[0].reasons
         );
     }
     if !s.disagreements.is_empty() {

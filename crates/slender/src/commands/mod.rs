@@ -5,6 +5,7 @@
 pub mod bend_twist;
 pub mod cantilever;
 pub mod lateral_buckling;
+pub mod master_curve;
 pub mod merge;
 pub mod scene_schema;
 pub mod sensitivity;

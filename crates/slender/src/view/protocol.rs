@@ -24,10 +24,12 @@ pub const MAX_REQUEST_BYTES: usize = 1 << 20;
 /// A request from the page. Indices are 0-based: `rod` in the scene's `rods`, `support` in
 /// that rod's supports as the last [`ViewState`] lists them.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+// Field-less operations are empty struct variants (`State {}`), not unit variants: serde's
+// internally tagged unit variants ignore unknown keys even with `deny_unknown_fields`.
 #[serde(tag = "op", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Request {
     /// The current equilibria (no change).
-    State,
+    State {},
     /// Move a support to an absolute pose (what a drag sends).
     Move {
         /// Rod index.
@@ -77,16 +79,16 @@ pub enum Request {
         gravity: [f64; 3],
     },
     /// Follow every unstable equilibrium to a stable one now.
-    FollowStable,
+    FollowStable {},
     /// What to do with unstable equilibria from now on.
     UnstablePolicy {
         /// `follow` or `keep`.
         policy: UnstablePolicy,
     },
     /// The edited scene as TOML (its solve gives the current equilibrium).
-    Save,
+    Save {},
     /// The current shapes as glTF 2.0 (JSON with an embedded buffer).
-    Gltf,
+    Gltf {},
 }
 
 /// The error part of a reply: where and what.
@@ -168,16 +170,16 @@ fn error_reply(field: impl Into<String>, message: impl Into<String>) -> String {
 
 fn op_name(r: &Request) -> &'static str {
     match r {
-        Request::State => "state",
+        Request::State {} => "state",
         Request::Move { .. } => "move",
         Request::MoveBy { .. } => "move_by",
         Request::AddSupport { .. } => "add_support",
         Request::RemoveSupport { .. } => "remove_support",
         Request::Gravity { .. } => "gravity",
-        Request::FollowStable => "follow_stable",
+        Request::FollowStable {} => "follow_stable",
         Request::UnstablePolicy { .. } => "unstable_policy",
-        Request::Save => "save",
-        Request::Gltf => "gltf",
+        Request::Save {} => "save",
+        Request::Gltf {} => "gltf",
     }
 }
 
@@ -234,7 +236,7 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
     let mut toml_text = None;
     let mut gltf_value = None;
     let edit: Option<EditReport> = match request {
-        Request::State => None,
+        Request::State {} => None,
         Request::Move {
             rod,
             support,
@@ -306,12 +308,12 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             finite("gravity", gravity)?;
             Some(session.set_gravity(*gravity)?)
         }
-        Request::FollowStable => Some(session.follow_stable()),
+        Request::FollowStable {} => Some(session.follow_stable()),
         Request::UnstablePolicy { policy } => {
             session.set_unstable_policy(*policy);
             None
         }
-        Request::Save => {
+        Request::Save {} => {
             let text = toml::to_string(&session.saved()).map_err(|e| ErrorReply {
                 field: "save".into(),
                 message: format!("the scene could not be written as TOML: {e}"),
@@ -321,12 +323,12 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             ));
             None
         }
-        Request::Gltf => None,
+        Request::Gltf {} => None,
     };
     let solve_seconds = clock.elapsed().as_secs_f64();
     let pieces = edit.as_ref().map_or(1, |e| e.load_steps);
     let step = session.results(0, None, 1.0, pieces);
-    if matches!(request, Request::Gltf) {
+    if matches!(request, Request::Gltf {}) {
         let scene = session.compiled();
         gltf_value = Some(gltf::rods_to_gltf(
             &scene.rods,

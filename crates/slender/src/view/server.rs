@@ -11,8 +11,8 @@ use std::io::Read;
 use std::net::{SocketAddr, TcpListener, ToSocketAddrs};
 
 use anyhow::{anyhow, Context as _, Result};
-use socket2::{Domain, Protocol, Socket, Type};
 use slender_core::scene::Session;
+use socket2::{Domain, Protocol, Socket, Type};
 use tiny_http::{Header, Method, Request, Response, Server};
 
 use super::protocol::{handle, MAX_REQUEST_BYTES};
@@ -81,8 +81,12 @@ fn listener(host: &str, port: u16) -> Result<TcpListener> {
         .with_context(|| format!("--host {host}: not an address of this machine"))?
         .next()
         .ok_or_else(|| anyhow!("--host {host}: no address"))?;
-    let socket = Socket::new(Domain::for_address(address), Type::STREAM, Some(Protocol::TCP))
-        .context("creating the server socket")?;
+    let socket = Socket::new(
+        Domain::for_address(address),
+        Type::STREAM,
+        Some(Protocol::TCP),
+    )
+    .context("creating the server socket")?;
     // A restarted server may bind the port while old connections linger in TIME_WAIT (on
     // Windows the option would let another process steal the port: Unix only).
     #[cfg(unix)]
