@@ -16,6 +16,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assembly;
+pub mod bspline_shell;
 pub mod cosserat;
 pub mod error;
 pub mod framed;

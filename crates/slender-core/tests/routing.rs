@@ -248,3 +248,145 @@ fn a_stiff_strip_switches_stability_at_lateral_torsional_buckling() {
         }
     }
 }
+
+/// A clamped–free column (d₁-bending EI = 1 N m², twice as stiff in the other plane so that
+/// the buckled plane is not a free symmetry), 1 m along x, its tip pushed by a dead force.
+fn column(force: f64) -> String {
+    format!(
+        r#"
+[[rods]]
+name = "column"
+centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 1.0 }}
+section = {{ shape = "stiffness", ea = 1.0e6, ei1 = 1.0, ei2 = 2.0, gj = 0.77, linear_density = 0.1 }}
+elements = 100
+supports = [ {{ kind = "clamp", vertex = "start" }} ]
+forces = [ {{ vertex = "end", force = [{}, 0.0, 0.0] }} ]
+"#,
+        -force
+    )
+}
+
+#[test]
+fn a_clamped_free_column_at_one_and_a_half_euler_loads_ends_on_the_elastica() {
+    // Euler's first case: P_E = π²EI/(4L²). The buckled cantilever is half a pinned–pinned
+    // elastica of length 2L: with k = sin(α/2) (α the tip angle), P/P_E = (2K(k)/π)², the tip
+    // deflects by 2kL/K(k) across and sits at L(2E(k)/K(k) − 1) along the axis.
+    let ratio = 1.5;
+    let p_e = std::f64::consts::PI.powi(2) / 4.0;
+    let s = Session::new(scene(&column(ratio * p_e))).unwrap();
+    let res = s.results(0, None, 1.0, 1);
+    assert!(res.converged && res.stable, "{:?}", res.structures);
+    assert!(res.structures[0].stability.followed_unstable_mode);
+    let tip = *res.rods[0].positions.last().unwrap();
+    let (mut lo, mut hi) = (1e-9_f64, 0.999_f64);
+    for _ in 0..200 {
+        let k = 0.5 * (lo + hi);
+        if (2.0 * elliptic_ke(k * k).0 / std::f64::consts::PI).powi(2) < ratio {
+            lo = k;
+        } else {
+            hi = k;
+        }
+    }
+    let k = 0.5 * (lo + hi);
+    let (kk, ee) = elliptic_ke(k * k);
+    let (across, along) = (2.0 * k / kk, 2.0 * ee / kk - 1.0);
+    let sim_across = (tip[1] * tip[1] + tip[2] * tip[2]).sqrt();
+    eprintln!(
+        "tip ({:.6}, {sim_across:.6}) vs elastica ({along:.6}, {across:.6})",
+        tip[0]
+    );
+    assert!(
+        (tip[0] - along).abs() < 1e-3 && (sim_across - across).abs() < 1e-3,
+        "tip {tip:?} vs elastica ({along}, {across})"
+    );
+}
+
+/// The heavy standing column (Greenhill): clamped at the bottom, free at the top, under its
+/// weight q per length, Γ = qL³/EI. With θ the angle from the vertical and S = s/L,
+/// θ'' = −Γ(1 − S) sin θ, θ(0) = 0, θ'(1) = 0; shot from the top on α = θ(1) (the first
+/// non-zero root), integrating the tip's offset from the clamp. Returns (across, up) / L.
+fn heavy_column_tip(gamma: f64) -> (f64, f64) {
+    let steps = 4000;
+    let h = 1.0 / steps as f64;
+    // State from the top down: (θ, θ', ∫sin θ, ∫cos θ) over [S, 1].
+    let run = |alpha: f64| {
+        let rhs = |s: f64, y: [f64; 4]| {
+            [
+                y[1],
+                -gamma * (1.0 - s) * y[0].sin(),
+                y[0].sin(),
+                y[0].cos(),
+            ]
+        };
+        let mut y = [alpha, 0.0, 0.0, 0.0];
+        let mut s = 1.0;
+        for _ in 0..steps {
+            let add = |y: [f64; 4], k: [f64; 4], c: f64| [0, 1, 2, 3].map(|i| y[i] + c * k[i]);
+            let k1 = rhs(s, y);
+            let k2 = rhs(s - 0.5 * h, add(y, k1, -0.5 * h));
+            let k3 = rhs(s - 0.5 * h, add(y, k2, -0.5 * h));
+            let k4 = rhs(s - h, add(y, k3, -h));
+            y = [0, 1, 2, 3].map(|i| y[i] - h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+            s -= h;
+        }
+        y
+    };
+    // The first sign change of θ(0) in α, then bisection.
+    let mut a = 1e-3;
+    let f0 = run(a)[0];
+    let mut b = a;
+    while b < 3.1 {
+        b += 0.01;
+        if run(b)[0].signum() != f0.signum() {
+            break;
+        }
+    }
+    let (mut lo, mut hi) = (b - 0.01, b);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if run(mid)[0].signum() == f0.signum() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    a = 0.5 * (lo + hi);
+    // Integrated from the top down, the integrals carry the sign of ds < 0; the buckling
+    // side is arbitrary.
+    let y = run(a);
+    (y[2].abs(), -y[3])
+}
+
+#[test]
+fn a_heavy_column_past_greenhill_ends_buckled_on_the_heavy_elastica() {
+    // Greenhill's critical Γ for a standing column is 7.8373; take 1.5 times it.
+    let gamma = 1.5 * 7.8373;
+    let text = format!(
+        r#"
+gravity = [0.0, 0.0, {}]
+[[rods]]
+name = "column"
+centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [0.0, 0.0, 1.0], length = 1.0 }}
+section = {{ shape = "stiffness", ea = 1.0e6, ei1 = 1.0, ei2 = 2.0, gj = 0.77, linear_density = 1.0 }}
+first_director = [1.0, 0.0, 0.0]
+elements = 100
+supports = [ {{ kind = "clamp", vertex = "start" }} ]
+"#,
+        -gamma
+    );
+    let s = Session::new(scene(&text)).unwrap();
+    let res = s.results(0, None, 1.0, 1);
+    assert!(res.converged && res.stable, "{:?}", res.structures);
+    assert!(res.structures[0].stability.followed_unstable_mode);
+    let tip = *res.rods[0].positions.last().unwrap();
+    let (across, up) = heavy_column_tip(gamma);
+    let sim_across = (tip[0] * tip[0] + tip[1] * tip[1]).sqrt();
+    eprintln!(
+        "tip ({sim_across:.6}, {:.6}) vs heavy elastica ({across:.6}, {up:.6})",
+        tip[2]
+    );
+    assert!(
+        (sim_across - across).abs() < 1e-3 && (tip[2] - up).abs() < 1e-3,
+        "tip {tip:?} vs heavy elastica ({across}, {up})"
+    );
+}

@@ -12,3 +12,4 @@ pub mod materials;
 pub mod model_comparison;
 pub mod ode;
 pub mod rod_model;
+pub mod shell_model;

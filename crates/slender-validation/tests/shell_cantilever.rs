@@ -1,6 +1,7 @@
 //! Shell cantilever against the 1-D heavy-elastica master curve (computed in-code by
 //! multiple shooting, independently of both models). With ν = 0, D·w = EI exactly, so the
-//! master curve is the exact reference for the strip (design.md §1.1, §3.3). Run in release.
+//! master curve is the exact reference for the strip (design.md §1.1, §3.3). Both shell
+//! models. Run in release.
 
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::shell_acceptance::{
@@ -8,6 +9,9 @@ use slender_validation::cantilever::shell_acceptance::{
 };
 use slender_validation::cantilever::shell_cantilever_checks;
 use slender_validation::cantilever::sweep::log_space;
+use slender_validation::shell_model::ShellModel;
+
+const MIDEDGE: ShellModel = ShellModel::Midedge;
 
 fn print(points: &[slender_validation::cantilever::shell_acceptance::ShellErrorPoint]) {
     for p in points {
@@ -24,8 +28,13 @@ fn print(points: &[slender_validation::cantilever::shell_acceptance::ShellErrorP
 
 #[test]
 fn fifteen_elements_within_one_percent_up_to_gamma_100() {
-    let points = shell_error_sweep(15, &log_space(0.1, 100.0, 10), &SolverParams::default())
-        .expect("valid cases");
+    let points = shell_error_sweep(
+        MIDEDGE,
+        15,
+        &log_space(0.1, 100.0, 10),
+        &SolverParams::default(),
+    )
+    .expect("valid cases");
     print(&points);
     let worst = worst_percent(&points, 0.1, 100.0);
     assert!(worst <= 1.0, "worst error {worst} %");
@@ -33,8 +42,13 @@ fn fifteen_elements_within_one_percent_up_to_gamma_100() {
 
 #[test]
 fn eight_elements_within_two_percent_over_the_cable_range() {
-    let points = shell_error_sweep(8, &log_space(10.0, 1e3, 9), &SolverParams::default())
-        .expect("valid cases");
+    let points = shell_error_sweep(
+        MIDEDGE,
+        8,
+        &log_space(10.0, 1e3, 9),
+        &SolverParams::default(),
+    )
+    .expect("valid cases");
     print(&points);
     let worst = worst_percent(&points, 10.0, 1e3);
     assert!(worst <= 2.0, "worst error {worst} %");
@@ -46,8 +60,13 @@ fn eight_elements_below_the_cable_range() {
     // 8 × 2 mesh gives +1.5 %, as libshell does in design.md §3.3). The issue's 2 % target over
     // Γ ≤ 10³ is therefore missed by 0.15 points at small Γ; `shell_cantilever_checks` reports
     // it as FAIL. Here we only guard against regressions beyond the measured figure.
-    let points = shell_error_sweep(8, &log_space(0.1, 10.0, 5), &SolverParams::default())
-        .expect("valid cases");
+    let points = shell_error_sweep(
+        MIDEDGE,
+        8,
+        &log_space(0.1, 10.0, 5),
+        &SolverParams::default(),
+    )
+    .expect("valid cases");
     print(&points);
     let worst = worst_percent(&points, 0.1, 10.0);
     assert!(worst <= 2.5, "worst error {worst} %");
@@ -57,7 +76,7 @@ fn eight_elements_below_the_cable_range() {
 fn cold_load_stepping_from_the_flat_strip_reaches_the_same_equilibrium() {
     // Without the rod predictor the solver ramps gravity itself (hundreds of iterations,
     // design.md §3.3); both routes must end on the same equilibrium.
-    let case = acceptance_case(8, 100.0);
+    let case = acceptance_case(MIDEDGE, 8, 100.0);
     let params = SolverParams::default();
     let warm = case.run_with(&params, true).expect("valid");
     let cold = case.run_with(&params, false).expect("valid");
@@ -79,7 +98,8 @@ fn cold_load_stepping_from_the_flat_strip_reaches_the_same_equilibrium() {
 
 #[test]
 fn checks_report_measured_figures() {
-    let checks = shell_cantilever_checks(&SolverParams::default()).expect("valid");
+    let checks =
+        shell_cantilever_checks(&ShellModel::ALL, &SolverParams::default()).expect("valid");
     for c in &checks {
         eprintln!(
             "{} {}: {:.3} (target {})",
@@ -90,5 +110,40 @@ fn checks_report_measured_figures() {
         );
         assert!(c.measured.is_finite(), "{}", c.description);
     }
-    assert!(checks[0].passed && checks[2].passed);
+    // Mid-edge: 15 × 2 within 1 % and 8 × 2 over the cable range pass; its 8 × 2 over
+    // Γ ≤ 10³ misses by 0.15 points (see above). B-spline: 8 × 1 within 1 % over Γ ≤ 10³.
+    assert_eq!(checks.len(), 4);
+    assert!(checks[0].passed && checks[2].passed && checks[3].passed);
+}
+
+#[test]
+fn bspline_eight_elements_within_one_percent_up_to_gamma_1000() {
+    // The C¹ shell's target (issue 13): n_L = 8 (one element across) within 1 % of the master
+    // curve for Γ ≤ 10³, on the boundary-layer grading for each Γ.
+    let points = shell_error_sweep(
+        ShellModel::Bspline,
+        8,
+        &log_space(0.1, 1e3, 13),
+        &SolverParams::default(),
+    )
+    .expect("valid cases");
+    print(&points);
+    let worst = worst_percent(&points, 0.1, 1e3);
+    assert!(worst <= 1.0, "worst error {worst} %");
+}
+
+#[test]
+fn bspline_converges_from_the_flat_strip_in_a_few_dozen_iterations() {
+    // No predictor: the mixed-integration-point Newton takes full gravity from the flat strip.
+    for gamma in [1.0, 61.3, 1e3] {
+        let run = acceptance_case(ShellModel::Bspline, 8, gamma)
+            .run(&SolverParams::default())
+            .expect("valid");
+        eprintln!(
+            "Γ = {gamma}: {} iterations in {} load steps",
+            run.report.iterations, run.report.load_steps
+        );
+        assert!(run.report.converged());
+        assert!(run.report.iterations <= 60, "{}", run.report.iterations);
+    }
 }

@@ -2,7 +2,7 @@
 //!
 //! Layout: [`commands`] (one file per subcommand: flags and dispatch), [`benchmarks`] (one
 //! module per benchmark, all of one shape: cases → store → checks → figures → report
-//! section), [`report`] (the acceptance table and the page), [`store`] (the resumable result
+//! section), [`view`] (the interactive page), [`report`] (the acceptance table and the page), [`store`] (the resumable result
 //! store), [`plot`], [`solve`] (scene files).
 
 mod benchmarks;
@@ -14,6 +14,7 @@ mod progress;
 mod report;
 mod solve;
 mod store;
+mod view;
 
 use std::process::ExitCode;
 
@@ -21,8 +22,8 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use commands::{
-    bend_twist, cantilever, lateral_buckling, merge, models, scene_schema, sensitivity,
-    solve as solve_cmd, validate,
+    bend_twist, cantilever, lateral_buckling, master_curve, merge, models, scene_schema,
+    sensitivity, solve as solve_cmd, validate, view as view_cmd,
 };
 
 /// Large deformations of cables, hoses and flat cables, with the validation to prove them.
@@ -46,6 +47,9 @@ enum Command {
     /// Cosserat rod and the SE(3) beam, with their acceptance checks (the `models` section of
     /// `slender validate`; exit code 1 if a target fails).
     Models(models::ModelsArgs),
+    /// The bend–twist master curve alone at chosen Y and GJ/EI: the critical X_c1, X_c2 from
+    /// the linearized stability ODE (CSV, table, PNG + SVG), no rod discretization.
+    MasterCurve(master_curve::MasterCurveArgs),
     /// Run every benchmark and write the validation report OUT/index.html with a pass/fail
     /// table of the acceptance targets (exit code 1 if a target fails).
     Validate(validate::ValidateArgs),
@@ -63,6 +67,9 @@ enum Command {
     /// percentage of correct 2-D/3-D decisions against the plate master curve, for every
     /// combination of Ω, n_L, m_ls and σ, as box plots.
     Sensitivity(sensitivity::SensitivityArgs),
+    /// The interactive cable-editing page: starts a local server and prints its URL; drag
+    /// supports, add clips, change gravity, see reactions, bend radius and stability live.
+    View(view_cmd::ViewArgs),
 }
 
 /// Runs a subcommand; `Ok(false)`: it ran but something failed (exit code 1).
@@ -71,12 +78,14 @@ fn run(cli: Cli) -> Result<bool> {
         Command::Cantilever(a) => cantilever::run(a),
         Command::BendTwist(a) => bend_twist::run(a),
         Command::Models(a) => models::run(a),
+        Command::MasterCurve(a) => master_curve::run(a),
         Command::Validate(a) => validate::run(a),
         Command::Merge(a) => merge::run(a),
         Command::Solve(a) => solve_cmd::run(a),
         Command::SceneSchema(a) => scene_schema::run(a),
         Command::LateralBuckling(a) => lateral_buckling::run(a),
         Command::Sensitivity(a) => sensitivity::run(a),
+        Command::View(a) => view_cmd::run(a),
     }
 }
 

@@ -45,6 +45,9 @@ fn tiny_args(out: &Path) -> Vec<String> {
         list(&WIDTHS),
         "--gamma-factors".into(),
         list(&FACTORS),
+        // One shell model keeps the study tiny (the model axis is exercised by the store test).
+        "--shell-model".into(),
+        "midedge".into(),
     ]
 }
 

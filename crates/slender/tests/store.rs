@@ -269,21 +269,22 @@ fn shell_cantilever_cases_are_stored_reused_and_sharded() {
     };
     let whole = root.join("whole");
     let first = run_ok(&args(&whole), &[]);
-    assert_eq!(shells(&whole.join("store")), 6, "2 sets × 3 Γ");
+    // Both shell models by default: 2 models × 2 sets × 3 Γ.
+    assert_eq!(shells(&whole.join("store")), 12, "2 models × 2 sets × 3 Γ");
     let csv = fs::read(whole.join("shell_results.csv")).unwrap();
     assert!(!String::from_utf8_lossy(&first.stderr).contains("found finished"));
     let again = run_ok(&args(&whole), &[]);
     let log = String::from_utf8_lossy(&again.stderr);
     assert!(
-        log.contains("cantilever-shell: 6 of 6 cases found finished"),
+        log.contains("cantilever-shell: 12 of 12 cases found finished"),
         "{log}"
     );
     assert_eq!(fs::read(whole.join("shell_results.csv")).unwrap(), csv);
-    // Shards: 0/2 computes cases 0, 2, 4 of the shell list and writes no report.
+    // Shards: 0/2 computes every other case of the shell list (6 of 12) and writes no report.
     let shard = root.join("shard");
     let o = run_ok(&args(&shard), &["--shard", "0/2"]);
     assert!(String::from_utf8_lossy(&o.stdout).contains("merge"));
-    assert_eq!(shells(&shard.join("store")), 3);
+    assert_eq!(shells(&shard.join("store")), 6);
     assert!(!shard.join("shell_results.csv").exists());
 }
 

@@ -6,6 +6,7 @@ use crate::solver::problem::{EquilibriumProblem, MassMetric};
 
 use super::dofs::DofKind;
 use super::groups::ALL_GROUPS;
+use super::mixed_update::{membrane_remainders, remainder_energy};
 use super::model::Shell;
 use super::state::ShellState;
 
@@ -57,12 +58,41 @@ impl EquilibriumProblem for Shell {
                 DofKind::Angle(e) => out.angles[e] += alpha * d,
             }
         }
+        membrane_remainders(
+            &self.mesh.faces,
+            &state.positions,
+            &out.positions,
+            &mut out.membrane_remainder,
+        );
     }
 
-    fn impose_load(&self, state: &mut ShellState, _from: f64, to: f64, _guess: bool) {
-        if let Some(clamp) = self.load_path.clamp_at(to) {
-            self.set_clamp(clamp, state);
+    fn merit(&self, trial: &ShellState, load: f64) -> f64 {
+        let (lambda, mu) = self.properties.lame();
+        let h = self.properties.thickness;
+        let left_out: f64 = trial
+            .membrane_remainder
+            .iter()
+            .zip(&self.rest)
+            .map(|(r, rest)| remainder_energy(rest, h, lambda, mu, r))
+            .sum();
+        self.energy(trial, load) - left_out
+    }
+
+    fn impose_load(&self, state: &mut ShellState, from: f64, to: f64, guess: bool) {
+        let (Some(old), Some(new)) = (self.load_path.clamp_at(from), self.load_path.clamp_at(to))
+        else {
+            return;
+        };
+        if guess {
+            // First guess: the whole strip turns rigidly with its clamp (a linearized guess
+            // would stretch the membrane at second order, see `mixed_update`).
+            let turn = new.rotation * old.rotation.inverse();
+            for p in state.positions.iter_mut() {
+                *p = turn * (*p - old.translation) + new.translation;
+            }
+            state.membrane_remainder.clear();
         }
+        self.set_clamp(new, state);
     }
 
     fn max_step(&self, state: &ShellState, dx: &[f64]) -> f64 {
@@ -139,6 +169,7 @@ impl crate::testing::RigidMotion for Shell {
                 .collect(),
             angles: state.angles.clone(),
             clamp: state.clamp.moved(rotation, offset),
+            membrane_remainder: Vec::new(),
         }
     }
 

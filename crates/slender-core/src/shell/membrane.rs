@@ -68,12 +68,18 @@ const FFF_COEFFS: [[[f64; 3]; 3]; 3] = [
 /// Membrane energy (J) of the face (q₀, q₁, q₂) with rest data `rest`, thickness `h` (m) and
 /// 2-D Lamé constants `lambda`, `mu` (Pa). Adds the gradient (9: q₀, q₁, q₂) and Hessian to
 /// `grad` and `hess` when given.
+///
+/// With a Newton-step remainder `remainder` (m², see [`super::mixed_update`]) the Hessian's
+/// geometric stiffness uses the stress of the linearly updated form a − r (the
+/// mixed-integration-point iteration); energy and gradient never depend on it.
+#[allow(clippy::too_many_arguments)]
 pub fn membrane_energy(
     q: [&Vec3; 3],
     rest: &FaceRest,
     h: f64,
     lambda: f64,
     mu: f64,
+    remainder: Option<&Vector3<f64>>,
     grad: Option<&mut SVector<f64, 9>>,
     hess: Option<&mut SMatrix<f64, 9, 9>>,
 ) -> f64 {
@@ -102,10 +108,14 @@ pub fn membrane_energy(
     }
     if let Some(hm) = hess {
         *hm += da * k * da.transpose();
+        let stress = match remainder {
+            Some(r) => k * (d - r),
+            None => g_a,
+        };
         for (kk, s) in FFF_COEFFS.iter().enumerate() {
             for m in 0..3 {
                 for n in 0..3 {
-                    let c = 2.0 * s[m][n] * g_a[kk];
+                    let c = 2.0 * s[m][n] * stress[kk];
                     if c != 0.0 {
                         for t in 0..3 {
                             hm[(3 * m + t, 3 * n + t)] += c;

@@ -14,6 +14,7 @@ pub mod groups;
 pub mod load_path;
 pub mod membrane;
 pub mod mesh;
+pub mod mixed_update;
 pub mod model;
 pub mod rod_predictor;
 pub mod state;

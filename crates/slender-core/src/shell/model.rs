@@ -14,7 +14,6 @@ use crate::solver::AssemblyInfo;
 use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
 use super::clamp::Clamp;
 use super::dofs::ShellDofs;
-use super::gravity::gravity_energy;
 use super::groups;
 use super::load_path::LoadPath;
 use super::membrane::{membrane_energy, FaceRest};
@@ -139,6 +138,7 @@ impl Shell {
             positions: self.mesh.rest_positions.clone(),
             angles: vec![0.0; self.mesh.edges.len()],
             clamp: Clamp::default(),
+            membrane_remainder: Vec::new(),
         };
         self.apply_clamp(&mut s);
         s
@@ -265,17 +265,20 @@ impl Shell {
         asm.terms(&ctx, &self.faces);
         if asm.selects(groups::GRAVITY) {
             let g = self.gravity * gravity_factor;
-            let e = gravity_energy(&self.vertex_masses, positions, &g);
-            let e_rest = gravity_energy(&self.vertex_masses, &self.mesh.rest_positions, &g);
-            asm.external_energy(e, e_rest - e);
             for (v, m) in self.vertex_masses.iter().enumerate() {
+                // One potential per vertex, so that the round-off scale of the energy is
+                // Σ|m g·x| (the terms of a strip hanging about z = 0 cancel in the sum).
+                let force = g * *m;
+                asm.external_energy(
+                    -force.dot(&positions[v]),
+                    force.dot(&(positions[v] - self.mesh.rest_positions[v])),
+                );
                 for c in 0..3 {
                     let Some(i) = self.dofs.vertex(v, c) else {
                         continue;
                     };
-                    let force = m * g[c];
-                    asm.external_force(force.abs());
-                    asm.generalized_force(i, force);
+                    asm.external_force(force[c].abs());
+                    asm.generalized_force(i, force[c]);
                 }
             }
         }
@@ -336,6 +339,7 @@ impl<'a> StencilTerm<ShellContext<'a>, FACE_VARS> for FaceTerm {
                 h,
                 lambda,
                 mu,
+                ctx.state.membrane_remainder.get(f),
                 out.grad.is_some().then_some(&mut g9),
                 out.hess.is_some().then_some(&mut h9),
             );

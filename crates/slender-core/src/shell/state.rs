@@ -1,11 +1,14 @@
 //! Configuration of a shell: vertex positions and one director angle per edge.
 
+use nalgebra::Vector3;
+
 use crate::geometry::Vec3;
 
 use super::clamp::Clamp;
 
 /// Positions (m) of all vertices (clamped ones included) and angles (rad) of all edges
-/// (clamped edges keep 0: their director is the clamp normal).
+/// (clamped edges keep 0: their director is the clamp normal), and the memory of the Newton
+/// update.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShellState {
     /// Vertex positions (m).
@@ -14,4 +17,8 @@ pub struct ShellState {
     pub angles: Vec<f64>,
     /// Pose of the clamp (its prescribed DOFs: the clamped vertices and the clamp normal).
     pub clamp: Clamp,
+    /// Second-order part (m²) of each face's change of first fundamental form over the
+    /// Newton step that produced this state (see [`mixed_update`](super::mixed_update));
+    /// empty when the state was not produced by a step (then r = 0 on every face).
+    pub membrane_remainder: Vec<Vector3<f64>>,
 }

@@ -12,7 +12,8 @@ pub enum LineSearch {
     Failed,
 }
 
-/// Backtracks from `alpha_max` until E(x + α dx) ≤ E(x) + c₁ α gᵀdx.
+/// Backtracks from `alpha_max` until φ(x + α dx) ≤ E(x) + c₁ α gᵀdx, φ the problem's
+/// [`merit`](EquilibriumProblem::merit) (the energy, unless the model says otherwise).
 ///
 /// `slope` is gᵀdx (< 0 for a descent direction). When the predicted decrease is below the
 /// round-off of the energy (`energy_noise`, J) the energy cannot rank the trial points, so
@@ -37,7 +38,7 @@ pub fn armijo_backtracking<P: EquilibriumProblem>(
     let mut alpha = alpha_max;
     for _ in 0..=params.max_backtracks {
         problem.displace(state, dx, alpha, trial);
-        let e = problem.energy(trial, load);
+        let e = problem.merit(trial, load);
         let predicted = params.armijo * alpha * slope;
         if e.is_finite()
             && (e <= energy + predicted

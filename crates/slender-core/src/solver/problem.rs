@@ -75,6 +75,19 @@ pub trait EquilibriumProblem: MassMetric {
         asm.finish().energy
     }
 
+    /// The function the line search decreases along a Newton step, at a trial state
+    /// `trial` = [`displace`](Self::displace)`(base, dx, α)`; at α = 0 it must equal the
+    /// energy at `base`, and its slope there gᵀdx. Default: the energy.
+    ///
+    /// A model whose Newton step treats its stresses as independent of the positions (the
+    /// mixed-integration-point method, see `shell::mixed_update`) measures trial points by
+    /// the energy at the linearly updated stresses: the energy minus that of the step's
+    /// second-order strain, which a linearized step cannot see and which would otherwise make
+    /// the line search cut every large rotation down to about a thickness.
+    fn merit(&self, trial: &Self::State, load: f64) -> f64 {
+        self.energy(trial, load)
+    }
+
     /// Gradient into `grad` (length [`n_free`](Self::n_free)), Hessian into `hess` (zeroed
     /// here), and Σ over terms of |term gradient| per DOF into `abs_grad` (the round-off scale).
     fn assemble(

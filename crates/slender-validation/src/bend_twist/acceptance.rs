@@ -2,8 +2,10 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::regime::Regime;
 use super::sweep::BendTwistRecord;
 use crate::cantilever::Check;
+use crate::materials::OMEGA_ROD;
 
 /// Half-width of the band around the master curve, relative in X, inside which a grid point
 /// is too close to the bifurcation to be scored.
@@ -96,11 +98,36 @@ pub struct BendTwistSummary {
     pub protocol_combined: Score,
     /// Points where the protocol and the stability route disagree.
     pub disagreements: Vec<Disagreement>,
+    /// Points left out of every score because they are out of the master curve's regime or
+    /// under-resolved ([`Regime`]).
+    pub flagged: Vec<FlaggedPoint>,
 }
 
 /// Summarizes a sweep.
 pub fn summarize(records: &[BendTwistRecord], elements_per_turn: f64) -> BendTwistSummary {
-    let scored: Vec<bool> = records.iter().map(outside_band).collect();
+    // The benchmark's rod is Ω_rod (`BendTwistCase::new`).
+    let regimes: Vec<Regime> = records.iter().map(|r| Regime::of(r, &OMEGA_ROD)).collect();
+    let scored: Vec<bool> = records
+        .iter()
+        .zip(&regimes)
+        .map(|(r, g)| outside_band(r) && g.trusted())
+        .collect();
+    let flagged = records
+        .iter()
+        .zip(&regimes)
+        .filter(|(_, g)| !g.trusted())
+        .map(|(r, g)| FlaggedPoint {
+            x: r.x,
+            y: r.y,
+            gamma: r.gamma,
+            n_elements: r.n_elements,
+            axial_strain: g.axial_strain,
+            curvature_error: g.curvature_error,
+            lambda_min: r.lambda_min.unwrap_or(f64::NAN),
+            lambda_floor: g.lambda_floor,
+            reasons: g.reasons.join("; "),
+        })
+        .collect();
     let disagreements = records
         .iter()
         .filter_map(|r| match (r.stability_3d, r.protocol_3d) {
@@ -120,13 +147,37 @@ pub fn summarize(records: &[BendTwistRecord], elements_per_turn: f64) -> BendTwi
     BendTwistSummary {
         elements_per_turn,
         points: records.len(),
-        outside_band: scored.iter().filter(|&&k| k).count(),
+        outside_band: records.iter().filter(|r| outside_band(r)).count(),
+        flagged,
         stability: score(records, &scored, |r| r.stability_3d),
         protocol_y: score(records, &scored, |r| r.protocol_3d_y),
         protocol_tau: score(records, &scored, |r| r.protocol_3d_tau),
         protocol_combined: score(records, &scored, |r| r.protocol_3d),
         disagreements,
     }
+}
+
+/// A grid point that is not scored, and why ([`Regime`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FlaggedPoint {
+    /// X.
+    pub x: f64,
+    /// Y.
+    pub y: f64,
+    /// Γ = (2πXY)³.
+    pub gamma: f64,
+    /// Elements.
+    pub n_elements: usize,
+    /// Axial strain at the clamp.
+    pub axial_strain: f64,
+    /// Relative error of the discrete rest curvature.
+    pub curvature_error: f64,
+    /// λ_min ρAL⁴/EI at the planar state (NaN if none).
+    pub lambda_min: f64,
+    /// Lower bound of a physical λ_min ρAL⁴/EI.
+    pub lambda_floor: f64,
+    /// The reasons, separated by "; ".
+    pub reasons: String,
 }
 
 /// The acceptance checks on a summary: 100 % at ≥ 100·Y elements, ≥ 97 % below.
@@ -141,8 +192,8 @@ pub fn bend_twist_checks(s: &BendTwistSummary) -> Vec<Check> {
         Check {
             benchmark: "bend-twist".into(),
             description: format!(
-                "stability decision (inertia) vs master curve, {} of {} grid points outside ±5 % in X, {}·Y elements: % correct",
-                s.stability.scored, s.points, s.elements_per_turn
+                "stability decision (inertia) vs master curve, {} of {} grid points outside ±5 % in X and in regime ({} flagged: axial strain, resolution, eigenvalue range), {}·Y elements: % correct",
+                s.stability.scored, s.points, s.flagged.len(), s.elements_per_turn
             ),
             measured: p,
             target: target.into(),

@@ -6,5 +6,6 @@ pub mod criticality;
 pub mod master_curve;
 pub mod measures;
 pub mod protocol;
+pub mod regime;
 pub mod stability;
 pub mod sweep;

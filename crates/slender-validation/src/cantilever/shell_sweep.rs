@@ -7,17 +7,20 @@
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use slender_core::rod::Grading;
 use slender_core::solver::{SolveStatus, SolverParams};
 
 use super::master_curve::master_ratio;
+use super::shell_acceptance::cantilever_grading;
 use super::shell_case::ShellCantileverCase;
 use super::sweep::SweepError;
 use crate::materials::ShellMaterialSet;
+use crate::shell_model::ShellModel;
 
 /// The parameter grid of a shell cantilever sweep.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShellCantileverSweep {
+    /// Shell models.
+    pub models: Vec<ShellModel>,
     /// Γ_shell values (> 0).
     pub gammas: Vec<f64>,
     /// Elements along the length n_L (≥ 1); n_W follows from w/L.
@@ -31,6 +34,8 @@ pub struct ShellCantileverSweep {
 /// One finished shell case, as written to `shell_results.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ShellCantileverRecord {
+    /// Shell model.
+    pub model: ShellModel,
     /// Material set name.
     pub material: String,
     /// Poisson ratio of the set.
@@ -62,23 +67,28 @@ pub struct ShellCantileverRecord {
 }
 
 impl ShellCantileverSweep {
-    /// The cases in a fixed order: material, element count, Γ (quadratic grading).
+    /// The cases in a fixed order: model, material, element count, Γ (each model on its
+    /// graded mesh, [`cantilever_grading`]).
     pub fn cases(&self) -> Vec<ShellCantileverCase> {
         let mut cases = Vec::new();
-        for &material in &self.materials {
-            for &n_length in &self.element_counts {
-                for &gamma in &self.gammas {
-                    cases.push(ShellCantileverCase {
-                        material,
-                        width_ratio: self.width_ratio,
-                        n_length,
-                        n_width: ShellCantileverCase::default_width_elements(
-                            self.width_ratio,
+        for &model in &self.models {
+            for &material in &self.materials {
+                for &n_length in &self.element_counts {
+                    for &gamma in &self.gammas {
+                        cases.push(ShellCantileverCase {
+                            model,
+                            material,
+                            width_ratio: self.width_ratio,
                             n_length,
-                        ),
-                        grading: Grading::Power { exponent: 2.0 },
-                        gamma,
-                    });
+                            n_width: ShellCantileverCase::default_width_elements(
+                                model,
+                                self.width_ratio,
+                                n_length,
+                            ),
+                            grading: cantilever_grading(model, gamma),
+                            gamma,
+                        });
+                    }
                 }
             }
         }
@@ -87,9 +97,13 @@ impl ShellCantileverSweep {
 
     /// Checks the grid; errors name the field.
     pub fn validate(&self) -> Result<(), SweepError> {
-        if self.gammas.is_empty() || self.element_counts.is_empty() || self.materials.is_empty() {
+        if self.gammas.is_empty()
+            || self.element_counts.is_empty()
+            || self.materials.is_empty()
+            || self.models.is_empty()
+        {
             return Err(SweepError::Invalid(
-                "gammas, element counts and materials must all be non-empty".into(),
+                "gammas, element counts, materials and models must all be non-empty".into(),
             ));
         }
         Ok(())
@@ -127,6 +141,7 @@ pub fn run_shell_case(
         SolveStatus::NotConverged { reason } => (false, reason.clone()),
     };
     Ok(ShellCantileverRecord {
+        model: case.model,
         material: case.material.name.to_string(),
         poisson: case.material.poisson,
         n_length: case.n_length,

@@ -1,6 +1,7 @@
 //! The seed's §5.3 sensitivity study (Fig. 12): how often the perturbation protocol decides
 //! 2-D/3-D correctly, as a function of the shell set Ω, the elements along the length n_L,
-//! the load steps m_ls and the clamp rotation σ.
+//! the load steps m_ls and the clamp rotation σ — and of the shell model (mid-edge or C¹
+//! B-spline), a factor the seed did not have.
 //!
 //! This module holds the pure parts — the study's parameters and their validation, the
 //! (Γ_shell, w/L) grid placed on the master curve, the verdicts, the scores and their
@@ -27,6 +28,7 @@ use thiserror::Error;
 
 use crate::lateral_buckling::{critical_gamma, LateralBucklingError, MasterCurve};
 use crate::materials::{ShellMaterialSet, SHELL_SETS};
+use crate::shell_model::ShellModel;
 
 /// The seed's decision threshold ε on |y_tip|/L.
 pub const DEFAULT_THRESHOLD: f64 = 1e-4;
@@ -88,10 +90,12 @@ pub fn shell_set_by_name(name: &str) -> Result<ShellMaterialSet, StudyError> {
         })
 }
 
-/// The parameters of the study: every combination of `materials` × `elements` ×
+/// The parameters of the study: every combination of `models` × `materials` × `elements` ×
 /// `load_steps` × `sigmas` is one configuration, run over the same (w/L, Γ/Γ_c) grid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SensitivityStudy {
+    /// Shell models.
+    pub models: Vec<ShellModel>,
     /// Shell sets Ω.
     pub materials: Vec<ShellMaterialSet>,
     /// Elements along the length n_L (square elements across).
@@ -109,10 +113,12 @@ pub struct SensitivityStudy {
 }
 
 impl SensitivityStudy {
-    /// The seed's 216 configurations: Ω ∈ {Ω_shell, Ω_combined, Ω_IPS}, n_L ∈ {8, 15, 20,
-    /// 30, 45, 60}, m_ls ∈ {1, 3, 5}, σ ∈ {0.1, 0.2, 0.3, 0.4}, on the default grid.
+    /// The seed's 216 configurations for each shell model (432 in all): Ω ∈ {Ω_shell,
+    /// Ω_combined, Ω_IPS}, n_L ∈ {8, 15, 20, 30, 45, 60}, m_ls ∈ {1, 3, 5}, σ ∈ {0.1, 0.2, 0.3,
+    /// 0.4}, on the default grid.
     pub fn full() -> Self {
         Self {
+            models: ShellModel::ALL.to_vec(),
             materials: ["shell", "combined", "ips"]
                 .iter()
                 .map(|n| shell_set_by_name(n).expect("built-in set"))
@@ -126,8 +132,8 @@ impl SensitivityStudy {
         }
     }
 
-    /// A small subset for CI (8 configurations, 144 protocol runs): Ω_shell, n_L ∈ {8, 15},
-    /// m_ls ∈ {1, 5}, σ ∈ {0.1, 0.2}, w/L ∈ {0.05, 0.1, 0.2}.
+    /// A small subset for CI (8 configurations per model, 144 protocol runs each): Ω_shell,
+    /// n_L ∈ {8, 15}, m_ls ∈ {1, 5}, σ ∈ {0.1, 0.2}, w/L ∈ {0.05, 0.1, 0.2}.
     pub fn quick() -> Self {
         Self {
             materials: vec![shell_set_by_name("shell").expect("built-in set")],
@@ -149,6 +155,12 @@ impl SensitivityStudy {
 
     /// Checks every list and value; the error names the field and the valid range.
     pub fn validate(&self) -> Result<(), StudyError> {
+        non_empty("models", self.models.len())?;
+        for (i, m) in self.models.iter().enumerate() {
+            if self.models[..i].contains(m) {
+                return Err(invalid("models", format!("`{m}` given twice")));
+            }
+        }
         non_empty("materials", self.materials.len())?;
         for (i, m) in self.materials.iter().enumerate() {
             if self.materials[..i].iter().any(|o| o.name == m.name) {
@@ -196,22 +208,25 @@ impl SensitivityStudy {
         Ok(())
     }
 
-    /// The configurations, cheapest first: n_L ascending (outermost), then Ω, m_ls, σ in
-    /// the order given.
+    /// The configurations, cheapest first: n_L ascending (outermost), then the model, Ω,
+    /// m_ls, σ in the order given.
     pub fn configurations(&self) -> Vec<Configuration> {
         let mut elements = self.elements.clone();
         elements.sort_unstable();
         let mut out = Vec::new();
         for &n_length in &elements {
-            for &material in &self.materials {
-                for &load_steps in &self.load_steps {
-                    for &sigma in &self.sigmas {
-                        out.push(Configuration {
-                            material,
-                            n_length,
-                            load_steps,
-                            sigma,
-                        });
+            for &model in &self.models {
+                for &material in &self.materials {
+                    for &load_steps in &self.load_steps {
+                        for &sigma in &self.sigmas {
+                            out.push(Configuration {
+                                model,
+                                material,
+                                n_length,
+                                load_steps,
+                                sigma,
+                            });
+                        }
                     }
                 }
             }
@@ -285,6 +300,8 @@ fn check_values(
 /// One configuration of the study (one box-plot sample).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Configuration {
+    /// Shell model.
+    pub model: ShellModel,
     /// Shell set Ω.
     pub material: ShellMaterialSet,
     /// Elements along the length n_L.
@@ -348,6 +365,8 @@ pub fn protocol_verdict(tip_deviation: f64, converged: bool, threshold: f64) -> 
 /// One scored point, as written to `points.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SensitivityPoint {
+    /// Shell model.
+    pub model: ShellModel,
     /// Shell set name.
     pub material: String,
     /// n_L.
@@ -391,6 +410,7 @@ impl SensitivityPoint {
         let protocol = protocol_verdict(tip_deviation, converged, threshold);
         let truth = grid.truth();
         Self {
+            model: config.model,
             material: config.material.name.to_string(),
             n_length: config.n_length,
             load_steps: config.load_steps,
@@ -412,6 +432,8 @@ impl SensitivityPoint {
 /// The score of one configuration, as written to `scores.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ConfigurationScore {
+    /// Shell model.
+    pub model: ShellModel,
     /// Shell set name.
     pub material: String,
     /// n_L.
@@ -449,7 +471,8 @@ pub fn score(config: &Configuration, points: &[SensitivityPoint]) -> Configurati
     let mine: Vec<&SensitivityPoint> = points
         .iter()
         .filter(|p| {
-            p.material == config.material.name
+            p.model == config.model
+                && p.material == config.material.name
                 && p.n_length == config.n_length
                 && p.load_steps == config.load_steps
                 && p.sigma == config.sigma
@@ -459,6 +482,7 @@ pub fn score(config: &Configuration, points: &[SensitivityPoint]) -> Configurati
     let (score_percent, n) = percent(scored());
     let (square, n_square) = percent(mine.iter().copied().filter(|p| p.width_ratio >= SQUARE));
     ConfigurationScore {
+        model: config.model,
         material: config.material.name.to_string(),
         n_length: config.n_length,
         load_steps: config.load_steps,
@@ -476,6 +500,8 @@ pub fn score(config: &Configuration, points: &[SensitivityPoint]) -> Configurati
 /// Which parameter a box-plot panel groups by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Grouping {
+    /// Shell model.
+    Model,
     /// Shell set Ω.
     Material,
     /// n_L.
@@ -487,8 +513,9 @@ pub enum Grouping {
 }
 
 impl Grouping {
-    /// The four panels of the seed's Fig. 12, in its order.
-    pub const ALL: [Grouping; 4] = [
+    /// The shell model, then the four panels of the seed's Fig. 12 in its order.
+    pub const ALL: [Grouping; 5] = [
+        Grouping::Model,
         Grouping::Material,
         Grouping::Elements,
         Grouping::LoadSteps,
@@ -498,6 +525,7 @@ impl Grouping {
     /// Axis title.
     pub fn title(self) -> &'static str {
         match self {
+            Grouping::Model => "shell model",
             Grouping::Material => "Ω",
             Grouping::Elements => "n_L",
             Grouping::LoadSteps => "m_ls",
@@ -508,6 +536,7 @@ impl Grouping {
     /// The group label of a score.
     fn label(self, s: &ConfigurationScore) -> String {
         match self {
+            Grouping::Model => s.model.name().to_string(),
             Grouping::Material => s.material.clone(),
             Grouping::Elements => s.n_length.to_string(),
             Grouping::LoadSteps => s.load_steps.to_string(),
@@ -518,6 +547,11 @@ impl Grouping {
     /// The group's sort key (the parameter's value; materials keep the study's order).
     fn order(self, s: &ConfigurationScore, study: &SensitivityStudy) -> f64 {
         match self {
+            Grouping::Model => study
+                .models
+                .iter()
+                .position(|m| *m == s.model)
+                .unwrap_or(usize::MAX) as f64,
             Grouping::Material => study
                 .materials
                 .iter()
@@ -618,6 +652,7 @@ mod tests {
 
     fn config(n_length: usize, sigma: f64) -> Configuration {
         Configuration {
+            model: ShellModel::Midedge,
             material: shell_set_by_name("shell").unwrap(),
             n_length,
             load_steps: 1,
@@ -638,10 +673,15 @@ mod tests {
     fn presets_are_valid_and_the_full_one_is_the_seeds_216() {
         let full = SensitivityStudy::full();
         full.validate().unwrap();
-        assert_eq!(full.configurations().len(), 216);
+        assert_eq!(full.configurations().len(), 2 * 216);
+        let one = SensitivityStudy {
+            models: vec![ShellModel::Bspline],
+            ..SensitivityStudy::full()
+        };
+        assert_eq!(one.configurations().len(), 216);
         let quick = SensitivityStudy::quick();
         quick.validate().unwrap();
-        assert_eq!(quick.configurations().len(), 8);
+        assert_eq!(quick.configurations().len(), 2 * 8);
         assert!(DEFAULT_GAMMA_FACTORS
             .iter()
             .all(|f| !(0.95..=1.05).contains(f)));
@@ -730,6 +770,7 @@ mod tests {
     fn groups_collect_the_scores_of_each_value() {
         let study = SensitivityStudy::full();
         let mk = |n, sigma, pct| ConfigurationScore {
+            model: ShellModel::Midedge,
             material: "shell".into(),
             n_length: n,
             load_steps: 3,
@@ -757,6 +798,10 @@ mod tests {
         let by_sigma = group_scores(&scores, Grouping::Sigma, &study);
         assert_eq!(by_sigma[0], ("0.1".to_string(), vec![60.0, 100.0]));
         assert_eq!(group_scores(&scores, Grouping::LoadSteps, &study).len(), 1);
+        assert_eq!(
+            group_scores(&scores, Grouping::Model, &study),
+            vec![("midedge".to_string(), vec![90.0, 60.0, 70.0, 100.0])]
+        );
         assert_eq!(median(&[60.0, 70.0, 100.0]), 70.0);
         assert_eq!(median(&[60.0, 70.0, 90.0, 100.0]), 80.0);
         assert!(median(&[f64::NAN]).is_nan());
@@ -781,6 +826,14 @@ mod tests {
             other => panic!("expected an error, got {other:?}"),
         };
         let base = SensitivityStudy::quick;
+        assert_eq!(
+            field(SensitivityStudy {
+                models: vec![],
+                ..base()
+            })
+            .0,
+            "models"
+        );
         assert_eq!(
             field(SensitivityStudy {
                 elements: vec![],

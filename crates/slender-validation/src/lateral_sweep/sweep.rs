@@ -11,6 +11,14 @@ use super::case::LateralBucklingCase;
 use super::decisions::is_correct;
 use crate::lateral_buckling::{critical_gamma, MasterCurve};
 use crate::materials::ShellMaterialSet;
+use crate::shell_model::ShellModel;
+
+/// Relative width to which the sweeps bisect Γ_c.
+pub const SWEEP_TOLERANCE: f64 = 1e-3;
+
+/// Relative width to which the convergence studies bisect Γ_c: far below the differences
+/// between meshes, so that the observed order is not bisection noise.
+pub const CONVERGENCE_STUDY_TOLERANCE: f64 = 1e-6;
 
 /// Bracket of the Γ_c bisection (the classical narrow-strip value is ≈ 13.7 for ν = 0.35 and
 /// warping restraint at most doubles it for w ≤ L, design.md §1.3).
@@ -21,6 +29,8 @@ pub const GAMMA_C_BRACKET: (f64, f64) = (2.0, 200.0);
 pub struct LateralBucklingSweep {
     /// Shell set.
     pub material: ShellMaterialSet,
+    /// Shell discretization.
+    pub model: ShellModel,
     /// Elements along the length (square elements across).
     pub n_length: usize,
     /// Aspect ratios w/L (> 0).
@@ -38,6 +48,8 @@ pub struct LateralBucklingSweep {
 /// The critical Γ of one aspect ratio, as written to `critical.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CriticalRecord {
+    /// Shell discretization.
+    pub model: ShellModel,
     /// w/L.
     pub width_ratio: f64,
     /// Elements (length × width).
@@ -79,10 +91,11 @@ impl LateralBucklingSweep {
     /// 0.5, 0.7, 1} and 15 values of Γ_shell log-spaced over [8, 45] (the master curve runs from
     /// Γ_c ≈ 14 at w/L = 0.05 to 29 at w = L for ν = 0.35), with the seed's protocol σ = 0.2,
     /// m_ls = 5, ε = 1e-4.
-    pub fn default_grid(material: ShellMaterialSet, n_length: usize) -> Self {
+    pub fn default_grid(material: ShellMaterialSet, model: ShellModel, n_length: usize) -> Self {
         let (lo, hi, count) = (8.0_f64, 45.0_f64, 15);
         Self {
             material,
+            model,
             n_length,
             width_ratios: vec![0.05, 0.1, 0.15, 0.2, 0.3, 0.5, 0.7, 1.0],
             gammas: (0..count)
@@ -112,16 +125,24 @@ impl LateralBucklingSweep {
             material: self.material,
             width_ratio,
             n_length: self.n_length,
+            model: self.model,
         }
     }
 
-    /// Γ_c at one aspect ratio (bisection on the inertia to 0.1 %).
+    /// Γ_c at one aspect ratio (bisection on the inertia to [`SWEEP_TOLERANCE`]).
     pub fn critical_at(
         &self,
         width_ratio: f64,
         params: &SolverParams,
     ) -> Result<CriticalRecord, ModelError> {
-        critical_record(self.material, width_ratio, self.n_length, params)
+        critical_record(
+            self.material,
+            self.model,
+            width_ratio,
+            self.n_length,
+            SWEEP_TOLERANCE,
+            params,
+        )
     }
 
     /// Γ_c for every aspect ratio, in parallel.
@@ -219,23 +240,28 @@ impl LateralBucklingSweep {
     }
 }
 
-/// Γ_c of `material` at `width_ratio` on the mesh with `n_length` elements along the length
-/// (square elements), by bisection on the inertia within [`GAMMA_C_BRACKET`] to 0.1 %.
+/// Γ_c of `material` with the `model` discretization at `width_ratio` on the mesh with
+/// `n_length` elements along the length (square elements), by bisection on the inertia within
+/// [`GAMMA_C_BRACKET`] to relative width `tolerance`.
 pub fn critical_record(
     material: ShellMaterialSet,
+    model: ShellModel,
     width_ratio: f64,
     n_length: usize,
+    tolerance: f64,
     params: &SolverParams,
 ) -> Result<CriticalRecord, ModelError> {
     let c = LateralBucklingCase {
         material,
         width_ratio,
         n_length,
+        model,
     };
     let gc = c
-        .critical_gamma(GAMMA_C_BRACKET.0, GAMMA_C_BRACKET.1, 1e-3, params)?
+        .critical_gamma(GAMMA_C_BRACKET.0, GAMMA_C_BRACKET.1, tolerance, params)?
         .unwrap_or(f64::NAN);
     Ok(CriticalRecord {
+        model,
         width_ratio,
         n_length,
         n_width: c.n_width(),

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::bend_twist::acceptance::outside_band;
+use crate::bend_twist::regime::Regime;
 use crate::bend_twist::sweep::BendTwistRecord;
 use crate::cantilever::Check;
 use crate::materials::RodMaterialSet;
@@ -24,6 +25,9 @@ pub struct BendTwistModelScore {
     pub protocol_correct: usize,
     /// Points not classified (a solve did not converge).
     pub unclassified: usize,
+    /// Points outside the band left unscored because they are out of the master curve's
+    /// regime or under-resolved (`bend_twist::regime::Regime`, as in the bend–twist section).
+    pub flagged: usize,
     /// Scored points whose clamp tension exceeds the shear-tension limit of the shearable
     /// models (see `shear_limit.rs`).
     pub beyond_shear_limit: usize,
@@ -44,6 +48,7 @@ pub fn bend_twist_model_score(
         correct: 0,
         protocol_correct: 0,
         unclassified: 0,
+        flagged: 0,
         beyond_shear_limit: 0,
         wrong_beyond_shear_limit: 0,
     };
@@ -53,6 +58,10 @@ pub fn bend_twist_model_score(
             continue;
         };
         if !outside_band(r) {
+            continue;
+        }
+        if !Regime::of(r, material).trusted() {
+            s.flagged += 1;
             continue;
         }
         s.scored += 1;
@@ -152,8 +161,8 @@ pub fn model_checks(
         };
         out.push(check(
             format!(
-                "{label}: bend–twist grid, stability decisions correct (%) of {} points outside ±5 %{note}",
-                b.scored
+                "{label}: bend–twist grid, stability decisions correct (%) of {} points outside ±5 % and in the master curve's regime ({} flagged){note}",
+                b.scored, b.flagged
             ),
             p,
             "= 100 %",

@@ -233,6 +233,7 @@ pub(super) fn write_grid(
     std::fs::create_dir_all(out)?;
     write_csv(&out.join("results.csv"), records)?;
     write_csv(&out.join("disagreements.csv"), &summary.disagreements)?;
+    write_csv(&out.join("flagged.csv"), &summary.flagged)?;
     write_atomic(
         &out.join("summary.json"),
         serde_json::to_string_pretty(summary)?.as_bytes(),
@@ -335,6 +336,15 @@ fn print_summary(s: &BendTwistSummary) {
             score.correct,
             score.scored,
             score.unclassified
+        );
+    }
+    if !s.flagged.is_empty() {
+        println!(
+            "  {} points not scored (out of regime or under-resolved; flagged.csv), e.g. X {:.4} Y {:.4}: {}",
+            s.flagged.len(),
+            s.flagged[0].x,
+            s.flagged[0].y,
+            s.flagged[0].reasons
         );
     }
     if !s.disagreements.is_empty() {

@@ -118,7 +118,14 @@ pub fn suite(preset: Preset) -> Vec<Box<dyn AnyBenchmark>> {
         Box::new(cantilever::Cantilever::validation()),
         Box::new(bend_twist::BendTwist::for_preset(preset)),
         Box::new(rod_models::RodModels::for_preset(preset)),
-        Box::new(lateral_buckling::LateralBuckling::validation(preset)),
+        Box::new(lateral_buckling::LateralBuckling::validation(
+            preset,
+            slender_validation::shell_model::ShellModel::Midedge,
+        )),
+        Box::new(lateral_buckling::LateralBuckling::validation(
+            preset,
+            slender_validation::shell_model::ShellModel::Bspline,
+        )),
         Box::new(sensitivity::Sensitivity::for_preset(preset)),
         Box::new(scenes::Scenes),
     ]

@@ -12,6 +12,7 @@ use slender_validation::lateral_sweep::sensitivity::{
     Verdict, SQUARE,
 };
 use slender_validation::lateral_sweep::{sensitivity_checks, LateralBucklingSweep};
+use slender_validation::shell_model::ShellModel;
 
 use super::lateral_buckling::{ProtocolKey, PROTOCOL_STORE};
 use super::{Benchmark, Context, Preset, SectionSpec};
@@ -59,9 +60,10 @@ impl Benchmark for Sensitivity {
             about: format!(
                 "The seed's §5.3 study (Fig. 12): the share of correct 2-D/3-D decisions of \
                  the protocol over a (w/L, Γ/Γ_c) grid placed on the plate master curve, for \
-                 {} configurations (Ω × n_L {:?} × m_ls {:?} × σ {:?}); w = L excluded from \
-                 the score as in the seed.",
+                 {} configurations (shell model {:?} × Ω × n_L {:?} × m_ls {:?} × σ {:?}); \
+                 w = L excluded from the score as in the seed.",
                 study.configurations().len(),
+                study.models.iter().map(|m| m.name()).collect::<Vec<_>>(),
                 study.elements,
                 study.load_steps,
                 study.sigmas
@@ -101,6 +103,7 @@ impl Benchmark for Sensitivity {
             .iter()
             .map(|(c, g)| ProtocolKey {
                 material: c.material,
+                model: c.model,
                 n_length: c.n_length,
                 width_ratio: g.width_ratio,
                 gamma: g.gamma,
@@ -112,6 +115,7 @@ impl Benchmark for Sensitivity {
         let Some(protocol) = cx.cases(PROTOCOL_STORE, &keys, |k| {
             let sweep = LateralBucklingSweep {
                 material: k.material,
+                model: k.model,
                 n_length: k.n_length,
                 width_ratios: vec![k.width_ratio],
                 gammas: vec![k.gamma],
@@ -203,8 +207,8 @@ impl Benchmark for Sensitivity {
 /// Caption of the section's figure.
 fn caption(_stem: &str) -> String {
     "Counterpart of the seed's Fig. 12: share of correct 2-D/3-D decisions per configuration, \
-     grouped by shell set Ω, elements n_L, load steps m_ls and clamp rotation σ (w = L \
-     excluded)."
+     grouped by shell model, shell set Ω, elements n_L, load steps m_ls and clamp rotation σ \
+     (w = L excluded)."
         .into()
 }
 
@@ -217,22 +221,35 @@ fn print_summary(out: &SensitivityRecords, stats: RunStats) {
     );
     let square = out.scores.iter().any(|s| s.square_points > 0);
     print!(
-        "{:>4} {:>8} {:>10} {:>8} {:>8}",
-        "n_L", "configs", "median %", "min %", "max %"
+        "{:<8} {:>4} {:>8} {:>10} {:>8} {:>8}",
+        "model", "n_L", "configs", "median %", "min %", "max %"
     );
     if square {
         print!(" {:>14}", "w = L median %");
     }
     println!();
-    for s in summary_by_elements(&out.scores) {
-        print!(
-            "{:>4} {:>8} {:>10.1} {:>8.1} {:>8.1}",
-            s.n_length, s.configurations, s.median, s.min, s.max
-        );
-        if square {
-            print!(" {:>14.1}", s.square_median);
+    for model in ShellModel::ALL {
+        let mine: Vec<ConfigurationScore> = out
+            .scores
+            .iter()
+            .filter(|s| s.model == model)
+            .cloned()
+            .collect();
+        for s in summary_by_elements(&mine) {
+            print!(
+                "{:<8} {:>4} {:>8} {:>10.1} {:>8.1} {:>8.1}",
+                model.name(),
+                s.n_length,
+                s.configurations,
+                s.median,
+                s.min,
+                s.max
+            );
+            if square {
+                print!(" {:>14.1}", s.square_median);
+            }
+            println!();
         }
-        println!();
     }
     let all: Vec<f64> = out.scores.iter().map(|s| s.score_percent).collect();
     println!(
@@ -254,7 +271,8 @@ fn print_summary(out: &SensitivityRecords, stats: RunStats) {
         );
         for p in failed.iter().take(20) {
             println!(
-                "  {} n_L = {} m_ls = {} σ = {} w/L = {} Γ = {:.3} (Γ/Γ_c = {}): residual {:.2e}",
+                "  {} {} n_L = {} m_ls = {} σ = {} w/L = {} Γ = {:.3} (Γ/Γ_c = {}): residual {:.2e}",
+                p.model,
                 p.material,
                 p.n_length,
                 p.load_steps,

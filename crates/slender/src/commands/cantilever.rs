@@ -52,6 +52,10 @@ pub struct CantileverArgs {
     /// Shell aspect ratio w/L (> 0).
     #[arg(long, default_value_t = 0.1)]
     shell_width_ratio: f64,
+    /// Shell models, comma-separated: midedge (triangles, mid-edge directors), bspline (C¹
+    /// cubic B-spline patch).
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["midedge".to_string(), "bspline".to_string()])]
+    shell_model: Vec<String>,
 }
 
 /// Runs the benchmark the flags describe.
@@ -134,6 +138,7 @@ fn shell_sweep_from_args(a: &CantileverArgs) -> Result<Option<ShellCantileverSwe
             })
             .collect::<Result<Vec<_>>>()?;
     Ok(Some(ShellCantileverSweep {
+        models: super::shell_models(&a.shell_model)?,
         gammas: log_space(a.gamma_min, a.gamma_max, a.gamma_count),
         element_counts: a.shell_elements.clone(),
         width_ratio: a.shell_width_ratio,

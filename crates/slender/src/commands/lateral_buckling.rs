@@ -1,5 +1,6 @@
 //! `slender lateral-buckling`: the lateral-buckling grid and the Γ_c convergence on the flags'
-//! grid and meshes.
+//! grid and meshes, for each shell model of `--shell-model` (several models: each in
+//! `OUT/<model>`, one store).
 
 use std::path::PathBuf;
 
@@ -8,8 +9,9 @@ use slender_validation::cantilever::log_space;
 use slender_validation::lateral_sweep::LateralBucklingSweep;
 use slender_validation::materials::SHELL_SETS;
 
-use super::{run_benchmark, StoreArgs};
-use crate::benchmarks::lateral_buckling::{ConvergenceStudy, LateralBuckling};
+use super::{run_benchmark, shell_models, StoreArgs};
+use crate::benchmarks::lateral_buckling::{convergence_meshes, ConvergenceStudy, LateralBuckling};
+use crate::benchmarks::Preset;
 
 /// The flags of `slender lateral-buckling`.
 #[derive(clap::Args, Debug)]
@@ -35,10 +37,11 @@ pub struct LateralBucklingArgs {
     /// Number of Γ_shell values.
     #[arg(long, default_value_t = 15)]
     gamma_count: usize,
-    /// Meshes n_L of the Γ_c convergence study (three or more give an extrapolation);
+    /// Meshes n_L of the Γ_c convergence study (three or more give an extrapolation; default
+    /// 8, 15, 30 for the mid-edge shell, 4, 8, 16 for the B-spline shell);
     /// `--convergence-meshes 0` skips it.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![8, 15, 30])]
-    convergence_meshes: Vec<usize>,
+    #[arg(long, value_delimiter = ',')]
+    convergence_meshes: Option<Vec<usize>>,
     /// Aspect ratios of the Γ_c convergence study.
     #[arg(long, value_delimiter = ',', default_values_t = vec![0.1, 0.5, 1.0])]
     convergence_widths: Vec<f64>,
@@ -56,26 +59,49 @@ pub struct LateralBucklingArgs {
     jobs: Option<usize>,
     #[command(flatten)]
     store: StoreArgs,
+    /// Shell models, comma-separated: midedge (triangles, mid-edge directors), bspline (C¹
+    /// cubic B-spline patch).
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["midedge".to_string()])]
+    shell_model: Vec<String>,
 }
 
-/// Runs the benchmark the flags describe.
+/// Runs the benchmark the flags describe, once per shell model.
 pub fn run(a: &LateralBucklingArgs) -> Result<bool> {
+    let models = shell_models(&a.shell_model)?;
     let grid = lateral_sweep_from_args(a)?;
-    let meshes: Vec<usize> = a
-        .convergence_meshes
-        .iter()
-        .copied()
-        .filter(|&n| n > 0)
-        .collect();
-    let benchmark = LateralBuckling {
-        grid,
-        fine: None,
-        convergence: (!meshes.is_empty()).then(|| ConvergenceStudy {
-            widths: a.convergence_widths.clone(),
-            meshes,
-        }),
+    // One store for all models, so that a rerun with one of them reuses its cases.
+    let store = StoreArgs {
+        store: Some(a.store.options(&a.out).root),
+        shard: a.store.shard,
     };
-    run_benchmark(&benchmark, &a.out, &a.store, a.jobs)
+    for &model in &models {
+        let meshes: Vec<usize> = a
+            .convergence_meshes
+            .clone()
+            .unwrap_or_else(|| convergence_meshes(model, Preset::Quick))
+            .into_iter()
+            .filter(|&n| n > 0)
+            .collect();
+        let benchmark = LateralBuckling {
+            grid: LateralBucklingSweep {
+                model,
+                ..grid.clone()
+            },
+            fine: None,
+            convergence: (!meshes.is_empty()).then(|| ConvergenceStudy {
+                widths: a.convergence_widths.clone(),
+                meshes,
+            }),
+        };
+        let out = if models.len() > 1 {
+            a.out.join(model.name())
+        } else {
+            a.out.clone()
+        };
+        println!("{}:", model.label());
+        run_benchmark(&benchmark, &out, &store, a.jobs)?;
+    }
+    Ok(true)
 }
 
 /// The protocol grid of the flags.
@@ -126,6 +152,7 @@ fn lateral_sweep_from_args(a: &LateralBucklingArgs) -> Result<LateralBucklingSwe
     }
     Ok(LateralBucklingSweep {
         material,
+        model: slender_validation::shell_model::ShellModel::Midedge,
         n_length: a.elements,
         width_ratios: a.width_ratios.clone(),
         gammas: log_space(a.gamma_min, a.gamma_max, a.gamma_count),

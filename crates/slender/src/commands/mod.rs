@@ -5,12 +5,14 @@
 pub mod bend_twist;
 pub mod cantilever;
 pub mod lateral_buckling;
+pub mod master_curve;
 pub mod merge;
 pub mod models;
 pub mod scene_schema;
 pub mod sensitivity;
 pub mod solve;
 pub mod validate;
+pub mod view;
 
 use std::path::{Path, PathBuf};
 
@@ -26,11 +28,11 @@ use crate::store::shard::Shard;
 pub struct StoreArgs {
     /// Result store (default: OUT/store). Finished cases found there are not recomputed.
     #[arg(long)]
-    store: Option<PathBuf>,
+    pub(crate) store: Option<PathBuf>,
     /// Compute only shard i of n (e.g. 0/4) into the store and write no report; combine the
     /// shards with `slender merge`, then rerun without --shard to write the report.
     #[arg(long)]
-    shard: Option<Shard>,
+    pub(crate) shard: Option<Shard>,
 }
 
 impl StoreArgs {
@@ -106,4 +108,23 @@ pub fn run_benchmark(
         None => print_shard_done(&store),
     }
     Ok(true)
+}
+
+/// The shell models named in `--shell-model` (comma-separated, no duplicates).
+pub fn shell_models(names: &[String]) -> Result<Vec<slender_validation::shell_model::ShellModel>> {
+    let mut models = Vec::new();
+    for n in names {
+        let m = n
+            .trim()
+            .parse()
+            .map_err(|e: String| anyhow::anyhow!("--shell-model: {e}"))?;
+        if models.contains(&m) {
+            anyhow::bail!("--shell-model: `{m}` given twice");
+        }
+        models.push(m);
+    }
+    if models.is_empty() {
+        anyhow::bail!("--shell-model: give at least one of midedge, bspline");
+    }
+    Ok(models)
 }

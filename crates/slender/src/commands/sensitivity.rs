@@ -19,9 +19,13 @@ pub struct SensitivityArgs {
     #[arg(long, default_value = "out/sensitivity")]
     pub out: PathBuf,
     /// quick: Ω_shell, n_L ∈ {8, 15}, m_ls ∈ {1, 5}, σ ∈ {0.1, 0.2}, w/L ∈ {0.05, 0.1, 0.2}
-    /// (8 configurations); full: the seed's 216 configurations on w/L ∈ {0.05, 0.1, 0.2, 0.5}.
+    /// (8 configurations per shell model); full: the seed's 216 configurations per shell model
+    /// on w/L ∈ {0.05, 0.1, 0.2, 0.5}.
     #[arg(long, value_enum, default_value_t = Preset::Quick)]
     pub preset: Preset,
+    /// Shell models, comma-separated: midedge, bspline (default: both, a factor of the study).
+    #[arg(long, value_delimiter = ',')]
+    pub shell_model: Option<Vec<String>>,
     /// Shell sets Ω, comma-separated: shell, combined, ips.
     #[arg(long, value_delimiter = ',')]
     pub materials: Option<Vec<String>>,
@@ -72,6 +76,9 @@ fn study_from_args(a: &SensitivityArgs) -> Result<SensitivityStudy> {
         other => anyhow::Error::new(other),
     };
     let mut s = Sensitivity::for_preset(a.preset).study;
+    if let Some(m) = &a.shell_model {
+        s.models = super::shell_models(m)?;
+    }
     if let Some(m) = &a.materials {
         s.materials = m
             .iter()

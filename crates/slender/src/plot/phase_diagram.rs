@@ -111,11 +111,17 @@ pub fn plot_phase_diagram(
 
 /// Checks a log-axis range and puts it in ascending order.
 fn log_range((a, b): (f64, f64), which: &str, title: &str) -> Result<(f64, f64)> {
-    if !(Scale::Log.accepts(a) && Scale::Log.accepts(b)) || a == b {
+    if !(Scale::Log.accepts(a) && Scale::Log.accepts(b)) {
         bail!(
-            "phase diagram {title:?}: the {which} range [{a}, {b}] is not a non-empty \
-             interval of positive finite numbers (the axes are logarithmic)"
+            "phase diagram {title:?}: the {which} range [{a}, {b}] is not an interval of \
+             positive finite numbers (the axes are logarithmic)"
         );
+    }
+    if a == b {
+        // One column or row of points (e.g. a grid with a single X): a quarter decade either
+        // side, as the height maps draw a single cell.
+        let pad = 10f64.powf(0.25);
+        return Ok((a / pad, a * pad));
     }
     Ok((a.min(b), a.max(b)))
 }
@@ -451,12 +457,28 @@ mod tests {
         .expect("empty diagram renders");
         assert_rendered(&stem, "empty phase diagram");
 
-        for bad in [
-            (0.0, 1.0),
-            (1.0, 1.0),
-            (f64::NAN, 2.0),
-            (1.0, f64::INFINITY),
-        ] {
+        // A single column of points (one X): a quarter decade either side.
+        let stem_single = dir.join("phase_single_column");
+        plot_phase_diagram(
+            &stem_single,
+            "one column",
+            "X",
+            "Y",
+            (2.0, 2.0),
+            (0.1, 10.0),
+            &truth,
+            &[PhasePoint {
+                x: 2.0,
+                y: 1.0,
+                phase: Phase::ThreeD,
+                disagrees: false,
+            }],
+            &[],
+        )
+        .expect("a one-column diagram renders");
+        assert_rendered(&stem_single, "one column");
+
+        for bad in [(0.0, 1.0), (f64::NAN, 2.0), (1.0, f64::INFINITY)] {
             let err =
                 plot_phase_diagram(&stem, "bad", "X", "Y", bad, (1.0, 10.0), &truth, &[], &[])
                     .expect_err("bad range is an error");

@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 8] = [
+pub const EXAMPLES: [(&str, &str); 14] = [
     (
         "cantilever_tip_force",
         include_str!("../../../../examples/cantilever_tip_force.toml"),
@@ -43,6 +43,30 @@ pub const EXAMPLES: [(&str, &str); 8] = [
     (
         "flat_cable_shell_cantilever",
         include_str!("../../../../examples/flat_cable_shell_cantilever.toml"),
+    ),
+    (
+        "pinned_pinned_column",
+        include_str!("../../../../examples/pinned_pinned_column.toml"),
+    ),
+    (
+        "clamped_pinned_column",
+        include_str!("../../../../examples/clamped_pinned_column.toml"),
+    ),
+    (
+        "sliding_clip_cable",
+        include_str!("../../../../examples/sliding_clip_cable.toml"),
+    ),
+    (
+        "hanging_ring",
+        include_str!("../../../../examples/hanging_ring.toml"),
+    ),
+    (
+        "follower_cantilever",
+        include_str!("../../../../examples/follower_cantilever.toml"),
+    ),
+    (
+        "branched_harness",
+        include_str!("../../../../examples/branched_harness.toml"),
     ),
 ];
 

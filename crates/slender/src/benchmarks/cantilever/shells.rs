@@ -6,14 +6,15 @@ use std::path::Path;
 
 use anyhow::{Context as _, Result};
 use serde::Serialize;
-use slender_core::rod::Grading;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::master_curve::heavy_elastica;
+use slender_validation::cantilever::shell_acceptance::cantilever_grading;
 use slender_validation::cantilever::{
     log_space, run_shell_case, CantileverRecord, ShellCantileverCase, ShellCantileverRecord,
     ShellCantileverSweep, CABLE_RANGE,
 };
 use slender_validation::materials::{ShellMaterialSet, OMEGA_COMBINED, OMEGA_IPS};
+use slender_validation::shell_model::ShellModel;
 
 use crate::benchmarks::{words, Context};
 use crate::output::write_csv;
@@ -66,14 +67,15 @@ pub(super) fn write(
         .collect();
     let shell_curves = |set: &ShellMaterialSet, error: bool| -> Vec<Curve> {
         sweep
-            .element_counts
+            .models
             .iter()
-            .map(|&n| {
+            .flat_map(|&m| sweep.element_counts.iter().map(move |&n| (m, n)))
+            .map(|(model, n)| {
                 let rows = records
                     .iter()
-                    .filter(|r| r.material == set.name && r.n_length == n);
+                    .filter(|r| r.model == model && r.material == set.name && r.n_length == n);
                 Curve {
-                    label: format!("shell {}, n_L = {n}", set.label),
+                    label: format!("{model} shell {}, n_L = {n}", set.label),
                     points: rows
                         .map(|r| (r.gamma, if error { 100.0 * r.rel_error } else { r.ratio }))
                         .collect(),
@@ -192,12 +194,18 @@ pub(super) fn caption(stem: &str) -> String {
     }
 }
 
-/// The deformed strip as a wire frame (lines along the length and across the width).
+/// The deformed strip as a wire frame (lines along the length and across the width) through
+/// the surface points of a run: the mid-edge shell's vertices, the B-spline shell's
+/// tessellation (4 × 4 points per element).
 fn wire_frame(
     case: &ShellCantileverCase,
     positions: &[slender_core::geometry::Vec3],
 ) -> Vec<Polyline3> {
-    let (nl, nw) = (case.n_length, case.n_width);
+    let k = match case.model {
+        ShellModel::Midedge => 1,
+        ShellModel::Bspline => 4,
+    };
+    let (nl, nw) = (k * case.n_length, k * case.n_width);
     let at = |i: usize, j: usize| {
         let p = positions[i * (nw + 1) + j];
         [p.x, p.y, p.z]
@@ -206,7 +214,10 @@ fn wire_frame(
     for j in 0..=nw {
         lines.push(Polyline3 {
             label: if j == 0 {
-                format!("{} × {} elements", nl, nw)
+                format!(
+                    "{}, {} × {} elements",
+                    case.model, case.n_length, case.n_width
+                )
             } else {
                 String::new()
             },
@@ -224,18 +235,32 @@ fn wire_frame(
     lines
 }
 
-/// Shapes as in the seed's Fig. 4 (an IPS-default strip with fifteen elements), at a large Γ
-/// where coarse meshes struggle, and the Ω_combined strip, each with the exact centre line.
+/// Shapes as in the seed's Fig. 4 (an IPS-default strip with fifteen elements; eight for the
+/// B-spline shell), at a large Γ where coarse meshes struggle, and the Ω_combined strip, each
+/// with the exact centre line.
 fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path, cx: &mut Context) -> Result<()> {
     let params = SolverParams::default();
-    for (set, gamma) in [(OMEGA_IPS, 1e3), (OMEGA_IPS, 1e4), (OMEGA_COMBINED, 61.3)] {
-        let n_length = 15;
+    let shapes = sweep.models.iter().flat_map(|&m| {
+        [(OMEGA_IPS, 1e3), (OMEGA_IPS, 1e4), (OMEGA_COMBINED, 61.3)]
+            .into_iter()
+            .map(move |(set, gamma)| (m, set, gamma))
+    });
+    for (model, set, gamma) in shapes {
+        let n_length = match model {
+            ShellModel::Midedge => 15,
+            ShellModel::Bspline => 8,
+        };
         let case = ShellCantileverCase {
+            model,
             material: set,
             width_ratio: sweep.width_ratio,
             n_length,
-            n_width: ShellCantileverCase::default_width_elements(sweep.width_ratio, n_length),
-            grading: Grading::Power { exponent: 2.0 },
+            n_width: ShellCantileverCase::default_width_elements(
+                model,
+                sweep.width_ratio,
+                n_length,
+            ),
+            grading: cantilever_grading(model, gamma),
             gamma,
         };
         let run = cx.compute(1, || Ok(case.run(&params)?))?;
@@ -257,15 +282,22 @@ fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path, cx: &mut Context) -> Re
         } else {
             "not converged".into()
         };
+        // The mid-edge shell keeps its file names of before the B-spline shell.
+        let prefix = match model {
+            ShellModel::Midedge => "shell_shape".to_string(),
+            ShellModel::Bspline => format!("shell_shape_{model}"),
+        };
         let stem = out.join(format!(
-            "shell_shape_{}_n{}_gamma{}",
+            "{prefix}_{}_n{}_gamma{}",
             set.name, n_length, gamma
         ));
         plot_shape_views(
             &stem,
             &format!(
-                "Shell cantilever, {}, w/L = {}, Γ = {gamma}: {status}",
-                set.label, sweep.width_ratio
+                "Shell cantilever ({}), {}, w/L = {}, Γ = {gamma}: {status}",
+                model.label(),
+                set.label,
+                sweep.width_ratio
             ),
             &lines,
         )
@@ -277,18 +309,18 @@ fn plot_shapes(sweep: &ShellCantileverSweep, out: &Path, cx: &mut Context) -> Re
 /// Prints the worst errors per shell discretization against the D·w master curve.
 fn print_summary(records: &[ShellCantileverRecord]) {
     println!(
-        "{:<8} {:>5} {:>4} {:>4}  {:>22}  {:>16}  {:>9}",
-        "shell", "ν", "n_L", "n_W", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
+        "{:<8} {:<8} {:>5} {:>4} {:>4}  {:>22}  {:>16}  {:>9}",
+        "model", "shell", "ν", "n_L", "n_W", "worst err Γ∈[10,1e3] %", "worst err all %", "unconv."
     );
-    let mut keys: Vec<(String, usize)> = records
+    let mut keys: Vec<(ShellModel, String, usize)> = records
         .iter()
-        .map(|r| (r.material.clone(), r.n_length))
+        .map(|r| (r.model, r.material.clone(), r.n_length))
         .collect();
     keys.dedup();
-    for (material, n) in keys {
+    for (model, material, n) in keys {
         let rows: Vec<&ShellCantileverRecord> = records
             .iter()
-            .filter(|r| r.material == material && r.n_length == n)
+            .filter(|r| r.model == model && r.material == material && r.n_length == n)
             .collect();
         let worst = |lo: f64, hi: f64| {
             rows.iter()
@@ -297,7 +329,8 @@ fn print_summary(records: &[ShellCantileverRecord]) {
                 .fold(0.0, f64::max)
         };
         println!(
-            "{:<8} {:>5} {:>4} {:>4}  {:>22.3}  {:>16.3}  {:>9}",
+            "{:<8} {:<8} {:>5} {:>4} {:>4}  {:>22.3}  {:>16.3}  {:>9}",
+            model.name(),
             material,
             rows[0].poisson,
             n,

@@ -7,15 +7,18 @@ use std::path::Path;
 use anyhow::{Context as _, Result};
 use serde::Serialize;
 use slender_validation::lateral_buckling::{critical_gamma, MasterCurve};
+use slender_validation::lateral_sweep::sweep::CONVERGENCE_STUDY_TOLERANCE;
 use slender_validation::lateral_sweep::{critical_record, CriticalConvergence};
 use slender_validation::materials::ShellMaterialSet;
+use slender_validation::shell_model::ShellModel;
 
 use super::grid::{critical_key, CriticalKey, CRITICAL_STORE};
 use crate::benchmarks::Context;
 use crate::output::write_csv;
 use crate::plot::{plot_lines, Curve, LineAxes, Scale};
 
-/// The study: Γ_c at every aspect ratio of `widths` on every mesh of `meshes`.
+/// The study: Γ_c at every aspect ratio of `widths` on every mesh of `meshes`, bisected to
+/// [`CONVERGENCE_STUDY_TOLERANCE`] (far below the differences between meshes).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConvergenceStudy {
     /// Aspect ratios w/L.
@@ -35,10 +38,11 @@ struct ConvergenceRow {
     relative_to_master: f64,
 }
 
-/// Γ_c of `material` for every case of `study` through the store, extrapolated per aspect
-/// ratio. `None` if this run computes one shard only.
+/// Γ_c of `material` with `model` for every case of `study` through the store, extrapolated
+/// per aspect ratio. `None` if this run computes one shard only.
 pub(super) fn records(
     material: ShellMaterialSet,
+    model: ShellModel,
     study: &ConvergenceStudy,
     cx: &mut Context,
 ) -> Result<Option<Vec<CriticalConvergence>>> {
@@ -52,13 +56,15 @@ pub(super) fn records(
         .collect();
     let keys: Vec<CriticalKey> = cases
         .iter()
-        .map(|&(w, n)| critical_key(material, n, w))
+        .map(|&(w, n)| critical_key(material, model, n, w, CONVERGENCE_STUDY_TOLERANCE))
         .collect();
     let Some(records) = cx.cases(CRITICAL_STORE, &keys, |k| {
         Ok(critical_record(
             k.material,
+            k.model,
             k.width_ratio,
             k.n_length,
+            k.tolerance,
             &k.solver,
         )?)
     })?
@@ -78,7 +84,13 @@ pub(super) fn records(
             .collect();
         let master =
             critical_gamma(w, material.poisson, MasterCurve::KirchhoffPlate).unwrap_or(f64::NAN);
-        result.push(CriticalConvergence::new(w, meshes.clone(), gamma_c, master));
+        result.push(CriticalConvergence::new(
+            model,
+            w,
+            meshes.clone(),
+            gamma_c,
+            master,
+        ));
     }
     Ok(Some(result))
 }
@@ -148,8 +160,9 @@ pub(super) fn write(
     plot_lines(
         &stem,
         &format!(
-            "{}: Γ_c from the inertia against the mesh, relative to the master curve",
-            material.label
+            "{}, {}: Γ_c from the inertia against the mesh, relative to the master curve",
+            material.label,
+            result.first().map_or("", |c| c.model.label())
         ),
         LineAxes {
             x_desc: "elements along the length n_L",

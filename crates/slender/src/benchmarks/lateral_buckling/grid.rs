@@ -10,12 +10,13 @@ use serde::Serialize;
 use slender_core::solver::SolverParams;
 use slender_validation::cantilever::log_space;
 use slender_validation::lateral_buckling::{sample_master_curve, MasterCurve};
-use slender_validation::lateral_sweep::sweep::GAMMA_C_BRACKET;
+use slender_validation::lateral_sweep::sweep::{GAMMA_C_BRACKET, SWEEP_TOLERANCE};
 use slender_validation::lateral_sweep::vlasov_band;
 use slender_validation::lateral_sweep::{
     score_decisions, CriticalRecord, DecisionScore, LateralBucklingRecord, LateralBucklingSweep,
 };
 use slender_validation::materials::ShellMaterialSet;
+use slender_validation::shell_model::ShellModel;
 
 use crate::benchmarks::Context;
 use crate::output::write_csv;
@@ -72,9 +73,12 @@ impl DecisionRow {
 #[derive(Serialize)]
 pub(super) struct CriticalKey {
     pub(super) material: ShellMaterialSet,
+    pub(super) model: ShellModel,
     pub(super) n_length: usize,
     pub(super) width_ratio: f64,
     bracket: (f64, f64),
+    /// Relative width of the bisection.
+    pub(super) tolerance: f64,
     pub(super) solver: SolverParams,
 }
 
@@ -83,6 +87,7 @@ pub(super) struct CriticalKey {
 #[derive(Serialize)]
 pub(crate) struct ProtocolKey {
     pub(crate) material: ShellMaterialSet,
+    pub(crate) model: ShellModel,
     pub(crate) n_length: usize,
     pub(crate) width_ratio: f64,
     pub(crate) gamma: f64,
@@ -102,7 +107,15 @@ pub(super) fn records(
     let critical_keys: Vec<CriticalKey> = sweep
         .width_ratios
         .iter()
-        .map(|&width_ratio| critical_key(sweep.material, sweep.n_length, width_ratio))
+        .map(|&width_ratio| {
+            critical_key(
+                sweep.material,
+                sweep.model,
+                sweep.n_length,
+                width_ratio,
+                SWEEP_TOLERANCE,
+            )
+        })
         .collect();
     let critical = cx.cases(CRITICAL_STORE, &critical_keys, |k| {
         Ok(sweep.critical_at(k.width_ratio, &k.solver)?)
@@ -112,6 +125,7 @@ pub(super) fn records(
         .iter()
         .map(|&(width_ratio, gamma)| ProtocolKey {
             material: sweep.material,
+            model: sweep.model,
             n_length: sweep.n_length,
             width_ratio,
             gamma,
@@ -202,7 +216,10 @@ pub(super) fn write(sweep: &LateralBucklingSweep, g: &GridRecords, out: &Path) -
             color: Some(plotters::style::RGBColor(200, 30, 30)),
         },
         Overlay {
-            label: format!("Γ_c from the Hessian inertia (n_L = {})", sweep.n_length),
+            label: format!(
+                "Γ_c from the Hessian inertia ({}, n_L = {})",
+                sweep.model, sweep.n_length
+            ),
             points: curve.clone(),
             dashed: false,
             color: None,
@@ -226,7 +243,8 @@ pub(super) fn write(sweep: &LateralBucklingSweep, g: &GridRecords, out: &Path) -
     plot_phase_diagram(
         &stem,
         &format!(
-            "Lateral buckling, {} (ν = {}), n_L = {}: protocol σ = {}, m_ls = {}, ε = {}",
+            "Lateral buckling, {}, {} (ν = {}), n_L = {}: protocol σ = {}, m_ls = {}, ε = {}",
+            sweep.model.label(),
             sweep.material.label,
             sweep.material.poisson,
             sweep.n_length,
@@ -265,8 +283,12 @@ pub(super) fn write(sweep: &LateralBucklingSweep, g: &GridRecords, out: &Path) -
     plot_height_map(
         &stem,
         &format!(
-            "{}, n_L = {}: free-end y-deviation after the protocol (σ = {}, m_ls = {})",
-            sweep.material.label, sweep.n_length, sweep.sigma, sweep.load_steps
+            "{}, {}, n_L = {}: free-end y-deviation after the protocol (σ = {}, m_ls = {})",
+            sweep.model.label(),
+            sweep.material.label,
+            sweep.n_length,
+            sweep.sigma,
+            sweep.load_steps
         ),
         "w / L",
         "Γ_shell",
@@ -295,14 +317,18 @@ fn log_interpolate(curve: &[(f64, f64)], x: f64) -> Option<f64> {
 /// Everything a Γ_c record depends on, as in [`CriticalKey`] (shared store).
 pub(super) fn critical_key(
     material: ShellMaterialSet,
+    model: ShellModel,
     n_length: usize,
     width_ratio: f64,
+    tolerance: f64,
 ) -> CriticalKey {
     CriticalKey {
         material,
+        model,
         n_length,
         width_ratio,
         bracket: GAMMA_C_BRACKET,
+        tolerance,
         solver: slender_validation::lateral_sweep::solver_params(),
     }
 }

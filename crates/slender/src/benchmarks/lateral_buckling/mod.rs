@@ -15,13 +15,15 @@ use slender_validation::lateral_sweep::{
     BranchSwitchCase, BuckledState, CriticalConvergence, LateralBucklingSweep,
 };
 use slender_validation::materials::{ShellMaterialSet, OMEGA_SHELL};
+use slender_validation::shell_model::ShellModel;
 
 use super::{words, Benchmark, Context, Preset, SectionSpec};
 pub use convergence::ConvergenceStudy;
 use grid::GridRecords;
 pub(crate) use grid::{ProtocolKey, PROTOCOL_STORE};
 
-/// Section (and output directory) of the grid, the convergence and the master curves.
+/// Section (and output directory) of the grid, the convergence and the master curves of the
+/// mid-edge shell; the B-spline shell's sections get the suffix `-bspline`.
 const SECTION: &str = "lateral-buckling";
 /// The store of branch switches.
 const BRANCH_SWITCH_STORE: &str = "lateral-buckling-branch-switch";
@@ -46,21 +48,18 @@ pub struct LateralBucklingRecords {
 }
 
 impl LateralBuckling {
-    /// The benchmark of `slender validate`: Ω_shell on the default grid at n_L = 8 (and
-    /// n_L = 30 in full), the convergence of Γ_c at w/L ∈ {0.1, 0.5, 1} on n_L = 8/15/30
-    /// (15/30/60 in full).
-    pub fn validation(preset: Preset) -> Self {
+    /// The benchmark of `slender validate` for `model`: Ω_shell on the default grid at
+    /// n_L = 8 (and, for the mid-edge shell, n_L = 30 in full), the convergence of Γ_c at
+    /// w/L ∈ {0.1, 0.5, 1} on the model's [`convergence_meshes`].
+    pub fn validation(preset: Preset, model: ShellModel) -> Self {
         let full = preset == Preset::Full;
         Self {
-            grid: LateralBucklingSweep::default_grid(OMEGA_SHELL, 8),
-            fine: full.then(|| LateralBucklingSweep::default_grid(OMEGA_SHELL, 30)),
+            grid: LateralBucklingSweep::default_grid(OMEGA_SHELL, model, 8),
+            fine: (full && model == ShellModel::Midedge)
+                .then(|| LateralBucklingSweep::default_grid(OMEGA_SHELL, model, 30)),
             convergence: Some(ConvergenceStudy {
                 widths: vec![0.1, 0.5, 1.0],
-                meshes: if full {
-                    vec![15, 30, 60]
-                } else {
-                    vec![8, 15, 30]
-                },
+                meshes: convergence_meshes(model, preset),
             }),
         }
     }
@@ -68,11 +67,40 @@ impl LateralBuckling {
     fn material(&self) -> ShellMaterialSet {
         self.grid.material
     }
+
+    fn model(&self) -> ShellModel {
+        self.grid.model
+    }
+
+    /// The main section of this model.
+    fn section(&self) -> String {
+        section(self.model())
+    }
+}
+
+/// The meshes n_L of the Γ_c convergence study: for the mid-edge shell 8/15/30 (15/30/60 in
+/// full), for the B-spline shell 4/8/16 (8/16/32 in full: its Γ_c converges as h⁴, so finer
+/// meshes differ by less than the bisection could resolve).
+pub fn convergence_meshes(model: ShellModel, preset: Preset) -> Vec<usize> {
+    match (model, preset) {
+        (ShellModel::Midedge, Preset::Quick) => vec![8, 15, 30],
+        (ShellModel::Midedge, Preset::Full) => vec![15, 30, 60],
+        (ShellModel::Bspline, Preset::Quick) => vec![4, 8, 16],
+        (ShellModel::Bspline, Preset::Full) => vec![8, 16, 32],
+    }
+}
+
+/// The main section of `model`'s benchmark.
+fn section(model: ShellModel) -> String {
+    match model {
+        ShellModel::Midedge => SECTION.to_string(),
+        ShellModel::Bspline => format!("{SECTION}-{model}"),
+    }
 }
 
 /// Section of the finer grid.
 fn fine_section(sweep: &LateralBucklingSweep) -> String {
-    format!("{SECTION}-n{}", sweep.n_length)
+    format!("{}-n{}", section(sweep.model), sweep.n_length)
 }
 
 /// Everything a branch switch depends on: its store key.
@@ -95,18 +123,22 @@ impl Benchmark for LateralBuckling {
     fn sections(&self) -> Vec<SectionSpec> {
         let s = &self.grid;
         let mut v = vec![SectionSpec {
-            dir: SECTION.into(),
-            title: "Lateral buckling of a heavy clamped strip".into(),
+            dir: self.section(),
+            title: format!(
+                "Lateral buckling of a heavy clamped strip ({})",
+                s.model.label()
+            ),
             about: format!(
                 "The critical Γ_shell of a strip clamped with its width along gravity, against \
                  w/L (ν = {}), computed in code by two methods independent of any shell: the \
                  linear buckling load of the clamped Kirchhoff plate under its in-plane \
                  self-weight (Legendre Ritz), and the Vlasov warping-torsion beam with both \
                  weak-axis stiffness conventions (shooting and Hermite Ritz). Beside them the \
-                 shell (Ω_shell, n_L = {}, square elements) over {} w/L × {} Γ_shell: Γ_c by \
+                 {} (Ω_shell, n_L = {}, square elements) over {} w/L × {} Γ_shell: Γ_c by \
                  bisection on the Hessian inertia and the seed's protocol (σ = {}, m_ls = {}, \
                  ε = {:e}).",
                 master_curves::NU,
+                s.model.label(),
                 s.n_length,
                 s.width_ratios.len(),
                 s.gammas.len(),
@@ -119,7 +151,11 @@ impl Benchmark for LateralBuckling {
         if let Some(f) = &self.fine {
             v.push(SectionSpec {
                 dir: fine_section(f),
-                title: format!("Lateral buckling, n_L = {}", f.n_length),
+                title: format!(
+                    "Lateral buckling ({}), n_L = {}",
+                    f.model.label(),
+                    f.n_length
+                ),
                 about: format!(
                     "The seed's protocol on the same {} w/L × {} Γ_shell grid with n_L = {} \
                      (the seed's Figs. 10–11 resolution).",
@@ -134,7 +170,7 @@ impl Benchmark for LateralBuckling {
     }
 
     fn records(&self, cx: &mut Context) -> Result<Option<LateralBucklingRecords>> {
-        cx.enter(SECTION);
+        cx.enter(&self.section());
         let grid = grid::records(&self.grid, cx)?;
         let fine = match &self.fine {
             Some(f) => {
@@ -143,9 +179,11 @@ impl Benchmark for LateralBuckling {
             }
             None => Some(None),
         };
-        cx.enter(SECTION);
+        cx.enter(&self.section());
         let convergence = match &self.convergence {
-            Some(study) => convergence::records(self.material(), study, cx)?.map(Some),
+            Some(study) => {
+                convergence::records(self.material(), self.model(), study, cx)?.map(Some)
+            }
             None => Some(None),
         };
         let (Some(grid), Some(fine), Some(convergence)) = (grid, fine, convergence) else {
@@ -186,8 +224,9 @@ impl Benchmark for LateralBuckling {
     }
 
     fn write(&self, r: &LateralBucklingRecords, cx: &mut Context) -> Result<()> {
-        cx.enter(SECTION);
-        let out = cx.dir(SECTION);
+        let section = self.section();
+        cx.enter(&section);
+        let out = cx.dir(&section);
         grid::write(&self.grid, &r.grid, &out)?;
         grid::print_summary(&r.grid);
         if let Some(c) = &r.convergence {
@@ -204,14 +243,22 @@ impl Benchmark for LateralBuckling {
     }
 
     fn checks(&self, r: &LateralBucklingRecords, cx: &mut Context) -> Result<Vec<Check>> {
-        cx.enter(SECTION);
+        let section = self.section();
+        cx.enter(&section);
         let material = self.material();
-        let mut checks = master_curves::write_and_check(&cx.dir(SECTION))?;
+        // The master curves do not depend on the shell: checked once, in the mid-edge shell's
+        // section.
+        let mut checks = if self.model() == ShellModel::Midedge {
+            master_curves::write_and_check(&cx.dir(&section))?
+        } else {
+            Vec::new()
+        };
         let grid_label = |s: &LateralBucklingSweep| {
             format!("{} w/L × {} Γ_shell", s.width_ratios.len(), s.gammas.len())
         };
         checks.extend(decision_checks(
             &material,
+            self.model(),
             self.grid.n_length,
             &grid_label(&self.grid),
             &r.grid.score,
@@ -219,6 +266,7 @@ impl Benchmark for LateralBuckling {
         if let (Some(sweep), Some(records)) = (&self.fine, &r.fine) {
             checks.extend(decision_checks(
                 &sweep.material,
+                sweep.model,
                 sweep.n_length,
                 &grid_label(sweep),
                 &records.score,

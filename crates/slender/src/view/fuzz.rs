@@ -1,0 +1,303 @@
+//! Tests of the message handler without a socket: named hostile messages get an error reply
+//! naming the problem, and a fuzz test (proptest) of arbitrary text and of well-formed
+//! requests with hostile values checks that [`handle`] never panics, always answers JSON with
+//! `ok`, names the field of every error, and leaves the equilibrium as it was whenever it
+//! refuses a request or an edit does not converge.
+
+use std::cell::RefCell;
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestRunner};
+use serde_json::{json, Value};
+use slender_core::scene::{Scene, Session};
+
+use super::protocol::handle;
+
+/// A short cable (12 elements, 0.6 m) clamped at its start, clipped at vertex 6, pinned at
+/// its end, under gravity: every kind of edit applies to it and re-solves quickly.
+const SCENE: &str = r#"
+gravity = [0.0, 0.0, -9.81]
+[[rods]]
+name = "cable"
+elements = 12
+centerline = { kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 0.6 }
+section = { shape = "circle", diameter = 0.004 }
+material = { young = 1.0e9, poisson = 0.4, density = 1400.0 }
+supports = [
+    { kind = "clamp", vertex = "start" },
+    { kind = "clip", vertex = 6 },
+    { kind = "pin", vertex = "end" },
+]
+"#;
+
+fn session() -> Session {
+    let scene: Scene = toml::from_str(SCENE).expect("the test scene parses");
+    Session::new(scene).expect("the test scene compiles")
+}
+
+/// Every vertex position of every rod, and the supports' poses, bit for bit.
+fn equilibrium(s: &Session) -> (Vec<Vec<[f64; 3]>>, Vec<String>) {
+    let step = s.results(0, None, 1.0, 1);
+    let poses = (0..s.compiled().rods.len())
+        .flat_map(|r| (0..s.compiled().rods[r].supports.len()).map(move |k| (r, k)))
+        .map(|(r, k)| format!("{:?}", s.pose(r, k)))
+        .collect();
+    (step.rods.into_iter().map(|r| r.positions).collect(), poses)
+}
+
+/// Sends `message`; checks the reply's shape; returns it and whether the equilibrium was
+/// kept. Panics (fails the test) on a malformed reply.
+fn exchange(s: &mut Session, message: &str) -> (Value, bool) {
+    let before = equilibrium(s);
+    let reply = handle(s, message);
+    let v: Value = serde_json::from_str(&reply).expect("the reply is JSON");
+    let ok = v["ok"].as_bool().expect("the reply has a boolean `ok`");
+    if !ok {
+        let field = v["error"]["field"]
+            .as_str()
+            .expect("an error names its field");
+        let message = v["error"]["message"]
+            .as_str()
+            .expect("an error says what is wrong");
+        assert!(!field.is_empty() && !message.is_empty(), "{reply}");
+    } else {
+        assert!(
+            v["view"]["rods"].is_array(),
+            "an ok reply carries the view: {reply}"
+        );
+    }
+    (v, equilibrium(s) == before)
+}
+
+fn error_of(v: &Value) -> (String, String) {
+    (
+        v["error"]["field"].as_str().unwrap_or("").to_string(),
+        v["error"]["message"].as_str().unwrap_or("").to_string(),
+    )
+}
+
+#[test]
+fn hostile_messages_are_refused_by_name_and_keep_the_equilibrium() {
+    let mut s = session();
+    let cases: &[(&str, &str, &str)] = &[
+        // (message, expected field, expected words in the message)
+        ("{bad json", "request", "key must be a string"),
+        ("", "request", "EOF"),
+        ("[1, 2]", "request", "op"),
+        (r#"{"op": "teleport"}"#, "request", "unknown variant"),
+        (r#"{"op": "state", "extra": 1}"#, "request", "unknown field"),
+        (
+            r#"{"op": "move", "rod": 0, "support": 7, "position": [0, 0, 0]}"#,
+            "rods[0].supports[7]",
+            "no such support",
+        ),
+        (
+            r#"{"op": "move", "rod": 3, "support": 0, "position": [0, 0, 0]}"#,
+            "rods[3]",
+            "no such rod",
+        ),
+        (
+            r#"{"op": "move", "rod": 0, "support": 2, "position": [NaN, 0, 0]}"#,
+            "request",
+            "NaN",
+        ),
+        (
+            r#"{"op": "move", "rod": 0, "support": 2, "position": [1e999, 0, 0]}"#,
+            "request",
+            "number out of range",
+        ),
+        (
+            r#"{"op": "add_support", "rod": 0, "kind": "clip", "at": 0.9}"#,
+            "rods[0].supports.at",
+            "beyond the cable",
+        ),
+        (
+            r#"{"op": "add_support", "rod": 0, "kind": "clip", "at": -0.1}"#,
+            "rods[0].supports.at",
+            "beyond the cable",
+        ),
+        (
+            r#"{"op": "add_support", "rod": 0, "kind": "clamp", "at": 0.3}"#,
+            "rods[0].supports",
+            "clamps are added in the scene file",
+        ),
+        (
+            r#"{"op": "move_by", "rod": 0, "support": 2, "translation": [1e6, 0, 0]}"#,
+            "rods[0].supports[2]",
+            "too large",
+        ),
+        (
+            r#"{"op": "move", "rod": 0, "support": 2, "position": [0.6, 0, 0], "rotation": [0, 0, 0.5]}"#,
+            "rods[0].supports[2].rotation",
+            "only translate",
+        ),
+        (
+            r#"{"op": "remove_support", "rod": 0, "support": 3}"#,
+            "rods[0].supports[3]",
+            "no such support",
+        ),
+        (
+            r#"{"op": "gravity", "gravity": [0, 0, 1e300]}"#,
+            "gravity",
+            "sensible magnitude",
+        ),
+        (
+            r#"{"op": "unstable_policy", "policy": "maybe"}"#,
+            "request",
+            "unknown variant",
+        ),
+    ];
+    for (message, field, words) in cases {
+        let (v, kept) = exchange(&mut s, message);
+        assert_eq!(v["ok"], json!(false), "{message} was accepted: {v}");
+        let (f, m) = error_of(&v);
+        assert_eq!(&f, field, "{message}: {m}");
+        assert!(m.contains(words), "{message}: {m:?} does not say {words:?}");
+        assert!(kept, "{message} changed the equilibrium");
+    }
+}
+
+#[test]
+fn valid_edits_change_the_equilibrium_and_errors_after_them_do_not() {
+    let mut s = session();
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "move_by", "rod": 0, "support": 2, "translation": [-0.05, 0.05, 0.02]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    let (v, _) = exchange(
+        &mut s,
+        r#"{"op": "add_support", "rod": 0, "kind": "clip", "at": 0.45}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(
+        v["view"]["rods"][0]["supports"].as_array().unwrap().len(),
+        4
+    );
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "move_by", "rod": 0, "support": 3, "translation": [1e6, 0, 0]}"#,
+    );
+    assert_eq!(v["ok"], json!(false));
+    assert!(kept);
+    let (v, _) = exchange(
+        &mut s,
+        r#"{"op": "remove_support", "rod": 0, "support": 1}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(
+        v["view"]["rods"][0]["supports"].as_array().unwrap().len(),
+        3
+    );
+    let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
+    let text = v["toml"].as_str().expect("save answers TOML");
+    let saved: Scene = toml::from_str(text).expect("the saved scene parses");
+    assert_eq!(saved.rods[0].supports.len(), 3);
+    let (v, _) = exchange(&mut s, r#"{"op": "gltf"}"#);
+    assert_eq!(v["gltf"]["asset"]["version"], json!("2.0"));
+}
+
+/// A number a hostile client might send: ordinary, huge, tiny, negative, or not a number.
+fn hostile_number() -> impl Strategy<Value = String> {
+    prop_oneof![
+        4 => (-1.0f64..1.0).prop_map(|x| format!("{x}")),
+        1 => (-1e6f64..1e6).prop_map(|x| format!("{x}")),
+        1 => Just("1e308".to_string()),
+        1 => Just("-1e308".to_string()),
+        1 => Just("1e999".to_string()),
+        1 => Just("NaN".to_string()),
+        1 => Just("\"0.1\"".to_string()),
+        1 => Just("null".to_string()),
+        1 => Just("5e-324".to_string()),
+    ]
+}
+
+fn index() -> impl Strategy<Value = String> {
+    prop_oneof![
+        6 => (0usize..5).prop_map(|i| i.to_string()),
+        1 => Just("-1".to_string()),
+        1 => Just("18446744073709551616".to_string()),
+        1 => Just("1.5".to_string()),
+    ]
+}
+
+fn vec3() -> impl Strategy<Value = String> {
+    prop_oneof![
+        8 => [hostile_number(), hostile_number(), hostile_number()]
+            .prop_map(|[a, b, c]| format!("[{a}, {b}, {c}]")),
+        1 => Just("[0, 0]".to_string()),
+        1 => Just("[]".to_string()),
+    ]
+}
+
+/// Requests that parse as JSON objects, with an `op` and hostile or random values.
+fn request() -> impl Strategy<Value = String> {
+    let kind = prop_oneof![
+        Just("clip"),
+        Just("pin"),
+        Just("slider"),
+        Just("twist_hold"),
+        Just("clamp"),
+        Just("hook")
+    ];
+    prop_oneof![
+        (index(), index(), vec3(), proptest::option::of(vec3())).prop_map(|(r, s, p, q)| match q {
+            Some(q) => format!(r#"{{"op": "move", "rod": {r}, "support": {s}, "position": {p}, "rotation": {q}}}"#),
+            None => format!(r#"{{"op": "move", "rod": {r}, "support": {s}, "position": {p}}}"#),
+        }),
+        (index(), index(), vec3(), vec3()).prop_map(|(r, s, t, q)| format!(
+            r#"{{"op": "move_by", "rod": {r}, "support": {s}, "translation": {t}, "rotation": {q}}}"#
+        )),
+        (index(), kind, hostile_number()).prop_map(|(r, k, a)| format!(
+            r#"{{"op": "add_support", "rod": {r}, "kind": "{k}", "at": {a}}}"#
+        )),
+        (index(), index()).prop_map(|(r, s)| format!(r#"{{"op": "remove_support", "rod": {r}, "support": {s}}}"#)),
+        vec3().prop_map(|g| format!(r#"{{"op": "gravity", "gravity": {g}}}"#)),
+        Just(r#"{"op": "follow_stable"}"#.to_string()),
+        Just(r#"{"op": "unstable_policy", "policy": "keep"}"#.to_string()),
+        Just(r#"{"op": "state"}"#.to_string()),
+        Just(r#"{"op": "save"}"#.to_string()),
+    ]
+}
+
+/// Runs `cases` random messages from `strategy` against one session, in sequence.
+fn fuzz(strategy: impl Strategy<Value = String>, cases: u32) {
+    let s = RefCell::new(session());
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    runner
+        .run(&strategy, |message| {
+            let mut s = s.borrow_mut();
+            let (v, kept) = exchange(&mut s, &message);
+            let refused = v["ok"] == json!(false);
+            let not_converged = v["edit"]["converged"] == json!(false);
+            prop_assert!(
+                !(refused || not_converged) || kept,
+                "{message}: refused or not converged, yet the equilibrium changed: {v}"
+            );
+            Ok(())
+        })
+        .unwrap();
+}
+
+#[test]
+fn fuzz_arbitrary_text() {
+    fuzz(
+        prop_oneof![
+            any::<String>(),
+            "\\PC{0,200}",
+            "[{}\\[\\]\":,a-z0-9.eE+-]{0,80}"
+        ],
+        400,
+    );
+}
+
+#[test]
+fn fuzz_requests_with_hostile_values() {
+    fuzz(request(), 300);
+}

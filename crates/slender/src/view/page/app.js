@@ -1,0 +1,826 @@
+// The page of `slender view`: draws the equilibria the slender process computes and sends it
+// the user's edits (POST /api, one JSON request, one reply: see src/view/protocol.rs).
+//
+// Drags are throttled to one request in flight: while a reply is awaited, only the latest
+// pose is kept, and it is sent when the reply arrives. All requests go through one queue, so
+// the server sees them in order.
+
+import * as THREE from "three";
+import { OrbitControls } from "three/addons/OrbitControls.js";
+import { TransformControls } from "three/addons/TransformControls.js";
+
+const TUBE_SIDES = 12;
+const $ = (id) => document.getElementById(id);
+
+// ---------- talking to the server ----------
+
+let queue = Promise.resolve();
+/** Sends one request after the previous ones; resolves to the reply (or a transport error). */
+function request(req) {
+  const p = queue.then(async () => {
+    const t0 = performance.now();
+    let reply;
+    try {
+      const r = await fetch("/api", {
+        method: "POST",
+        headers: { "Content-Type": "application/json" },
+        body: JSON.stringify(req),
+      });
+      reply = await r.json();
+    } catch (e) {
+      reply = { ok: false, error: { field: "connection", message: `${e}` } };
+    }
+    reply.roundTripMs = performance.now() - t0;
+    return reply;
+  });
+  queue = p.catch(() => {});
+  return p;
+}
+
+// ---------- three.js scene ----------
+
+const canvas = $("canvas");
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+const scene3 = new THREE.Scene();
+scene3.background = new THREE.Color(0xf4f6f8);
+const camera = new THREE.PerspectiveCamera(40, 1, 1e-4, 1e4);
+scene3.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+scene3.add(sun);
+const orbit = new OrbitControls(camera, canvas);
+const gizmo = new TransformControls(camera, canvas);
+scene3.add(gizmo.getHelper());
+gizmo.addEventListener("dragging-changed", (e) => {
+  orbit.enabled = !e.value;
+  if (!e.value) afterDrag();
+});
+gizmo.addEventListener("objectChange", () => onHandleChange());
+orbit.addEventListener("change", () => requestRender());
+gizmo.addEventListener("change", () => requestRender());
+
+const world = new THREE.Group(); // rods, shells, handles, arrows
+scene3.add(world);
+
+let view = null; // the last ViewState
+let sceneSize = 1; // diagonal of the first equilibrium's bounding box (m)
+const rods = []; // per rod: { mesh, outline, tight, colours }
+const shells = [];
+let handles = []; // per support: Object3D with userData { rod, support, kind }
+let arrows = [];
+let labels = [];
+let labelSpecs = []; // reaction values: { at, text, cls }
+let selected = null; // the handle being edited
+let dragging = false;
+let pendingMove = null;
+let moveInFlight = false;
+const timing = { updates: [] }; // per applied move: { sent, received, rendered, serverMs }
+let lastEdit = null;
+
+// ---------- colour maps ----------
+
+const VIRIDIS = [[0.267, 0.005, 0.329], [0.283, 0.141, 0.458], [0.254, 0.265, 0.530], [0.207, 0.372, 0.553],
+  [0.164, 0.471, 0.558], [0.128, 0.567, 0.551], [0.135, 0.659, 0.518], [0.267, 0.749, 0.441],
+  [0.478, 0.821, 0.318], [0.741, 0.873, 0.150], [0.993, 0.906, 0.144]];
+const DIVERGING = [[0.230, 0.299, 0.754], [0.552, 0.690, 0.996], [0.865, 0.865, 0.865], [0.958, 0.604, 0.482], [0.706, 0.016, 0.150]];
+function ramp(stops, t) {
+  t = Math.min(1, Math.max(0, Number.isFinite(t) ? t : 0));
+  const x = t * (stops.length - 1);
+  const i = Math.min(stops.length - 2, Math.floor(x));
+  const u = x - i;
+  return stops[i].map((c, k) => c + (stops[i + 1][k] - c) * u);
+}
+function cssGradient(stops) {
+  return `linear-gradient(to right, ${stops.map((c) => `rgb(${c.map((v) => Math.round(v * 255)).join(",")})`).join(",")})`;
+}
+
+/** The colour field of a rod: values per vertex, the map, range and unit. */
+function field(rod, what) {
+  if (what === "twist") return { values: rod.twist, signed: true, scale: 1, unit: "rad/m", title: "twist rate" };
+  if (what === "stress" && rod.bending_stress)
+    return { values: rod.bending_stress, signed: false, scale: 1e-6, unit: "MPa", title: "bending stress" };
+  return { values: rod.curvature, signed: false, scale: 1, unit: "1/m", title: "curvature |κ|" };
+}
+
+function colourRange(what) {
+  let max = 0;
+  let stressAvailable = true;
+  for (const r of view.rods) {
+    if (what === "stress" && !r.bending_stress) stressAvailable = false;
+    const f = field(r, what);
+    for (const v of f.values) max = Math.max(max, Math.abs(v * f.scale));
+  }
+  return { max: max > 0 ? max : 1, stressAvailable };
+}
+
+function updateLegend(what, range) {
+  const sample = view.rods.length ? field(view.rods[0], what) : { signed: false, unit: "", title: "" };
+  const stops = sample.signed ? DIVERGING : VIRIDIS;
+  $("legend-bar").style.background = cssGradient(stops);
+  let title = `${sample.title} (${sample.unit})`;
+  if (what === "stress" && !range.stressAvailable)
+    title = "bending stress: needs a material (section given by stiffnesses): curvature (1/m) shown";
+  $("legend-title").textContent = title;
+  const fmt = (v) => (Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-2 && v !== 0) ? v.toExponential(2) : v.toPrecision(3));
+  $("legend-min").textContent = fmt(sample.signed ? -range.max : 0);
+  $("legend-mid").textContent = fmt(sample.signed ? 0 : range.max / 2);
+  $("legend-max").textContent = fmt(range.max);
+}
+
+// ---------- geometry ----------
+
+const v3 = (a) => new THREE.Vector3(a[0], a[1], a[2]);
+
+/** Ring frame (n1, n2) at vertex i from the adjacent edges' directors and tangents. */
+function ringFrame(rod, i) {
+  const p = rod.positions;
+  const n = p.length;
+  const t = new THREE.Vector3();
+  const m = new THREE.Vector3();
+  for (const j of [i - 1, i]) {
+    if (j < 0 || j >= n - 1) continue;
+    t.add(v3(p[j + 1]).sub(v3(p[j])).normalize());
+    m.add(v3(rod.directors[j]));
+  }
+  if (t.lengthSq() < 1e-18) t.copy(v3(p[Math.min(i + 1, n - 1)]).sub(v3(p[Math.max(i - 1, 0)])));
+  t.normalize();
+  const n1 = m.sub(t.clone().multiplyScalar(t.dot(m)));
+  if (n1.lengthSq() < 1e-18) n1.set(1, 0, 0).cross(t);
+  if (n1.lengthSq() < 1e-18) n1.set(0, 1, 0).cross(t);
+  n1.normalize();
+  return [n1, t.clone().cross(n1)];
+}
+
+/** Tube positions, normals (and, with `colours`, vertex colours) of a rod into `geometry`. */
+function fillTube(geometry, rod, radius, colourOf) {
+  const nv = rod.positions.length;
+  const pos = geometry.attributes.position.array;
+  const nrm = geometry.attributes.normal.array;
+  const col = geometry.attributes.color ? geometry.attributes.color.array : null;
+  for (let i = 0; i < nv; i++) {
+    const [n1, n2] = ringFrame(rod, i);
+    const c = rod.positions[i];
+    const rgb = col ? colourOf(i) : null;
+    for (let k = 0; k < TUBE_SIDES; k++) {
+      const a = (2 * Math.PI * k) / TUBE_SIDES;
+      const ca = Math.cos(a), sa = Math.sin(a);
+      const nx = n1.x * ca + n2.x * sa, ny = n1.y * ca + n2.y * sa, nz = n1.z * ca + n2.z * sa;
+      const o = 3 * (i * TUBE_SIDES + k);
+      pos[o] = c[0] + radius * nx; pos[o + 1] = c[1] + radius * ny; pos[o + 2] = c[2] + radius * nz;
+      nrm[o] = nx; nrm[o + 1] = ny; nrm[o + 2] = nz;
+      if (col) { col[o] = rgb[0]; col[o + 1] = rgb[1]; col[o + 2] = rgb[2]; }
+    }
+  }
+  geometry.attributes.position.needsUpdate = true;
+  geometry.attributes.normal.needsUpdate = true;
+  if (col) geometry.attributes.color.needsUpdate = true;
+  geometry.computeBoundingSphere();
+}
+
+function tubeGeometry(nv, colours, segments) {
+  const g = new THREE.BufferGeometry();
+  g.setAttribute("position", new THREE.BufferAttribute(new Float32Array(nv * TUBE_SIDES * 3), 3));
+  g.setAttribute("normal", new THREE.BufferAttribute(new Float32Array(nv * TUBE_SIDES * 3), 3));
+  if (colours) g.setAttribute("color", new THREE.BufferAttribute(new Float32Array(nv * TUBE_SIDES * 3), 3));
+  const idx = [];
+  for (const i of segments ?? [...Array(nv - 1).keys()]) {
+    for (let k = 0; k < TUBE_SIDES; k++) {
+      const a = i * TUBE_SIDES + k;
+      const b = i * TUBE_SIDES + ((k + 1) % TUBE_SIDES);
+      idx.push(a, b, b + TUBE_SIDES, a, b + TUBE_SIDES, a + TUBE_SIDES);
+    }
+  }
+  g.setIndex(idx);
+  return g;
+}
+
+function disposeObject(o) {
+  o.traverse((c) => {
+    if (c.geometry) c.geometry.dispose();
+    if (c.material) (Array.isArray(c.material) ? c.material : [c.material]).forEach((m) => m.dispose());
+  });
+  o.removeFromParent();
+}
+
+function buildRods() {
+  for (const r of rods) ["mesh", "outline", "tight"].forEach((k) => r[k] && disposeObject(r[k]));
+  rods.length = 0;
+  view.rods.forEach((rod, index) => {
+    const nv = rod.positions.length;
+    const mesh = new THREE.Mesh(tubeGeometry(nv, true),
+      new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.55, metalness: 0.0 }));
+    mesh.userData = { rod: index };
+    world.add(mesh);
+    const outline = new THREE.Mesh(tubeGeometry(nv, false),
+      new THREE.MeshBasicMaterial({ color: 0xd32f2f, side: THREE.BackSide }));
+    outline.visible = false;
+    world.add(outline);
+    rods.push({ mesh, outline, tight: null, nv });
+  });
+}
+
+function updateRods() {
+  const what = $("colour").value;
+  const range = colourRange(what);
+  updateLegend(what, range);
+  view.rods.forEach((rod, index) => {
+    let r = rods[index];
+    if (!r || r.nv !== rod.positions.length) { buildRods(); r = rods[index]; }
+    const f = field(rod, what);
+    const stops = f.signed ? DIVERGING : VIRIDIS;
+    fillTube(r.mesh.geometry, rod, rod.display_radius, (i) => {
+      const v = f.values[i] * f.scale;
+      return ramp(stops, f.signed ? 0.5 + 0.5 * v / range.max : v / range.max);
+    });
+    // An unstable rod: a red outline (a slightly larger tube seen from inside).
+    r.outline.visible = !rod.stable;
+    if (!rod.stable) fillTube(r.outline.geometry, rod, rod.display_radius * 1.9, null);
+    // Segments bent tighter than the allowed radius: a red translucent sleeve.
+    if (r.tight) { disposeObject(r.tight); r.tight = null; }
+    if (rod.tight_vertices.length) {
+      const segs = new Set();
+      for (const v of rod.tight_vertices) { if (v > 0) segs.add(v - 1); if (v < rod.positions.length - 1) segs.add(v); }
+      const g = tubeGeometry(rod.positions.length, false, [...segs].sort((a, b) => a - b));
+      r.tight = new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: 0xff1744, transparent: true, opacity: 0.45, depthWrite: false }));
+      fillTube(g, rod, rod.display_radius * 1.6, null);
+      r.tight.userData.tight = true;
+      world.add(r.tight);
+    }
+  });
+}
+
+function updateShells() {
+  for (const s of shells) disposeObject(s);
+  shells.length = 0;
+  for (const sh of view.shells) {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute("position", new THREE.BufferAttribute(new Float32Array(sh.positions.flat()), 3));
+    g.setIndex(sh.faces.flat());
+    g.computeVertexNormals();
+    const m = new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: 0x8aa4c0, side: THREE.DoubleSide, roughness: 0.7 }));
+    m.add(new THREE.LineSegments(new THREE.WireframeGeometry(g), new THREE.LineBasicMaterial({ color: 0x4a6078 })));
+    world.add(m);
+    shells.push(m);
+  }
+  $("shells").textContent = view.shells.length
+    ? `${view.shells.length} shell strip(s) drawn as static surfaces: shells cannot be dragged in a session yet.`
+    : "";
+}
+
+// ---------- supports: handles, arrows, labels ----------
+
+function handleSize() {
+  let r = 0;
+  for (const rod of view.rods) r = Math.max(r, rod.display_radius);
+  return Math.max(4 * r, 0.02 * sceneSize);
+}
+
+function handleMesh(kind, size, sup) {
+  const colours = { clamp: 0x37474f, clip: 0x00897b, pin: 0x5e35b1, slider: 0xef6c00, twist_hold: 0x6d4c41 };
+  const mat = new THREE.MeshStandardMaterial({ color: colours[kind] ?? 0x333333, roughness: 0.4, transparent: true, opacity: 0.85 });
+  let g;
+  if (kind === "clamp") g = new THREE.BoxGeometry(size, size, size);
+  else if (kind === "clip") g = new THREE.TorusGeometry(size * 0.55, size * 0.18, 8, 20);
+  else if (kind === "pin") g = new THREE.SphereGeometry(size * 0.55, 16, 12);
+  else if (kind === "slider") g = new THREE.CylinderGeometry(size * 0.3, size * 0.3, size * 2, 12);
+  else g = new THREE.TorusGeometry(size * 0.6, size * 0.1, 6, 20);
+  const m = new THREE.Mesh(g, mat);
+  if (kind === "slider" && sup.axis) {
+    const holder = new THREE.Group();
+    m.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), v3(sup.axis).normalize());
+    holder.add(m);
+    return holder;
+  }
+  return m;
+}
+
+function rotationToQuaternion(r) {
+  const angle = Math.hypot(r[0], r[1], r[2]);
+  const q = new THREE.Quaternion();
+  if (angle > 0) q.setFromAxisAngle(new THREE.Vector3(r[0] / angle, r[1] / angle, r[2] / angle), angle);
+  return q;
+}
+
+/** Rotation vector (rad) of a unit quaternion. */
+function quaternionToRotation(q) {
+  let { x, y, z, w } = q;
+  if (w < 0) { x = -x; y = -y; z = -z; w = -w; }
+  const s = Math.hypot(x, y, z);
+  if (s < 1e-15) return [0, 0, 0];
+  const angle = 2 * Math.atan2(s, w);
+  return [(x / s) * angle, (y / s) * angle, (z / s) * angle];
+}
+
+function supportKey() {
+  return view.rods.map((r) => r.supports.map((s) => `${s.kind}@${s.vertex}`).join(",")).join(";");
+}
+let handlesKey = "";
+
+function buildHandles() {
+  const sel = selected ? { ...selected.userData } : null;
+  gizmo.detach();
+  selected = null;
+  for (const h of handles) disposeObject(h);
+  handles = [];
+  const size = handleSize();
+  view.rods.forEach((rod, ri) => rod.supports.forEach((sup, si) => {
+    const h = new THREE.Group();
+    h.add(handleMesh(sup.kind, size, sup));
+    h.userData = { rod: ri, support: si, kind: sup.kind, handle: true };
+    world.add(h);
+    handles.push(h);
+  }));
+  handlesKey = supportKey();
+  syncHandles();
+  if (sel) {
+    const h = handles.find((x) => x.userData.rod === sel.rod && x.userData.support === sel.support && x.userData.kind === sel.kind);
+    if (h) select(h);
+  }
+  updateSelectionPanel();
+}
+
+/** Puts every handle where the server says its support is (except the one being dragged). */
+function syncHandles() {
+  for (const h of handles) {
+    if (dragging && h === selected) continue;
+    const sup = view.rods[h.userData.rod].supports[h.userData.support];
+    h.position.copy(v3(sup.position));
+    h.quaternion.copy(rotationToQuaternion(sup.rotation));
+  }
+}
+
+/** Reaction arrows (one ArrowHelper per support, kept and updated in place). */
+function updateArrows() {
+  const count = view.rods.reduce((n, r) => n + r.supports.length, 0);
+  if (arrows.length !== count) {
+    for (const a of arrows) { a.removeFromParent(); a.line.material.dispose(); a.cone.material.dispose(); }
+    arrows = [];
+    for (let i = 0; i < count; i++) {
+      const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, 0xc62828);
+      world.add(a);
+      arrows.push(a);
+    }
+  }
+  labelSpecs = [];
+  // Arrow lengths relative to the largest reaction now (the labels give the values).
+  let fmax = 0;
+  for (const rod of view.rods) for (const s of rod.supports) fmax = Math.max(fmax, Math.hypot(...s.force));
+  const forceScale = fmax > 0 ? (0.2 * sceneSize) / fmax : 0;
+  const show = $("arrows").checked;
+  let i = 0;
+  for (const rod of view.rods) {
+    for (const s of rod.supports) {
+      const a = arrows[i++];
+      const f = v3(s.force);
+      const n = f.length();
+      a.visible = show && n > 0;
+      if (!a.visible) continue;
+      const len = Math.max(0.04 * sceneSize, n * forceScale);
+      const dir = f.multiplyScalar(1 / n);
+      a.position.copy(v3(s.position));
+      a.setDirection(dir);
+      a.setLength(len, 0.25 * len, 0.12 * len);
+      labelSpecs.push({ at: v3(s.position).addScaledVector(dir, len), text: fmtForce(n), cls: "label" });
+    }
+  }
+}
+
+function fmtForce(n) {
+  return Math.abs(n) >= 1e3 || Math.abs(n) < 1e-3 ? `${n.toExponential(2)} N` : `${n.toPrecision(3)} N`;
+}
+
+function updateLabels() {
+  const box = canvas.getBoundingClientRect();
+  const wanted = labelSpecs;
+  const holder = $("labels");
+  while (labels.length < wanted.length) { const d = document.createElement("div"); holder.appendChild(d); labels.push(d); }
+  labels.forEach((d, i) => {
+    const w = wanted[i];
+    if (!w) { d.style.display = "none"; return; }
+    const p = w.at.clone().project(camera);
+    d.style.display = p.z < 1 ? "block" : "none";
+    d.className = w.cls;
+    d.textContent = w.text;
+    d.style.left = `${((p.x + 1) / 2) * box.width}px`;
+    d.style.top = `${((1 - p.y) / 2) * box.height}px`;
+  });
+}
+
+// ---------- the panel ----------
+
+function fmtLength(m) {
+  if (m === null || m === undefined) return "∞ (straight)";
+  return m < 1 ? `${(m * 1000).toPrecision(3)} mm` : `${m.toPrecision(4)} m`;
+}
+
+function updatePanel(reply) {
+  const edit = reply?.edit ?? null;
+  if (edit) lastEdit = { edit, solveMs: reply.solve_seconds * 1e3, roundTripMs: reply.roundTripMs };
+  const converged = view.converged && (!lastEdit || lastEdit.edit.converged);
+  $("st-converged").textContent = converged ? "converged" : "NOT converged";
+  $("st-converged").className = converged ? "ok" : "bad";
+  let res = 0, rel = 0, iters = 0;
+  for (const s of view.structures) { res = Math.max(res, s.residual); rel = Math.max(rel, s.relative_residual); iters += s.iterations; }
+  $("st-residual").textContent = `${res.toExponential(2)} N (relative ${rel.toExponential(2)})`;
+  $("st-iterations").textContent = lastEdit ? `${lastEdit.edit.iterations} (${lastEdit.edit.load_steps} load step${lastEdit.edit.load_steps === 1 ? "" : "s"})` : `${iters}`;
+  $("st-time").textContent = lastEdit
+    ? `${lastEdit.solveMs.toFixed(2)} ms (round trip ${lastEdit.roundTripMs.toFixed(1)} ms)`
+    : `${(reply?.solve_seconds * 1e3 || 0).toFixed(2)} ms`;
+  const unstable = view.structures.filter((s) => !s.stable);
+  const followed = view.structures.some((s) => s.followed_unstable_mode) || (lastEdit?.edit.followed_unstable_mode ?? false);
+  $("st-stable").textContent = unstable.length
+    ? `UNSTABLE (${unstable.map((s) => `${s.unstable_modes} negative eigenvalue${s.unstable_modes === 1 ? "" : "s"}`).join(", ")})`
+    : followed ? "stable (an unstable equilibrium was followed to this one)" : "stable";
+  $("st-stable").className = unstable.length ? "bad" : "ok";
+  const reasons = [];
+  if (lastEdit && !lastEdit.edit.converged) reasons.push(`the last edit did not converge (${lastEdit.edit.reason ?? "?"}); the last equilibrium is kept`);
+  for (const s of view.structures) if (!s.converged && s.reason) reasons.push(s.reason);
+  $("st-reason").textContent = reasons.join("; ");
+  $("unstable-box").hidden = unstable.length === 0;
+  $("unstable-what").textContent = unstable.map((s) => s.rods.join(", ")).join("; ");
+  document.body.dataset.stable = unstable.length ? "false" : "true";
+  document.body.dataset.converged = converged ? "true" : "false";
+  // Gravity and policy (not while the user types).
+  if (document.activeElement?.tagName !== "INPUT") ["gx", "gy", "gz"].forEach((id, k) => ($(id).value = view.gravity[k]));
+  $("policy").value = view.unstable_policy;
+  // Per rod: bend radius and reactions.
+  const html = view.rods.map((rod, ri) => {
+    const tight = rod.tight_vertices.length;
+    const allowed = rod.allowed_bend_radius;
+    const radius = `min bend radius <b class="${tight ? "bad" : ""}">${fmtLength(rod.min_bend_radius)}</b>` +
+      (allowed ? ` (allowed ${fmtLength(allowed)}${tight ? `: <b class="bad">${tight} vertex${tight === 1 ? "" : "es"} too tight</b>, in red` : ""})` : "");
+    const rows = rod.supports.map((s, si) => {
+      const sel = selected && selected.userData.rod === ri && selected.userData.support === si ? "selected" : "";
+      return `<tr class="${sel}"><td>${si}</td><td>${s.kind.replace("_", " ")}</td><td>v ${s.vertex}</td><td>${fmtForce(Math.hypot(...s.force))}</td><td>${Math.hypot(...s.moment).toExponential(2)} N m</td></tr>`;
+    }).join("");
+    return `<div class="rod"><b>${rod.name}</b>${rod.stable ? "" : ' <b class="bad">unstable</b>'}${rod.converged ? "" : ' <b class="bad">not converged</b>'}<br>${radius}
+      <table><tr><td>#</td><td>support</td><td>at</td><td>|force|</td><td>|moment|</td></tr>${rows}</table></div>`;
+  }).join("");
+  $("rods").innerHTML = html;
+}
+
+function showError(err) {
+  const box = $("message");
+  if (!err) { box.hidden = true; box.textContent = ""; return; }
+  box.hidden = false;
+  box.textContent = `${err.field}: ${err.message}`;
+  slender.errors.push(err);
+}
+
+function updateSelectionPanel() {
+  if (!selected) {
+    $("selection").textContent = "Click a support handle to select it; drag it with the gizmo.";
+    $("delete-support").disabled = true;
+    return;
+  }
+  const { rod, support, kind } = selected.userData;
+  $("selection").textContent = `selected: ${view.rods[rod].name}, support ${support} (${kind.replace("_", " ")})`;
+  $("delete-support").disabled = false;
+}
+
+// ---------- applying a reply ----------
+
+function applyView(reply) {
+  const first = view === null;
+  view = reply.view;
+  if (first) frameCamera();
+  updateRods();
+  updateShells();
+  if (supportKey() !== handlesKey) buildHandles(); else syncHandles();
+  updateArrows();
+  updatePanel(reply);
+}
+
+function applyReply(reply) {
+  if (!reply.ok) {
+    showError(reply.error);
+    // The session kept its last equilibrium: put the handles back where it has them.
+    if (view) { syncHandles(); render(); }
+    return false;
+  }
+  showError(null);
+  const t0 = performance.now();
+  applyView(reply);
+  const t1 = performance.now();
+  render();
+  lastApply = { updateMs: t1 - t0, renderMs: performance.now() - t1 };
+  return true;
+}
+let lastApply = { updateMs: 0, renderMs: 0 };
+
+/** Sends an edit (not a drag) and applies its reply. */
+async function edit(req) {
+  await idle();
+  const reply = await request(req);
+  applyReply(reply);
+  return reply;
+}
+
+// ---------- dragging ----------
+
+function select(h) {
+  selected = h;
+  if (!h) { gizmo.detach(); updateSelectionPanel(); requestRender(); return; }
+  gizmo.attach(h);
+  setGizmoMode(document.querySelector('input[name="gizmo"]:checked').value);
+  updateSelectionPanel();
+  if (view) updatePanel(null);
+  requestRender();
+}
+
+function setGizmoMode(mode) {
+  if (!selected) return;
+  const kind = selected.userData.kind;
+  // Pins and sliders have no orientation; a twist hold has no position.
+  if (kind === "pin" || kind === "slider") mode = "translate";
+  if (kind === "twist_hold") mode = "rotate";
+  gizmo.setMode(mode);
+}
+
+/** The gizmo moved the selected handle: queue its pose (the one path of every drag). */
+function onHandleChange() {
+  if (!selected) return;
+  dragging = true;
+  const { rod, support } = selected.userData;
+  const req = { op: "move", rod, support, position: selected.position.toArray() };
+  if (gizmo.getMode() === "rotate") req.rotation = quaternionToRotation(selected.quaternion);
+  pendingMove = { req, queued: performance.now() };
+  pump();
+}
+
+async function pump() {
+  if (moveInFlight || !pendingMove) return;
+  const { req, queued } = pendingMove;
+  pendingMove = null;
+  moveInFlight = true;
+  const sent = performance.now();
+  const reply = await request(req);
+  const received = performance.now();
+  const ok = applyReply(reply);
+  const rendered = performance.now();
+  timing.updates.push({ queued, sent, received, rendered, serverMs: (reply.solve_seconds ?? 0) * 1e3,
+    ...lastApply, ok, converged: reply.edit?.converged ?? false });
+  moveInFlight = false;
+  if (pendingMove) pump();
+  else if (!dragging) afterDrag();
+  for (const w of idleWaiters.splice(0)) if (isIdle()) w(); else idleWaiters.push(w);
+}
+
+function afterDrag() {
+  dragging = false;
+  if (!moveInFlight && !pendingMove && view) { syncHandles(); render(); }
+}
+
+const idleWaiters = [];
+const isIdle = () => !moveInFlight && !pendingMove;
+/** Resolves when no drag request is queued or in flight. */
+function idle() {
+  return isIdle() ? Promise.resolve() : new Promise((r) => idleWaiters.push(r));
+}
+
+// ---------- picking ----------
+
+const raycaster = new THREE.Raycaster();
+function pick(ev, objects) {
+  const box = canvas.getBoundingClientRect();
+  const ndc = new THREE.Vector2(((ev.clientX - box.left) / box.width) * 2 - 1, -((ev.clientY - box.top) / box.height) * 2 + 1);
+  raycaster.setFromCamera(ndc, camera);
+  return raycaster.intersectObjects(objects, true);
+}
+
+/** Rest arc length of the centerline point nearest to `p` on rod `ri`. */
+function arcLengthAt(ri, p) {
+  const rod = view.rods[ri];
+  let best = { d: Infinity, s: 0 };
+  for (let j = 0; j + 1 < rod.positions.length; j++) {
+    const a = v3(rod.positions[j]), b = v3(rod.positions[j + 1]);
+    const ab = b.clone().sub(a);
+    const u = Math.min(1, Math.max(0, p.clone().sub(a).dot(ab) / Math.max(ab.lengthSq(), 1e-300)));
+    const d = a.clone().addScaledVector(ab, u).distanceTo(p);
+    if (d < best.d) best = { d, s: rod.arclengths[j] + u * (rod.arclengths[j + 1] - rod.arclengths[j]) };
+  }
+  return best.s;
+}
+
+let down = null;
+canvas.addEventListener("pointerdown", (ev) => { down = { x: ev.clientX, y: ev.clientY }; });
+canvas.addEventListener("pointerup", async (ev) => {
+  if (!down || Math.hypot(ev.clientX - down.x, ev.clientY - down.y) > 4 || gizmo.dragging) { down = null; return; }
+  down = null;
+  const tool = document.querySelector('input[name="tool"]:checked').value;
+  if (tool === "add-clip") {
+    const hit = pick(ev, rods.map((r) => r.mesh))[0];
+    if (!hit) return;
+    const ri = hit.object.userData.rod;
+    await edit({ op: "add_support", rod: ri, kind: "clip", at: arcLengthAt(ri, hit.point) });
+    return;
+  }
+  const h = pick(ev, handles)[0];
+  if (h) {
+    let o = h.object;
+    while (o && !o.userData.handle) o = o.parent;
+    select(o ?? null);
+  } else if (!gizmo.axis) {
+    select(null);
+  }
+});
+
+// ---------- rendering ----------
+
+let renderQueued = false;
+function requestRender() {
+  if (renderQueued) return;
+  renderQueued = true;
+  requestAnimationFrame(() => { renderQueued = false; render(); });
+}
+
+function resize() {
+  const w = canvas.clientWidth, h = canvas.clientHeight;
+  if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
+    renderer.setSize(w, h, false);
+    camera.aspect = w / Math.max(h, 1);
+    camera.updateProjectionMatrix();
+  }
+}
+
+function render() {
+  resize();
+  renderer.render(scene3, camera);
+  updateLabels();
+}
+window.addEventListener("resize", () => requestRender());
+
+function frameCamera() {
+  const box = new THREE.Box3();
+  for (const r of view.rods) for (const p of r.positions) box.expandByPoint(v3(p));
+  for (const s of view.shells) for (const p of s.positions) box.expandByPoint(v3(p));
+  const size = box.getSize(new THREE.Vector3());
+  sceneSize = Math.max(size.length(), 1e-3);
+  const center = box.getCenter(new THREE.Vector3());
+  const g = v3(view.gravity);
+  const up = g.lengthSq() > 0 ? g.clone().normalize().negate() : new THREE.Vector3(0, 0, 1);
+  camera.up.copy(up);
+  // Look from the side, across the thinnest extent of the scene, a little from above.
+  const side = new THREE.Vector3(0, 0, 0);
+  const axes = [new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 1, 0), new THREE.Vector3(0, 0, 1)]
+    .filter((a) => Math.abs(a.dot(up)) < 0.9);
+  axes.sort((a, b) => Math.abs(size.dot(a)) - Math.abs(size.dot(b)));
+  side.copy(axes[0] ?? new THREE.Vector3(1, 0, 0));
+  const dir = side.multiplyScalar(-1).addScaledVector(up, 0.5).normalize();
+  camera.near = sceneSize * 1e-3;
+  camera.far = sceneSize * 100;
+  camera.position.copy(center).addScaledVector(dir, sceneSize * 1.3);
+  camera.updateProjectionMatrix();
+  orbit.target.copy(center);
+  orbit.update();
+  sun.position.copy(center).addScaledVector(up, sceneSize).addScaledVector(dir, sceneSize);
+  const grid = new THREE.GridHelper(sceneSize * 2, 20, 0xb0bac5, 0xd8dee5);
+  grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), up);
+  const low = box.min.clone();
+  grid.position.copy(center).addScaledVector(up, low.clone().sub(center).dot(up) - 0.05 * sceneSize);
+  scene3.add(grid);
+  gizmo.size = 0.8;
+}
+
+// ---------- controls ----------
+
+document.querySelectorAll('input[name="gizmo"]').forEach((el) => el.addEventListener("change", () => setGizmoMode(el.value)));
+document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListener("change", () => {
+  $("hint").textContent = el.value === "add-clip" && el.checked ? "Click a cable to add a clip there." : "";
+}));
+$("colour").addEventListener("change", () => { if (view) { updateRods(); render(); } });
+$("arrows").addEventListener("change", () => { if (view) { updateArrows(); render(); } });
+$("snap").addEventListener("click", () => edit({ op: "follow_stable" }));
+$("policy").addEventListener("change", () => edit({ op: "unstable_policy", policy: $("policy").value }));
+$("gravity-apply").addEventListener("click", () =>
+  edit({ op: "gravity", gravity: ["gx", "gy", "gz"].map((id) => Number($(id).value)) }));
+$("delete-support").addEventListener("click", () => deleteSelected());
+window.addEventListener("keydown", (ev) => {
+  if (ev.key === "Delete" && selected && document.activeElement?.tagName !== "INPUT") deleteSelected();
+});
+async function deleteSelected() {
+  if (!selected) return;
+  const { rod, support } = selected.userData;
+  select(null);
+  await edit({ op: "remove_support", rod, support });
+}
+
+function download(name, text, type) {
+  const url = URL.createObjectURL(new Blob([text], { type }));
+  const a = document.createElement("a");
+  a.href = url;
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+const sceneStem = () => ($("scene-name").textContent.replace(/\.(toml|json)$/i, "") || "scene");
+async function save() {
+  const reply = await edit({ op: "save" });
+  if (reply.ok) download(`${sceneStem()}-edited.toml`, reply.toml, "application/toml");
+  return reply.toml;
+}
+async function exportGltf() {
+  const reply = await edit({ op: "gltf" });
+  if (reply.ok) download(`${sceneStem()}.gltf`, JSON.stringify(reply.gltf), "model/gltf+json");
+  return reply.gltf;
+}
+$("save").addEventListener("click", save);
+$("gltf").addEventListener("click", exportGltf);
+
+// ---------- the test interface (drives the page through the same paths as the mouse) ----------
+
+const nextFrame = () => new Promise((r) => requestAnimationFrame(() => r()));
+const slender = {
+  errors: [],
+  timing,
+  state: () => view,
+  idle,
+  /** Selects support `support` of rod `rod` as a click on its handle does. */
+  select(rod, support) {
+    const h = handles.find((x) => x.userData.rod === rod && x.userData.support === support);
+    if (!h) throw new Error(`no handle for rod ${rod} support ${support}`);
+    select(h);
+    return h;
+  },
+  /** Drags a support by `d` (m) in `steps` gizmo moves (one per frame), as TransformControls
+   *  does: the handle's position is set to start + d·k/steps and the gizmo's objectChange
+   *  handler runs; resolves to the final view once every request has been answered. */
+  async dragSupport(rod, support, d, steps = 20) {
+    const h = this.select(rod, support);
+    gizmo.setMode("translate");
+    const start = h.position.clone();
+    for (let k = 1; k <= steps; k++) {
+      const f = k / steps;
+      h.position.set(start.x + d[0] * f, start.y + d[1] * f, start.z + d[2] * f);
+      onHandleChange();
+      await nextFrame();
+    }
+    afterDrag();
+    await idle();
+    return view;
+  },
+  /** Speed: `n` poses along `d`, each given as soon as the previous update was drawn (a
+   *  mouse that always has a new position); per update the time from the pose to the drawn
+   *  frame and the interval between drawn updates (ms). */
+  async benchmarkDrag(rod, support, d, n) {
+    const h = this.select(rod, support);
+    gizmo.setMode("translate");
+    const start = h.position.clone();
+    const first = timing.updates.length;
+    const t0 = performance.now();
+    for (let k = 1; k <= n; k++) {
+      const f = k / n;
+      h.position.set(start.x + d[0] * f, start.y + d[1] * f, start.z + d[2] * f);
+      onHandleChange();
+      await idle();
+    }
+    const elapsed = performance.now() - t0;
+    afterDrag();
+    const ups = timing.updates.slice(first);
+    const intervals = ups.slice(1).map((u, i) => u.rendered - ups[i].rendered);
+    return {
+      updates: ups.length, elapsedMs: elapsed,
+      latencyMs: ups.map((u) => u.rendered - u.queued),
+      intervalMs: intervals,
+      serverMs: ups.map((u) => u.serverMs),
+      roundTripMs: ups.map((u) => u.received - u.sent),
+      updateMs: ups.map((u) => u.updateMs),
+      renderMs: ups.map((u) => u.renderMs),
+      allConverged: ups.every((u) => u.ok && u.converged),
+    };
+  },
+  /** Screen point (CSS px, page coordinates) of rest arc length `s` on rod `rod`. */
+  screenPoint(rod, s) {
+    const r = view.rods[rod];
+    let j = 0;
+    while (j + 2 < r.arclengths.length && r.arclengths[j + 1] < s) j++;
+    const u = (s - r.arclengths[j]) / (r.arclengths[j + 1] - r.arclengths[j]);
+    const p = v3(r.positions[j]).lerp(v3(r.positions[j + 1]), u).project(camera);
+    const box = canvas.getBoundingClientRect();
+    return { x: box.left + ((p.x + 1) / 2) * box.width, y: box.top + ((1 - p.y) / 2) * box.height };
+  },
+  setTool(name) {
+    const el = document.querySelector(`input[name="tool"][value="${name}"]`);
+    el.checked = true;
+    el.dispatchEvent(new Event("change"));
+  },
+  save,
+  exportGltf,
+  edit,
+  request,
+  lastReply: null,
+};
+window.slender = slender;
+
+// ---------- start ----------
+
+(async () => {
+  const reply = await request({ op: "state" });
+  slender.lastReply = reply;
+  if (!reply.ok) { showError(reply.error); return; }
+  applyView(reply);
+  render();
+  document.body.dataset.ready = "true";
+})();

@@ -1,0 +1,369 @@
+//! The messages between the page and `slender view`: one JSON request per HTTP POST, one JSON
+//! reply. [`handle`] is the whole protocol, without a socket (the fuzz test drives it
+//! directly): it parses a request, applies it to the [`Session`] and answers with what
+//! changed. A request that cannot be applied (bad JSON, unknown support, non-finite pose, a
+//! clip beyond the cable, a move too large) gets `{"ok": false, "error": {...}}` naming the
+//! problem, and the session keeps its last equilibrium; a move that does not converge is
+//! `ok` with `edit.converged = false` (the last equilibrium is kept and shown).
+
+use std::time::Instant;
+
+use nalgebra::Rotation3;
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+use slender_core::geometry::Vec3;
+use slender_core::scene::spec::{SupportKind, SupportSpec, UnstablePolicy};
+use slender_core::scene::{EditReport, SceneError, Session, SupportPose};
+
+use super::state::{view_state, ViewState};
+use crate::solve::gltf;
+
+/// Largest request the server reads (bytes).
+pub const MAX_REQUEST_BYTES: usize = 1 << 20;
+
+/// A request from the page. Indices are 0-based: `rod` in the scene's `rods`, `support` in
+/// that rod's supports as the last [`ViewState`] lists them.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+// Field-less operations are empty struct variants (`State {}`), not unit variants: serde's
+// internally tagged unit variants ignore unknown keys even with `deny_unknown_fields`.
+#[serde(tag = "op", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Request {
+    /// The current equilibria (no change).
+    State {},
+    /// Move a support to an absolute pose (what a drag sends).
+    Move {
+        /// Rod index.
+        rod: usize,
+        /// Support index.
+        support: usize,
+        /// Target position of the support's vertex (m).
+        position: [f64; 3],
+        /// Target orientation relative to rest, as a rotation vector (rad); absent: keep the
+        /// current orientation.
+        #[serde(default)]
+        rotation: Option<[f64; 3]>,
+    },
+    /// Move a support by a translation (m) and a rotation vector (rad, about its vertex).
+    MoveBy {
+        /// Rod index.
+        rod: usize,
+        /// Support index.
+        support: usize,
+        /// Translation (m).
+        #[serde(default)]
+        translation: [f64; 3],
+        /// Rotation vector (rad).
+        #[serde(default)]
+        rotation: [f64; 3],
+    },
+    /// Add a clip, pin, slider or twist hold at rest arc length `at` (m) of a rod, holding
+    /// the rod where it is now.
+    AddSupport {
+        /// Rod index.
+        rod: usize,
+        /// Kind (not a clamp: clamps are added in the scene file).
+        kind: SupportKind,
+        /// Rest arc length from vertex 0 (m).
+        at: f64,
+    },
+    /// Remove a support.
+    RemoveSupport {
+        /// Rod index.
+        rod: usize,
+        /// Support index.
+        support: usize,
+    },
+    /// Set gravity (m/s²).
+    Gravity {
+        /// Acceleration (m/s²).
+        gravity: [f64; 3],
+    },
+    /// Follow every unstable equilibrium to a stable one now.
+    FollowStable {},
+    /// What to do with unstable equilibria from now on.
+    UnstablePolicy {
+        /// `follow` or `keep`.
+        policy: UnstablePolicy,
+    },
+    /// The edited scene as TOML (its solve gives the current equilibrium).
+    Save {},
+    /// The current shapes as glTF 2.0 (JSON with an embedded buffer).
+    Gltf {},
+}
+
+/// The error part of a reply: where and what.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ErrorReply {
+    /// The offending field (e.g. `rods[0].supports[3]`, `request`).
+    pub field: String,
+    /// What is wrong and what would be valid.
+    pub message: String,
+}
+
+impl From<SceneError> for ErrorReply {
+    fn from(e: SceneError) -> Self {
+        Self {
+            field: e.path,
+            message: e.message,
+        }
+    }
+}
+
+/// The outcome of an edit as the page shows it.
+#[derive(Clone, Debug, Serialize)]
+pub struct EditView {
+    /// True if every re-solved structure converged (else the last equilibrium was kept).
+    pub converged: bool,
+    /// Why not.
+    pub reason: Option<String>,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Load steps.
+    pub load_steps: usize,
+    /// Largest relative residual of the re-solved structures.
+    pub relative_residual: f64,
+    /// True if every equilibrium is stable.
+    pub stable: bool,
+    /// True if an unstable equilibrium was followed to a stable one.
+    pub followed_unstable_mode: bool,
+}
+
+impl From<EditReport> for EditView {
+    fn from(r: EditReport) -> Self {
+        Self {
+            converged: r.converged,
+            reason: r.reason,
+            iterations: r.iterations,
+            load_steps: r.load_steps,
+            relative_residual: r.relative_residual,
+            stable: r.stable,
+            followed_unstable_mode: r.followed_unstable_mode,
+        }
+    }
+}
+
+/// A successful reply.
+#[derive(Clone, Debug, Serialize)]
+pub struct OkReply {
+    /// Always true.
+    pub ok: bool,
+    /// The request's `op`.
+    pub op: &'static str,
+    /// The edit's outcome (absent for `state`, `save`, `gltf`).
+    pub edit: Option<EditView>,
+    /// Wall time of the solve (s), measured here.
+    pub solve_seconds: f64,
+    /// The equilibria now.
+    pub view: ViewState,
+    /// `save`: the scene as TOML.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub toml: Option<String>,
+    /// `gltf`: the shapes as glTF.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gltf: Option<Value>,
+}
+
+fn error_reply(field: impl Into<String>, message: impl Into<String>) -> String {
+    json!({"ok": false, "error": ErrorReply { field: field.into(), message: message.into() }})
+        .to_string()
+}
+
+fn op_name(r: &Request) -> &'static str {
+    match r {
+        Request::State {} => "state",
+        Request::Move { .. } => "move",
+        Request::MoveBy { .. } => "move_by",
+        Request::AddSupport { .. } => "add_support",
+        Request::RemoveSupport { .. } => "remove_support",
+        Request::Gravity { .. } => "gravity",
+        Request::FollowStable {} => "follow_stable",
+        Request::UnstablePolicy { .. } => "unstable_policy",
+        Request::Save {} => "save",
+        Request::Gltf {} => "gltf",
+    }
+}
+
+fn finite(field: &str, v: &[f64]) -> Result<(), ErrorReply> {
+    if v.iter().all(|c| c.is_finite()) {
+        Ok(())
+    } else {
+        Err(ErrorReply {
+            field: field.into(),
+            message: format!("{v:?}: every component must be a finite number"),
+        })
+    }
+}
+
+/// Applies one request to the session; the reply as JSON text. Never panics on any input
+/// text; on an error the session is unchanged.
+pub fn handle(session: &mut Session, message: &str) -> String {
+    if message.len() > MAX_REQUEST_BYTES {
+        return error_reply(
+            "request",
+            format!("{} bytes: at most {MAX_REQUEST_BYTES}", message.len()),
+        );
+    }
+    let request: Request = match serde_json::from_str(message) {
+        Ok(r) => r,
+        Err(e) => {
+            // JSON has no non-finite numbers: say so rather than "expected value".
+            let hint = if ["NaN", "Infinity", "inf"]
+                .iter()
+                .any(|w| message.contains(w))
+            {
+                " (NaN and Infinity are not numbers in JSON: every coordinate must be finite)"
+            } else {
+                ""
+            };
+            return error_reply(
+                "request",
+                format!(
+                    "{e}{hint} (expected a JSON object with \"op\": state, move, move_by, add_support, remove_support, gravity, follow_stable, unstable_policy, save or gltf)"
+                ),
+            );
+        }
+    };
+    match apply(session, &request) {
+        Ok(reply) => serde_json::to_string(&reply).unwrap_or_else(|e| {
+            error_reply("reply", format!("the reply could not be encoded: {e}"))
+        }),
+        Err(e) => json!({"ok": false, "op": op_name(&request), "error": e}).to_string(),
+    }
+}
+
+fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply> {
+    let clock = Instant::now();
+    let mut toml_text = None;
+    let mut gltf_value = None;
+    let edit: Option<EditReport> = match request {
+        Request::State {} => None,
+        Request::Move {
+            rod,
+            support,
+            position,
+            rotation,
+        } => {
+            finite("position", position)?;
+            if let Some(r) = rotation {
+                finite("rotation", r)?;
+            }
+            let current = session
+                .pose(*rod, *support)
+                .ok_or_else(|| no_support(session, *rod, *support))?;
+            let target = SupportPose {
+                position: Vec3::from(*position),
+                rotation: rotation.map_or(current.rotation, |r| Rotation3::new(Vec3::from(r))),
+            };
+            Some(session.move_support(*rod, *support, target)?)
+        }
+        Request::MoveBy {
+            rod,
+            support,
+            translation,
+            rotation,
+        } => {
+            finite("translation", translation)?;
+            finite("rotation", rotation)?;
+            if session.pose(*rod, *support).is_none() {
+                return Err(no_support(session, *rod, *support));
+            }
+            Some(session.move_support_by(
+                *rod,
+                *support,
+                Vec3::from(*rotation),
+                Vec3::from(*translation),
+            )?)
+        }
+        Request::AddSupport { rod, kind, at } => {
+            finite("at", &[*at])?;
+            let length = session
+                .compiled()
+                .rods
+                .get(*rod)
+                .and_then(|r| r.node_arclengths.last().copied())
+                .ok_or_else(|| no_rod(session, *rod))?;
+            if !(0.0..=length).contains(at) {
+                return Err(ErrorReply {
+                    field: format!("rods[{rod}].supports.at"),
+                    message: format!("{at} m: beyond the cable (its rest length is {length} m; valid: 0 ≤ at ≤ {length})"),
+                });
+            }
+            Some(session.add_support(
+                *rod,
+                SupportSpec {
+                    kind: *kind,
+                    vertex: None,
+                    at: Some(*at),
+                    axis: None,
+                },
+            )?)
+        }
+        Request::RemoveSupport { rod, support } => {
+            if session.pose(*rod, *support).is_none() {
+                return Err(no_support(session, *rod, *support));
+            }
+            Some(session.remove_support(*rod, *support)?)
+        }
+        Request::Gravity { gravity } => {
+            finite("gravity", gravity)?;
+            Some(session.set_gravity(*gravity)?)
+        }
+        Request::FollowStable {} => Some(session.follow_stable()),
+        Request::UnstablePolicy { policy } => {
+            session.set_unstable_policy(*policy);
+            None
+        }
+        Request::Save {} => {
+            let text = toml::to_string(&session.saved()).map_err(|e| ErrorReply {
+                field: "save".into(),
+                message: format!("the scene could not be written as TOML: {e}"),
+            })?;
+            toml_text = Some(format!(
+                "# Saved by `slender view`: the edited scene. Moved supports are moved from their\n# rest pose by the [[motion]] stages; its solve gives the equilibrium shown.\n\n{text}"
+            ));
+            None
+        }
+        Request::Gltf {} => None,
+    };
+    let solve_seconds = clock.elapsed().as_secs_f64();
+    let pieces = edit.as_ref().map_or(1, |e| e.load_steps);
+    let step = session.results(0, None, 1.0, pieces);
+    if matches!(request, Request::Gltf {}) {
+        let scene = session.compiled();
+        gltf_value = Some(gltf::rods_to_gltf(
+            &scene.rods,
+            &step.rods,
+            &step.shells,
+            gltf::scene_up(scene.gravity),
+        ));
+    }
+    Ok(OkReply {
+        ok: true,
+        op: op_name(request),
+        edit: edit.map(EditView::from),
+        solve_seconds,
+        view: view_state(session, &step),
+        toml: toml_text,
+        gltf: gltf_value,
+    })
+}
+
+fn no_rod(session: &Session, rod: usize) -> ErrorReply {
+    ErrorReply {
+        field: format!("rods[{rod}]"),
+        message: format!(
+            "no such rod (the scene has {})",
+            session.compiled().rods.len()
+        ),
+    }
+}
+
+fn no_support(session: &Session, rod: usize, support: usize) -> ErrorReply {
+    match session.compiled().rods.get(rod) {
+        None => no_rod(session, rod),
+        Some(r) => ErrorReply {
+            field: format!("rods[{rod}].supports[{support}]"),
+            message: format!("no such support (the rod has {})", r.supports.len()),
+        },
+    }
+}

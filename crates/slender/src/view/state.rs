@@ -1,0 +1,277 @@
+//! What the page draws after every update ([`ViewState`]): per rod its centerline, material
+//! directors and colour fields (twist rate, curvature, bending stress), its bend radius
+//! against the allowed one, its supports with their poses and reactions; per structure its
+//! solve and stability; the shell strips as static surfaces.
+
+use serde::Serialize;
+use slender_core::geometry::Vec3;
+use slender_core::scene::spec::{SectionSpec, SupportKind, UnstablePolicy};
+use slender_core::scene::{CompiledRod, SceneStep, Session};
+use slender_core::solver::SolveStatus;
+
+/// Everything the page shows of the current equilibria.
+#[derive(Clone, Debug, Serialize)]
+pub struct ViewState {
+    /// Gravitational acceleration (m/s²).
+    pub gravity: [f64; 3],
+    /// What the session does with unstable equilibria.
+    pub unstable_policy: UnstablePolicy,
+    /// True if every rod and shell converged.
+    pub converged: bool,
+    /// True if every equilibrium is stable.
+    pub stable: bool,
+    /// Every rod, in the scene's order.
+    pub rods: Vec<RodView>,
+    /// Every structure (rod parts solved together).
+    pub structures: Vec<StructureView>,
+    /// Every shell strip (static: shells cannot be edited in a session yet).
+    pub shells: Vec<ShellView>,
+}
+
+/// One rod as drawn.
+#[derive(Clone, Debug, Serialize)]
+pub struct RodView {
+    /// Rod name.
+    pub name: String,
+    /// Tube radius (m): the section's radius (equal-area radius for a rectangle).
+    pub display_radius: f64,
+    /// True for a closed loop.
+    pub closed: bool,
+    /// Rest arc length (m) of every vertex from vertex 0: where a clip added at a point of the
+    /// cable goes (`at`).
+    pub arclengths: Vec<f64>,
+    /// Vertex positions (m).
+    pub positions: Vec<[f64; 3]>,
+    /// First material director m₁ of every edge (orients the tube, shows the twist).
+    pub directors: Vec<[f64; 3]>,
+    /// Twist rate at every vertex (rad/m).
+    pub twist: Vec<f64>,
+    /// Curvature magnitude |κ| at every vertex (1/m).
+    pub curvature: Vec<f64>,
+    /// Axial strain of every edge.
+    pub edge_strain: Vec<f64>,
+    /// Largest bending stress in the section at every vertex (Pa), from the change of
+    /// curvature from rest: E·|Δκ|·d/2 (circle), E·(|Δκ₁|·w/2 + |Δκ₂|·h/2) (rectangle);
+    /// `None` for a section given by its stiffnesses (no material, no fibre distance).
+    pub bending_stress: Option<Vec<f64>>,
+    /// Smallest bend radius along the rod (m); `None` if straight everywhere.
+    pub min_bend_radius: Option<f64>,
+    /// The scene's allowed bend radius for this rod (m), if it gives one.
+    pub allowed_bend_radius: Option<f64>,
+    /// Vertices bent tighter than the allowed radius.
+    pub tight_vertices: Vec<usize>,
+    /// True if every part of the rod converged.
+    pub converged: bool,
+    /// True if every part's equilibrium is stable.
+    pub stable: bool,
+    /// The structures the rod belongs to.
+    pub structures: Vec<usize>,
+    /// Supports, in the rod's order (the index is the one edits name).
+    pub supports: Vec<SupportView>,
+}
+
+/// One support as drawn: a handle where it is, its reaction as an arrow.
+#[derive(Clone, Debug, Serialize)]
+pub struct SupportView {
+    /// Clamp, pin, clip, slider or twist hold.
+    pub kind: SupportKind,
+    /// Held vertex.
+    pub vertex: usize,
+    /// Rest arc length of the vertex (m).
+    pub at: f64,
+    /// Where it is (m).
+    pub position: [f64; 3],
+    /// Its orientation relative to rest, as a rotation vector (axis × angle, rad).
+    pub rotation: [f64; 3],
+    /// Force the support applies to the rod (N).
+    pub force: [f64; 3],
+    /// Moment the support applies to the rod about its vertex (N m).
+    pub moment: [f64; 3],
+    /// Slider axis (unit), if a slider.
+    pub axis: Option<[f64; 3]>,
+}
+
+/// One structure's last solve.
+#[derive(Clone, Debug, Serialize)]
+pub struct StructureView {
+    /// Rod names.
+    pub rods: Vec<String>,
+    /// Converged or not.
+    pub converged: bool,
+    /// Why not, if not.
+    pub reason: Option<String>,
+    /// Newton iterations of the last solve.
+    pub iterations: usize,
+    /// Load steps of the last solve.
+    pub load_steps: usize,
+    /// Largest residual force (N).
+    pub residual: f64,
+    /// Residual over the largest external nodal force.
+    pub relative_residual: f64,
+    /// True if stable.
+    pub stable: bool,
+    /// Negative Hessian eigenvalues.
+    pub unstable_modes: usize,
+    /// Null modes (symmetries).
+    pub null_modes: usize,
+    /// True if an unstable equilibrium was followed to this one.
+    pub followed_unstable_mode: bool,
+    /// Smallest eigenvalue of H v = λ M v (1/s²), when computed.
+    pub lambda_min: Option<f64>,
+}
+
+/// One shell strip as drawn.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShellView {
+    /// Strip name.
+    pub name: String,
+    /// Vertex positions (m).
+    pub positions: Vec<[f64; 3]>,
+    /// Triangles.
+    pub faces: Vec<[usize; 3]>,
+    /// True if its solve converged.
+    pub converged: bool,
+}
+
+fn arr(v: Vec3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
+/// The view of the session's current equilibria; `step` is `session.results(..)`.
+pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
+    let scene = session.compiled();
+    let rods = scene
+        .rods
+        .iter()
+        .zip(&step.rods)
+        .enumerate()
+        .map(|(r, (rod, res))| {
+            let supports = res
+                .supports
+                .iter()
+                .enumerate()
+                .map(|(s, sup)| {
+                    let pose = session.pose(r, s);
+                    SupportView {
+                        kind: sup.kind,
+                        vertex: sup.vertex,
+                        at: rod.node_arclengths[sup.vertex],
+                        position: sup.position,
+                        rotation: pose.map_or([0.0; 3], |p| arr(p.rotation.scaled_axis())),
+                        force: sup.force,
+                        moment: sup.moment,
+                        axis: rod.supports[s].axis.map(arr),
+                    }
+                })
+                .collect();
+            let mut structures: Vec<usize> = rod.parts.iter().map(|p| p.structure).collect();
+            structures.dedup();
+            RodView {
+                name: res.name.clone(),
+                display_radius: rod.display_radius,
+                closed: rod.closed,
+                arclengths: rod.node_arclengths.clone(),
+                positions: res.positions.clone(),
+                directors: res.frames.iter().map(|f| f[0]).collect(),
+                twist: res.twist.clone(),
+                curvature: res
+                    .curvature
+                    .iter()
+                    .map(|k| (k[0] * k[0] + k[1] * k[1]).sqrt())
+                    .collect(),
+                edge_strain: res.edge_strain.clone(),
+                bending_stress: bending_stress(session, r),
+                min_bend_radius: res
+                    .min_bend_radius
+                    .is_finite()
+                    .then_some(res.min_bend_radius),
+                allowed_bend_radius: rod.min_bend_radius,
+                tight_vertices: res.tight_vertices.clone(),
+                converged: res.converged,
+                stable: res.stable,
+                structures,
+                supports,
+            }
+        })
+        .collect();
+    let structures = step
+        .structures
+        .iter()
+        .map(|s| StructureView {
+            rods: s.rods.clone(),
+            converged: s.report.converged(),
+            reason: match &s.report.status {
+                SolveStatus::Converged => None,
+                SolveStatus::NotConverged { reason } => Some(reason.clone()),
+            },
+            iterations: s.report.iterations,
+            load_steps: s.report.load_steps,
+            residual: s.report.residual,
+            relative_residual: s.report.relative_residual,
+            stable: s.stability.stable,
+            unstable_modes: s.stability.unstable_modes,
+            null_modes: s.stability.null_modes,
+            followed_unstable_mode: s.stability.followed_unstable_mode,
+            lambda_min: s.report.lambda_min,
+        })
+        .collect();
+    let shells = step
+        .shells
+        .iter()
+        .map(|s| ShellView {
+            name: s.name.clone(),
+            positions: s.positions.clone(),
+            faces: s.faces.clone(),
+            converged: s.converged,
+        })
+        .collect();
+    ViewState {
+        gravity: session.spec().gravity,
+        unstable_policy: session.spec().unstable,
+        converged: step.converged,
+        stable: step.stable,
+        rods,
+        structures,
+        shells,
+    }
+}
+
+/// Largest bending stress (Pa) at every vertex of rod `r`, from the change of material
+/// curvature from rest (see [`RodView::bending_stress`]); `None` without a material.
+fn bending_stress(session: &Session, r: usize) -> Option<Vec<f64>> {
+    let spec = session.spec().rods.get(r)?;
+    let young = spec.material.as_ref()?.young;
+    let rod: &CompiledRod = &session.compiled().rods[r];
+    // Distance of the outermost fibre from the neutral axis for each bending direction.
+    let stress = |dk: [f64; 2]| match spec.section {
+        SectionSpec::Circle { diameter } => {
+            Some(young * (dk[0] * dk[0] + dk[1] * dk[1]).sqrt() * 0.5 * diameter)
+        }
+        // κ₁ moves the centerline along m₁ (the width): the fibre at w/2 is the farthest.
+        SectionSpec::Rectangle { width, height } => {
+            Some(young * (dk[0].abs() * 0.5 * width + dk[1].abs() * 0.5 * height))
+        }
+        SectionSpec::Stiffness { .. } => None,
+    };
+    let nv = rod.n_edges + 1;
+    let mut dk = vec![[0.0; 2]; nv];
+    let mut hits = vec![0usize; nv];
+    for part in &rod.parts {
+        let structure = &session.compiled().structures[part.structure];
+        let member = structure.members()[part.member].as_der()?;
+        let state = session.state(part.structure).members[part.member].as_der()?;
+        for h in member.hinge_strains(state) {
+            let v = part.first_vertex + h.vertex;
+            dk[v][0] += h.curvature[0] - h.rest_curvature[0];
+            dk[v][1] += h.curvature[1] - h.rest_curvature[1];
+            hits[v] += 1;
+        }
+    }
+    // A vertex shared by two parts (interior clamp) has a half hinge on each side.
+    (0..nv)
+        .map(|v| {
+            let w = 1.0 / hits[v].max(1) as f64;
+            stress([dk[v][0] * w, dk[v][1] * w])
+        })
+        .collect()
+}
