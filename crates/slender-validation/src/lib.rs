@@ -9,5 +9,6 @@ pub mod cantilever;
 pub mod lateral_buckling;
 pub mod lateral_sweep;
 pub mod materials;
+pub mod numerics;
 pub mod ode;
 pub mod shell_model;
