@@ -10,6 +10,7 @@ pub mod lateral_buckling;
 pub mod lateral_sweep;
 pub mod materials;
 pub mod model_comparison;
+pub mod numerics;
 pub mod ode;
 pub mod rod_model;
 pub mod shell_model;

@@ -4,10 +4,22 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::linalg::SymmetricMatrix;
-use crate::solver::AssemblyInfo;
 
 use super::stencil::{Stencil, FIXED};
 use super::term::{LocalDerivatives, StencilTerm, TermGroup, TermSet};
+
+/// Per-assembly quantities the convergence tests use.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AssemblyInfo {
+    /// Total energy (J) at the load factor: internal minus work of the external loads.
+    pub energy: f64,
+    /// Σ over terms of |energy term| (J): the scale of round-off in `energy`.
+    pub energy_magnitude: f64,
+    /// Work of the external loads from the reference configuration to here (J).
+    pub external_work: f64,
+    /// Largest external nodal force at this load factor (N); moments count as force × length.
+    pub external_force: f64,
+}
 
 /// Collects the energy, gradient, Hessian and round-off scales of one assembly.
 ///

@@ -17,6 +17,6 @@ pub mod assembler;
 pub mod stencil;
 pub mod term;
 
-pub use assembler::{Assembler, MapSlot};
+pub use assembler::{Assembler, AssemblyInfo, MapSlot};
 pub use stencil::{Stencil, FIXED};
 pub use term::{LocalDerivatives, StencilTerm, TermGroup, TermSet};

@@ -1,13 +1,13 @@
 //! The B-spline shell model: patch, material, clamps, loads, and assembly of energy,
 //! gradient and Hessian over the free DOFs (3 per free control point).
 
+use crate::assembly::AssemblyInfo;
 use crate::assembly::{Assembler, TermSet};
 use crate::error::ModelError;
 use crate::geometry::Vec3;
 use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
 use crate::rod::Grading;
 use crate::shell::{Clamp, ShellProperties};
-use crate::solver::AssemblyInfo;
 
 use super::clamp::StripEnd;
 use super::element::{BsplineContext, ElementTerm};

@@ -1,10 +1,10 @@
 //! A discrete elastic rod ready to be solved, and the assembly of its energy, gradient and
 //! banded Hessian over the free DOFs.
 
+use crate::assembly::AssemblyInfo;
 use crate::assembly::{Assembler, TermSet, FIXED};
 use crate::geometry::Vec3;
 use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
-use crate::solver::problem::AssemblyInfo;
 
 use super::dofs::DofMap;
 use super::frames::EdgeId;

@@ -5,11 +5,11 @@ use std::ops::AddAssign;
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
+use crate::assembly::AssemblyInfo;
 use crate::assembly::{Assembler, LocalDerivatives, Stencil, StencilTerm, TermSet};
 use crate::geometry::Vec3;
 use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
 use crate::rod::Grading;
-use crate::solver::AssemblyInfo;
 
 use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
 use super::clamp::Clamp;

@@ -10,18 +10,8 @@
 use crate::assembly::{Assembler, TermGroup, TermSet};
 use crate::linalg::SymmetricMatrix;
 
-/// Per-assembly quantities the convergence tests use.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct AssemblyInfo {
-    /// Total energy (J) at the load factor: internal minus work of the external loads.
-    pub energy: f64,
-    /// Σ over terms of |energy term| (J): the scale of round-off in `energy`.
-    pub energy_magnitude: f64,
-    /// Work of the external loads from the reference configuration to here (J).
-    pub external_work: f64,
-    /// Largest external nodal force at this load factor (N); moments count as force × length.
-    pub external_force: f64,
-}
+// The assembler's summary lives with the assembler (no assembly ↔ solver import cycle).
+pub use crate::assembly::AssemblyInfo;
 
 /// The inertia a model attaches to its DOFs: the metric of its eigenvalue problems.
 ///

@@ -44,6 +44,15 @@ pub enum LateralBucklingError {
         /// Where the scan stopped.
         lambda_max: f64,
     },
+    /// The bisection on the shooting determinant failed after the scan bracketed a root
+    /// (not expected: the bracket and tolerance are the scan's own).
+    #[error("bisection of the shooting determinant failed (K = {k}): {detail}")]
+    Bisection {
+        /// The warping parameter.
+        k: f64,
+        /// What the root finder reported.
+        detail: String,
+    },
     /// A Ritz eigenproblem failed.
     #[error("{method}: {source}")]
     Pencil {

@@ -62,6 +62,7 @@
 use super::error::LateralBucklingError;
 use super::generalized_eigen::largest_pencil_eigenvalue;
 use super::legendre::gauss_legendre;
+use crate::numerics::{bisect_sign, Bisection};
 use crate::ode::{self, Options};
 use faer::Mat;
 
@@ -218,20 +219,20 @@ pub fn critical_lambda_shooting(k: f64) -> Result<f64, LateralBucklingError> {
         lo = hi;
         d_lo = d_hi;
     }
-    while hi - lo > BISECTION_RTOL * hi {
-        let mid = 0.5 * (lo + hi);
-        let d_mid = shooting_determinant(k, mid)?;
-        if d_mid == 0.0 {
-            return Ok(mid);
-        }
-        if d_mid.signum() == d_lo.signum() {
-            lo = mid;
-            d_lo = d_mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Ok(0.5 * (lo + hi))
+    bisect_sign(
+        |lambda| shooting_determinant(k, lambda),
+        lo,
+        d_lo,
+        hi,
+        d_hi,
+        Bisection::linear(BISECTION_RTOL),
+    )
+    .map_err(|e| {
+        e.into_evaluation_or(|e| LateralBucklingError::Bisection {
+            k,
+            detail: e.to_string(),
+        })
+    })
 }
 
 // ---------------------------------------------------------------------------------------

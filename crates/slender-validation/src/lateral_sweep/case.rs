@@ -9,6 +9,7 @@ use slender_core::solver::{EquilibriumSolver, SolveReport, SolverParams};
 use slender_core::ModelError;
 
 use crate::materials::ShellMaterialSet;
+use crate::numerics::{bisect, Bisection, NumericsError, Side};
 use crate::shell_model::{ShellModel, Strip, StripModel, StripSpec};
 use crate::with_strip;
 
@@ -105,9 +106,10 @@ impl LateralBucklingCase {
         Ok(self.planar_report(gamma, params)?.stable().map(|s| !s))
     }
 
-    /// Γ_c by bisection (in log Γ) on the sign of the inertia along the planar branch, within
-    /// [lo, hi] (lo must be stable, hi unstable) to relative width `rel_tol`. `None` if the
-    /// bracket is not valid or a probe does not converge.
+    /// Γ_c by bisection (in log Γ, [`crate::numerics::bisect`]) on the sign of the inertia
+    /// along the planar branch, within [lo, hi] (lo must be stable, hi unstable) to relative
+    /// width `rel_tol`. `None` if the bracket is not valid or a probe does not converge; an
+    /// error if `lo` or `hi` is not finite and `> 0` or `rel_tol` is not finite and `≥ 0`.
     pub fn critical_gamma(
         &self,
         lo: f64,
@@ -120,21 +122,43 @@ impl LateralBucklingCase {
             compute_lambda_min: false,
             ..*params
         };
-        let (mut lo, mut hi) = (lo, hi);
+        // Checked before the end solves (the bisection would only see them after).
+        for (name, v) in [("lo", lo), ("hi", hi)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(ModelError::parameter(name, v, "finite and > 0"));
+            }
+        }
+        if !(rel_tol.is_finite() && rel_tol >= 0.0) {
+            return Err(ModelError::parameter("rel_tol", rel_tol, "finite and >= 0"));
+        }
         if self.planar_unstable(lo, &params)? != Some(false)
             || self.planar_unstable(hi, &params)? != Some(true)
         {
             return Ok(None);
         }
-        while hi / lo - 1.0 > rel_tol {
-            let mid = (lo * hi).sqrt();
-            match self.planar_unstable(mid, &params)? {
-                Some(true) => hi = mid,
-                Some(false) => lo = mid,
-                None => return Ok(None),
+        /// Why a probe ended the search.
+        enum Stop {
+            Failed(ModelError),
+            NoVerdict,
+        }
+        let side = |gamma| match self.planar_unstable(gamma, &params) {
+            Ok(Some(true)) => Ok(Side::High),
+            Ok(Some(false)) => Ok(Side::Low),
+            Ok(None) => Err(Stop::NoVerdict),
+            Err(e) => Err(Stop::Failed(e)),
+        };
+        match bisect(side, lo, hi, Bisection::log(rel_tol)) {
+            Ok(gamma_c) => Ok(Some(gamma_c)),
+            Err(NumericsError::Evaluation(Stop::NoVerdict)) => Ok(None),
+            Err(NumericsError::Evaluation(Stop::Failed(e))) => Err(e),
+            Err(NumericsError::InvalidInput { name, value, range }) => {
+                Err(ModelError::parameter(name, value, range))
+            }
+            // `bisect` reports neither (it takes the bracket as given and always stops).
+            Err(NumericsError::NotBracketed { .. } | NumericsError::NoConvergence { .. }) => {
+                Ok(None)
             }
         }
-        Ok(Some((lo * hi).sqrt()))
     }
 
     /// The stability route's branch switch at Γ (design.md §4.5): if the planar equilibrium is

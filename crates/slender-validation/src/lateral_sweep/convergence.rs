@@ -4,6 +4,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use std::convert::Infallible;
+
+use crate::numerics::{bisect, Bisection, Side};
 use crate::shell_model::ShellModel;
 
 /// Γ_c of one aspect ratio on a sequence of meshes and its extrapolation.
@@ -67,16 +70,16 @@ pub fn richardson(n: [usize; 3], gamma: [f64; 3], assumed: f64) -> Option<Extrap
     if !(ratio(lo) <= target && target <= ratio(hi)) {
         return Some(extrapolate(assumed, true));
     }
-    let (mut a, mut b) = (lo, hi);
-    for _ in 0..100 {
-        let m = 0.5 * (a + b);
-        if ratio(m) < target {
-            a = m;
+    // 100 halvings of [0.5, 6] reach f64 resolution.
+    let side = |p: f64| {
+        Ok::<_, Infallible>(if ratio(p) < target {
+            Side::Low
         } else {
-            b = m;
-        }
-    }
-    Some(extrapolate(0.5 * (a + b), false))
+            Side::High
+        })
+    };
+    let p = bisect(side, lo, hi, Bisection::linear(0.0).with_max_halvings(100)).ok()?;
+    Some(extrapolate(p, false))
 }
 
 impl CriticalConvergence {
