@@ -1,32 +1,22 @@
-//! The Cosserat rod as an [`EquilibriumProblem`]: the same Newton solver, load stepping and
-//! stability analysis as the discrete elastic rod.
+//! The Cosserat rod on the shared framed-rod problem ([`crate::framed::equilibrium`]): its
+//! terms and how a step carries an edge's chord.
 
-use crate::assembly::{Assembler, TermGroup};
-use crate::framed::groups::ALL_GROUPS;
-use crate::framed::FramedState;
-use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
-use crate::solver::problem::{EquilibriumProblem, MassMetric};
+use crate::assembly::Assembler;
+use crate::framed::{FramedCore, FramedModel, FramedState};
+use crate::geometry::Vec3;
+use crate::linalg::SymmetricMatrix;
 
 use super::model::CosseratRod;
 use super::COSSERAT_HALF_BANDWIDTH;
 
-impl EquilibriumProblem for CosseratRod {
-    type State = FramedState;
-    type Hessian = SymmetricBandMatrix;
+impl FramedModel for CosseratRod {
+    const HALF_BANDWIDTH: usize = COSSERAT_HALF_BANDWIDTH;
 
-    fn n_free(&self) -> usize {
-        self.core.dofs.n_free()
+    fn core(&self) -> &FramedCore {
+        &self.core
     }
 
-    fn new_hessian(&self) -> SymmetricBandMatrix {
-        SymmetricBandMatrix::new(self.n_free(), COSSERAT_HALF_BANDWIDTH)
-    }
-
-    fn term_groups(&self) -> &[TermGroup] {
-        &ALL_GROUPS
-    }
-
-    fn assemble_selected<M: SymmetricMatrix>(
+    fn assemble_terms<M: SymmetricMatrix>(
         &self,
         state: &FramedState,
         load: f64,
@@ -35,70 +25,14 @@ impl EquilibriumProblem for CosseratRod {
         self.assemble_into(state, load, asm);
     }
 
-    fn difference(&self, a: &FramedState, b: &FramedState, out: &mut [f64]) {
-        self.core.difference(a, b, out);
-    }
-
-    fn chart(&self, state: &FramedState, dx: &[f64], out: &mut FramedState) {
-        self.core.displace_linear(state, dx, 1.0, out);
-    }
-
-    fn displace(&self, state: &FramedState, dx: &[f64], alpha: f64, out: &mut FramedState) {
+    fn chord_after_step(&self, state: &FramedState, dx: &[f64], alpha: f64, j: usize) -> Vec3 {
         // Each chord is carried by its edge's frame: e ← exp(αω)(e + α(δe − ω×e)), so that the
         // edge strain Rᵀe/h changes exactly by α times its linearization.
         let core = &self.core;
         let x = &state.positions;
-        core.retract_with(state, dx, alpha, out, |j| {
-            let e = x[j + 1] - x[j];
-            let de = core.vertex_step(dx, j + 1, alpha) - core.vertex_step(dx, j, alpha);
-            let w = core.frame_step(dx, j, alpha);
-            nalgebra::UnitQuaternion::from_scaled_axis(w) * (e + de - w.cross(&e))
-        });
-    }
-
-    fn impose_load(&self, state: &mut FramedState, from: f64, to: f64, guess: bool) {
-        self.core.impose_path(state, from, to, guess);
-    }
-
-    fn max_step(&self, state: &FramedState, dx: &[f64]) -> f64 {
-        self.core.max_step(state, dx)
-    }
-
-    fn force_length(&self, i: usize) -> f64 {
-        self.core.force_length(i)
-    }
-
-    fn dof_magnitude(&self, state: &FramedState, i: usize) -> f64 {
-        self.core.dof_magnitude(state, i)
-    }
-}
-
-impl MassMetric for CosseratRod {
-    fn inertia_metric(&self, i: usize) -> f64 {
-        self.core.inertia_metric(i)
-    }
-
-    fn eigenvalue_scale(&self) -> f64 {
-        self.core.eigenvalue_scale()
-    }
-}
-
-#[cfg(feature = "testing")]
-impl crate::testing::RigidMotion for CosseratRod {
-    fn rigidly_moved(
-        &self,
-        state: &FramedState,
-        rotation: &nalgebra::Rotation3<f64>,
-        offset: &crate::geometry::Vec3,
-    ) -> FramedState {
-        state.rigidly_transformed(rotation, offset)
-    }
-
-    fn rest(&self) -> FramedState {
-        self.core.rest.clone()
-    }
-
-    fn internal_terms(&self) -> crate::assembly::TermSet {
-        crate::framed::groups::INTERNAL
+        let e = x[j + 1] - x[j];
+        let de = core.vertex_step(dx, j + 1, alpha) - core.vertex_step(dx, j, alpha);
+        let w = core.frame_step(dx, j, alpha);
+        nalgebra::UnitQuaternion::from_scaled_axis(w) * (e + de - w.cross(&e))
     }
 }

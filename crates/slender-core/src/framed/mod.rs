@@ -11,6 +11,7 @@
 
 pub mod builder;
 pub mod core;
+pub mod equilibrium;
 pub mod full_stencil;
 pub mod groups;
 pub mod layout;
@@ -24,6 +25,7 @@ pub mod state;
 
 pub use builder::FramedRodBuilder;
 pub use core::FramedCore;
+pub use equilibrium::FramedModel;
 pub use layout::{DofSlot, FramedDofs};
 pub use moment::FrameMoment;
 pub use retraction::rotation_vector;
