@@ -626,15 +626,57 @@ impl Session {
             .map(|r| self.rod_snapshot(r))
             .collect();
         let snapshots: Vec<RodSnapshot> = stitched.iter().map(|s| s.0.clone()).collect();
+        // Old and new vertices: the new mesh may have more (a vertex inserted for a support
+        // given by arc length); map each new vertex to the old shape.
+        let mut mapped: Vec<RodSnapshot> = scene
+            .rods
+            .iter()
+            .enumerate()
+            .map(|(r, rod)| {
+                remesh(
+                    &snapshots[r],
+                    &self.scene.rods[r].node_arclengths,
+                    &rod.node_arclengths,
+                )
+            })
+            .collect();
+        // A new clip holds its edge along the current tangent at its *rest* length: that is the
+        // edge the saved scene's clip carries from rest by a rigid motion, so that the saved
+        // scene re-solves to this very equilibrium (instead of one that differs by the edge's
+        // current stretch).
+        for (r, rod) in scene.rods.iter().enumerate() {
+            for s in rod.supports.iter().skip(poses[r].len()) {
+                if s.kind != SupportKind::Clip || rod.n_edges == 0 {
+                    continue;
+                }
+                let (a, b) = if s.vertex == rod.n_edges {
+                    (s.vertex - 1, s.vertex)
+                } else {
+                    (s.vertex, s.vertex + 1)
+                };
+                let Some(part) = rod.parts.iter().find(|p| p.contains(a) && p.contains(b)) else {
+                    continue;
+                };
+                let member = scene.structures[part.structure].members()[part.member]
+                    .as_der()
+                    .expect("rod");
+                let rest_x = member.rest_state().positions();
+                let rest_len =
+                    (rest_x[b - part.first_vertex] - rest_x[a - part.first_vertex]).norm();
+                let x = &mut mapped[r].positions;
+                let t = (x[b] - x[a]).normalize();
+                if s.vertex == a {
+                    x[b] = x[a] + t * rest_len;
+                } else {
+                    x[a] = x[b] - t * rest_len;
+                }
+            }
+        }
         let mut runs = Vec::with_capacity(scene.structures.len());
         for (k, s) in scene.structures.iter().enumerate() {
             let mut state = s.rest_state().clone();
             for (r, rod) in scene.rods.iter().enumerate() {
-                let old = &self.scene.rods[r];
-                let snap = &snapshots[r];
-                // Old and new vertices: the new mesh may have more (a vertex inserted for a
-                // support given by arc length); map each new vertex to the old shape.
-                let mapped = remesh(snap, &old.node_arclengths, &rod.node_arclengths);
+                let mapped = &mapped[r];
                 for part in rod.parts.iter().filter(|p| p.structure == k) {
                     let a = part.first_vertex;
                     let b = a + part.n_vertices - 1;
@@ -669,11 +711,7 @@ impl Session {
         for (r, rod) in scene.rods.iter().enumerate() {
             while poses[r].len() < rod.supports.len() {
                 let s = &rod.supports[poses[r].len()];
-                let now = remesh(
-                    &snapshots[r],
-                    &self.scene.rods[r].node_arclengths,
-                    &rod.node_arclengths,
-                );
+                let now = &mapped[r];
                 let part = rod
                     .parts
                     .iter()
