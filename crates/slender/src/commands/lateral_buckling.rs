@@ -38,7 +38,7 @@ pub struct LateralBucklingArgs {
     #[arg(long, default_value_t = 15)]
     gamma_count: usize,
     /// Meshes n_L of the Γ_c convergence study (three or more give an extrapolation; default
-    /// 8, 15, 30 for the mid-edge shell, 4, 8, 16 for the B-spline shell);
+    /// 8, 15, 30 for the mid-edge shell, 8, 16, 32 for the B-spline shell);
     /// `--convergence-meshes 0` skips it.
     #[arg(long, value_delimiter = ',')]
     convergence_meshes: Option<Vec<usize>>,
