@@ -456,6 +456,7 @@ fn a_shell_strip_is_solved_on_its_own_and_does_not_change_the_rods() {
         width_elements: None,
         grading: None,
         support: None,
+        model: None,
     };
     let alone = scene(vec![rod.clone()], g);
     let mut mixed = scene(vec![rod], g);

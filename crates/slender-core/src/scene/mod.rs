@@ -17,5 +17,5 @@ pub use compile::{CompiledRod, CompiledScene, CompiledSupport, RodPart};
 pub use error::SceneError;
 pub use result::{RodResult, SceneStep, StabilityResult, StructureResult, SupportResult};
 pub use session::{EditReport, Session, SupportPose};
-pub use shells::{CompiledShell, ShellResult};
+pub use shells::{CompiledShell, ShellResult, StripModel};
 pub use spec::Scene;

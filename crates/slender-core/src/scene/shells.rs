@@ -7,12 +7,13 @@
 use serde::Serialize;
 
 use crate::assembly::TermSet;
+use crate::bspline_shell::{BsplineShell, BsplineShellBuilder, BsplineState};
 use crate::geometry::Vec3;
 use crate::shell::{rod_predictor, Shell, ShellBuilder, ShellProperties, ShellState};
 use crate::solver::{EquilibriumSolver, SolveReport, SolverParams};
 
 use super::error::SceneError;
-use super::spec::ShellSpec;
+use super::spec::{ShellModelSpec, ShellSpec};
 
 /// Default number of elements along a strip's length.
 pub const DEFAULT_SHELL_ELEMENTS: usize = 15;
@@ -26,7 +27,27 @@ pub struct CompiledShell {
     /// Output name.
     pub name: String,
     /// The shell model (clamped at x = 0, with the scene's gravity at load factor 1).
-    pub shell: Shell,
+    pub model: StripModel,
+}
+
+/// The model of a strip.
+#[derive(Clone, Debug)]
+pub enum StripModel {
+    /// Triangles with mid-edge directors.
+    Midedge(Shell),
+    /// One C¹ B-spline patch.
+    Bspline(BsplineShell),
+}
+
+impl CompiledShell {
+    /// The flat strip's points at the stations and columns of the result grid: vertex (i, j)
+    /// is i·(n_W + 1) + j (m).
+    pub fn rest_positions(&self) -> Vec<Vec3> {
+        match &self.model {
+            StripModel::Midedge(s) => s.mesh().rest_positions.clone(),
+            StripModel::Bspline(s) => s.tessellate(&s.rest_state(), 1).0,
+        }
+    }
 }
 
 /// Equilibrium of one strip.
@@ -151,20 +172,33 @@ pub fn compile_shell(
         poisson,
         density: m.density,
     };
-    let shell = ShellBuilder::new(properties)
-        .elements(n_length, n_width)
-        .grading(spec.grading.unwrap_or_default())
-        .gravity(gravity)
-        .build()
-        .map_err(|e| {
-            let place = if spec.grading.is_some() {
-                format!("{path}.grading")
-            } else {
-                path.to_string()
-            };
-            SceneError::model(place, e)
-        })?;
-    Ok(CompiledShell { name, shell })
+    let place = |e| {
+        let place = if spec.grading.is_some() {
+            format!("{path}.grading")
+        } else {
+            path.to_string()
+        };
+        SceneError::model(place, e)
+    };
+    let model = match spec.model.unwrap_or_default() {
+        ShellModelSpec::Midedge => StripModel::Midedge(
+            ShellBuilder::new(properties)
+                .elements(n_length, n_width)
+                .grading(spec.grading.unwrap_or_default())
+                .gravity(gravity)
+                .build()
+                .map_err(place)?,
+        ),
+        ShellModelSpec::Bspline => StripModel::Bspline(
+            BsplineShellBuilder::new(properties)
+                .elements(n_length, n_width)
+                .grading(spec.grading.unwrap_or_default())
+                .gravity(gravity)
+                .build()
+                .map_err(place)?,
+        ),
+    };
+    Ok(CompiledShell { name, model })
 }
 
 fn arr(v: Vec3) -> [f64; 3] {
@@ -175,7 +209,10 @@ fn arr(v: Vec3) -> [f64; 3] {
 /// mapped onto the strip (as the shell cantilever does); if the rod does not converge or
 /// Newton fails from there, load stepping from the flat strip.
 pub fn solve_shell(c: &CompiledShell, params: &SolverParams) -> ShellResult {
-    let shell = &c.shell;
+    let shell = match &c.model {
+        StripModel::Midedge(s) => s,
+        StripModel::Bspline(s) => return solve_bspline(&c.name, s, params),
+    };
     let flat = shell.rest_state();
     let mut solver = EquilibriumSolver::new(shell, &flat, params.clone());
     let mut solution = None;
@@ -208,6 +245,65 @@ pub fn solve_shell(c: &CompiledShell, params: &SolverParams) -> ShellResult {
         converged: solution.report.converged(),
         report: solution.report,
     }
+}
+
+/// A B-spline strip under the full gravity, by load stepping from the flat strip (its Newton
+/// steps are not limited to a thickness: the mixed-integration-point membrane update).
+fn solve_bspline(name: &str, shell: &BsplineShell, params: &SolverParams) -> ShellResult {
+    let flat = shell.rest_state();
+    let mut solver = EquilibriumSolver::new(shell, &flat, params.clone());
+    let solution = solver.solve(shell, &flat, 0.0, 1.0);
+    let weight: f64 = shell.masses().iter().sum();
+    let applied = shell.gravity() * weight;
+    let clamp = bspline_clamp_force(shell, &solution.state);
+    let imbalance = (clamp + applied).norm();
+    let (positions, faces) = shell.tessellate(&solution.state, 1);
+    let (n_length, n_width) = shell.elements();
+    ShellResult {
+        name: name.to_string(),
+        positions: positions.iter().map(|p| arr(*p)).collect(),
+        faces,
+        elements: [n_length, n_width],
+        applied_force: arr(applied),
+        clamp_force: arr(clamp),
+        relative_force_imbalance: if applied.norm() > 0.0 {
+            imbalance / applied.norm()
+        } else {
+            imbalance
+        },
+        rod_predictor_used: false,
+        converged: solution.report.converged(),
+        report: solution.report,
+    }
+}
+
+/// As [`clamp_force`] over the held control points (those without a free DOF: the clamp's
+/// two rows): by partition of unity their generalized forces sum to the clamp force.
+fn bspline_clamp_force(shell: &BsplineShell, state: &BsplineState) -> Vec3 {
+    let h = 1e-8 * shell.properties().length;
+    let mut s = state.clone();
+    // The exact energy, not the Newton step's mixed-integration-point merit.
+    s.membrane_remainder.clear();
+    let mut f = Vec3::zeros();
+    for k in 0..s.control_points.len() {
+        if shell.dof(k, 0).is_some() {
+            continue;
+        }
+        for c in 0..3 {
+            let x = s.control_points[k][c];
+            let mut central = |step: f64| {
+                s.control_points[k][c] = x + step;
+                let up = shell.energy_terms(&s, 1.0, TermSet::ALL);
+                s.control_points[k][c] = x - step;
+                let down = shell.energy_terms(&s, 1.0, TermSet::ALL);
+                s.control_points[k][c] = x;
+                (up - down) / (2.0 * step)
+            };
+            let (d1, d2) = (central(h), central(2.0 * h));
+            f[c] += (4.0 * d1 - d2) / 3.0;
+        }
+    }
+    f
 }
 
 /// Σ over the clamped vertices of ∂E/∂x (N): the force the clamp must apply. The shell's

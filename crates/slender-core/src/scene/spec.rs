@@ -403,4 +403,20 @@ pub struct ShellSpec {
     /// Support: only `"clamp_start"` (the edge x = 0 clamped), the default.
     #[serde(default)]
     pub support: Option<String>,
+    /// Shell model: `"midedge"` (triangles, mid-edge directors; the default) or `"bspline"`
+    /// (a C¹ cubic B-spline patch).
+    #[serde(default)]
+    pub model: Option<ShellModelSpec>,
+}
+
+/// The shell formulation of a strip.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum ShellModelSpec {
+    /// Discrete Kirchhoff–Love shell on triangles with mid-edge directors.
+    #[default]
+    Midedge,
+    /// C¹ Kirchhoff–Love shell on one cubic B-spline patch.
+    Bspline,
 }

@@ -199,7 +199,44 @@ fn shell_example_checks() -> Result<Vec<Check>> {
             "≤ 1e-6",
             balance <= 1e-6,
         ),
+        bspline_strip_check(&scene, gamma, master)?,
     ])
+}
+
+/// The same strip as a C¹ B-spline patch (`model = "bspline"`) on 8 × 1 elements: its Δy/Δx
+/// against the master curve and its clamp force against the weight (the worse of the two
+/// relative errors; target 1 %).
+fn bspline_strip_check(
+    scene: &slender_core::scene::Scene,
+    gamma: f64,
+    master: f64,
+) -> Result<Check> {
+    use slender_core::scene::shells::centre_line_ratio;
+    use slender_core::scene::spec::ShellModelSpec;
+    let mut scene = scene.clone();
+    let strip = &mut scene.shells[0];
+    strip.model = Some(ShellModelSpec::Bspline);
+    strip.elements = Some(8);
+    strip.width_elements = Some(1);
+    strip.grading = None;
+    let compiled = match scene.compile() {
+        Ok(c) => c,
+        Err(e) => bail!("flat_cable_shell_cantilever as a B-spline strip: {e}"),
+    };
+    let (_, step) = SceneSolver::new(&scene, &compiled);
+    let shell = &step.shells[0];
+    let error = ((centre_line_ratio(shell) - master) / master).abs();
+    let measured = if shell.converged {
+        error.max(shell.relative_force_imbalance)
+    } else {
+        f64::NAN
+    };
+    Ok(check(
+        format!("flat_cable_shell_cantilever with model = \"bspline\" (8 × 1, Γ = {gamma:.3}): worse of |Δy/Δx error| vs the master curve and the clamp force's relative imbalance"),
+        measured,
+        "≤ 1e-2",
+        measured <= 1e-2,
+    ))
 }
 
 #[cfg(test)]
@@ -209,8 +246,8 @@ mod tests {
     #[test]
     fn every_scene_check_passes() {
         let checks = scene_checks().unwrap();
-        // One balance check per rod example, the benchmark check, two shell checks.
-        assert_eq!(checks.len(), EXAMPLES.len() - 1 + 3);
+        // One balance check per rod example, the benchmark check, three shell checks.
+        assert_eq!(checks.len(), EXAMPLES.len() - 1 + 4);
         for c in &checks {
             eprintln!("{:e}  {}", c.measured, c.description);
             assert!(

@@ -25,9 +25,7 @@ pub fn write_preview(scene: &CompiledScene, steps: &[SceneStep], stem: &Path) ->
     }
     for (k, sh) in steps[0].shells.iter().enumerate() {
         let rest: Vec<[f64; 3]> = scene.shells[k]
-            .shell
-            .mesh()
-            .rest_positions
+            .rest_positions()
             .iter()
             .map(|p| [p.x, p.y, p.z])
             .collect();
