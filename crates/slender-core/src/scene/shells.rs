@@ -280,30 +280,19 @@ fn solve_bspline(name: &str, shell: &BsplineShell, params: &SolverParams) -> She
 /// As [`clamp_force`] over the held control points (those without a free DOF: the clamp's
 /// two rows): by partition of unity their generalized forces sum to the clamp force.
 fn bspline_clamp_force(shell: &BsplineShell, state: &BsplineState) -> Vec3 {
-    let h = 1e-8 * shell.properties().length;
     let mut s = state.clone();
     // The exact energy, not the Newton step's mixed-integration-point merit.
     s.membrane_remainder.clear();
-    let mut f = Vec3::zeros();
-    for k in 0..s.control_points.len() {
-        if shell.dof(k, 0).is_some() {
-            continue;
-        }
-        for c in 0..3 {
-            let x = s.control_points[k][c];
-            let mut central = |step: f64| {
-                s.control_points[k][c] = x + step;
-                let up = shell.energy_terms(&s, 1.0, TermSet::ALL);
-                s.control_points[k][c] = x - step;
-                let down = shell.energy_terms(&s, 1.0, TermSet::ALL);
-                s.control_points[k][c] = x;
-                (up - down) / (2.0 * step)
-            };
-            let (d1, d2) = (central(h), central(2.0 * h));
-            f[c] += (4.0 * d1 - d2) / 3.0;
-        }
-    }
-    f
+    let held: Vec<usize> = (0..s.control_points.len())
+        .filter(|&k| shell.dof(k, 0).is_none())
+        .collect();
+    held_force(
+        &mut s,
+        &held,
+        1e-8 * shell.properties().length,
+        |s, k| &mut s.control_points[k],
+        |s| shell.energy_terms(s, 1.0, TermSet::ALL),
+    )
 }
 
 /// Σ over the clamped vertices of ∂E/∂x (N): the force the clamp must apply. The shell's
@@ -312,18 +301,35 @@ fn bspline_clamp_force(shell: &BsplineShell, state: &BsplineState) -> Vec3 {
 /// (h = 1e-8·L): the stiff membrane of the small graded elements next to the clamp makes the
 /// O(h²) error of a plain central difference large (measured 1e-3 of the weight at 1e-7·L).
 fn clamp_force(shell: &Shell, state: &ShellState) -> Vec3 {
-    let h = 1e-8 * shell.properties().length;
     let mut s = state.clone();
+    held_force(
+        &mut s,
+        &shell.mesh().clamp_vertices,
+        1e-8 * shell.properties().length,
+        |s, v| &mut s.positions[v],
+        |s| shell.energy_terms(s, 1.0, TermSet::ALL),
+    )
+}
+
+/// Σ over the `held` points of ∂E/∂x (N) by central differences of `energy` with steps h and
+/// 2h, Richardson-extrapolated; `point` gives a held point of the state to perturb.
+fn held_force<S>(
+    s: &mut S,
+    held: &[usize],
+    h: f64,
+    point: impl Fn(&mut S, usize) -> &mut Vec3,
+    energy: impl Fn(&S) -> f64,
+) -> Vec3 {
     let mut f = Vec3::zeros();
-    for &v in &shell.mesh().clamp_vertices {
+    for &k in held {
         for c in 0..3 {
-            let x = s.positions[v][c];
+            let x = point(s, k)[c];
             let mut central = |step: f64| {
-                s.positions[v][c] = x + step;
-                let up = shell.energy_terms(&s, 1.0, TermSet::ALL);
-                s.positions[v][c] = x - step;
-                let down = shell.energy_terms(&s, 1.0, TermSet::ALL);
-                s.positions[v][c] = x;
+                point(s, k)[c] = x + step;
+                let up = energy(s);
+                point(s, k)[c] = x - step;
+                let down = energy(s);
+                point(s, k)[c] = x;
                 (up - down) / (2.0 * step)
             };
             let (d1, d2) = (central(h), central(2.0 * h));
