@@ -203,57 +203,44 @@ fn framed_out_of_plane(dofs: &slender_core::framed::FramedDofs, axis: usize) -> 
         .collect()
 }
 
-impl BenchmarkRod for CosseratRod {
-    fn from_spec(spec: &RodSpec) -> Result<Self, ModelError> {
-        framed_builder!(spec, CosseratBuilder, darboux)
-    }
-    fn rest(&self) -> &FramedState {
-        self.rest_state()
-    }
-    fn positions(state: &FramedState) -> &[Vec3] {
-        state.positions()
-    }
-    fn element_lengths(&self) -> &[f64] {
-        self.rest_lengths()
-    }
-    fn rod_length(&self) -> f64 {
-        self.length()
-    }
-    fn is_rotational(&self, i: usize) -> bool {
-        self.dofs().is_rotation(i)
-    }
-    fn out_of_plane_dofs(&self, axis: usize) -> Vec<usize> {
-        framed_out_of_plane(self.dofs(), axis)
-    }
-    /// (y_j, ω_j (2), y_{j+1}, …): a vertex term spans two frames, five entries.
-    const OUT_OF_PLANE_BANDWIDTH: usize = 4;
+/// The benchmark view of a framed rod: everything but how it is built and its out-of-plane
+/// bandwidth comes from the shared [`FramedCore`](slender_core::framed::FramedCore).
+macro_rules! framed_benchmark_rod {
+    ($rod:ty, $builder:ty $(, $opt:ident)?; $(#[$doc:meta])* bandwidth = $bw:expr) => {
+        impl BenchmarkRod for $rod {
+            fn from_spec(spec: &RodSpec) -> Result<Self, ModelError> {
+                framed_builder!(spec, $builder $(, $opt)?)
+            }
+            fn rest(&self) -> &FramedState {
+                self.rest_state()
+            }
+            fn positions(state: &FramedState) -> &[Vec3] {
+                state.positions()
+            }
+            fn element_lengths(&self) -> &[f64] {
+                self.rest_lengths()
+            }
+            fn rod_length(&self) -> f64 {
+                self.length()
+            }
+            fn is_rotational(&self, i: usize) -> bool {
+                self.dofs().is_rotation(i)
+            }
+            fn out_of_plane_dofs(&self, axis: usize) -> Vec<usize> {
+                framed_out_of_plane(self.dofs(), axis)
+            }
+            $(#[$doc])*
+            const OUT_OF_PLANE_BANDWIDTH: usize = $bw;
+        }
+    };
 }
 
-impl BenchmarkRod for Se3Rod {
-    fn from_spec(spec: &RodSpec) -> Result<Self, ModelError> {
-        framed_builder!(spec, Se3Builder)
-    }
-    fn rest(&self) -> &FramedState {
-        self.rest_state()
-    }
-    fn positions(state: &FramedState) -> &[Vec3] {
-        state.positions()
-    }
-    fn element_lengths(&self) -> &[f64] {
-        self.rest_lengths()
-    }
-    fn rod_length(&self) -> f64 {
-        self.length()
-    }
-    fn is_rotational(&self, i: usize) -> bool {
-        self.dofs().is_rotation(i)
-    }
-    fn out_of_plane_dofs(&self, axis: usize) -> Vec<usize> {
-        framed_out_of_plane(self.dofs(), axis)
-    }
+framed_benchmark_rod!(CosseratRod, CosseratBuilder, darboux;
+    /// (y_j, ω_j (2), y_{j+1}, …): a vertex term spans two frames, five entries.
+    bandwidth = 4);
+framed_benchmark_rod!(Se3Rod, Se3Builder;
     /// (y_A, ω_A (2), y_B, ω_B (2)): an element spans six entries.
-    const OUT_OF_PLANE_BANDWIDTH: usize = 5;
-}
+    bandwidth = 5);
 
 /// Evaluates `$body` with the type alias `$p` bound to the rod type of `$model`.
 #[macro_export]
