@@ -55,6 +55,8 @@ fn rod_spec(centerline: Centerline, supports: Vec<(SupportKind, VertexRef)>) -> 
         line_loads: Vec::new(),
         closed: false,
         min_bend_radius: None,
+        model: Default::default(),
+        shear_stiffness: None,
     }
 }
 

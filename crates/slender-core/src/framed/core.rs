@@ -275,6 +275,29 @@ impl FramedCore {
         Ok(state)
     }
 
+    /// A state with the given positions (m), frames and clamp frames taken as they are (no
+    /// check that supports are at rest: a carried equilibrium has its supports where they were
+    /// moved), moment-load angles continued from rest along the shortest rotation.
+    pub(crate) fn carried_state(
+        &self,
+        positions: Vec<Vec3>,
+        frames: Vec<UnitQuaternion<f64>>,
+        clamp_frames: [Option<UnitQuaternion<f64>>; 2],
+    ) -> FramedState {
+        let mut state = FramedState {
+            positions,
+            frames,
+            clamp_frames,
+            moment_angles: Vec::new(),
+        };
+        state.moment_angles = self
+            .moments
+            .iter()
+            .map(|m| m.updated_angles(&m.rest, &state.frames[m.frame], [0.0; 2]))
+            .collect();
+        state
+    }
+
     /// What the load factor drives.
     pub fn load_path(&self) -> &RodLoadPath {
         &self.load_path

@@ -7,12 +7,42 @@
 
 use nalgebra::UnitQuaternion;
 
-use crate::rod::SupportMotion;
+use crate::error::ModelError;
+use crate::geometry::Vec3;
+use crate::rod::{RodLoadPath, SupportMotion};
 
 use super::core::FramedCore;
 use super::state::FramedState;
 
 impl FramedCore {
+    /// Makes the load factor move the support holding `vertices` rigidly, from 0 to 1: a
+    /// rotation (vector, rad) about `pivot` and a translation (m); loads stay at their full
+    /// value. Errors (and no path set) if a vertex is not held or a value is not finite.
+    pub fn set_support_motion(
+        &mut self,
+        vertices: &[usize],
+        pivot: Vec3,
+        rotation: Vec3,
+        translation: Vec3,
+    ) -> Result<(), ModelError> {
+        let path = RodLoadPath {
+            loads: [1.0, 1.0],
+            gravity_from: None,
+            motions: vec![SupportMotion {
+                vertices: vertices.to_vec(),
+                pivot,
+                rotation,
+                translation,
+            }],
+        };
+        self.set_load_path(path)
+    }
+
+    /// Back to the plain load ramp.
+    pub fn clear_load_path(&mut self) {
+        self.load_path = RodLoadPath::default();
+    }
+
     /// Moves the supports of `state` along the load path from `from` to `to`.
     pub(crate) fn impose_path(&self, state: &mut FramedState, from: f64, to: f64, guess: bool) {
         for m in &self.load_path.motions {

@@ -4,6 +4,7 @@
 //!
 //! No file I/O here: the binary reads files and writes outputs.
 
+mod carry;
 pub mod compile;
 pub mod error;
 pub mod magnitudes;

@@ -4,9 +4,8 @@
 use serde::Serialize;
 
 use crate::geometry::Vec3;
-use crate::rod::{FullGradient, Rod, RodState};
 use crate::solver::SolveReport;
-use crate::structure::{MemberState, Structure, StructureState};
+use crate::structure::{HeldForces, MemberState, Structure, StructureState};
 
 use super::compile::{CompiledRod, CompiledScene};
 use super::spec::SupportKind;
@@ -157,19 +156,13 @@ fn arr(v: Vec3) -> [f64; 3] {
     [v.x, v.y, v.z]
 }
 
-fn der<'a>(s: &Structure, st: &'a StructureState, m: usize) -> (&'a RodState, Rod) {
-    let r = s.members()[m].as_der().expect("rod").clone();
-    let MemberState::Der(rs) = &st.members[m];
-    (rs, r)
-}
-
-/// Generalized forces of every member's vertices and angles, joints included.
-fn structure_gradients(s: &Structure, st: &StructureState) -> Vec<FullGradient> {
-    let mut out: Vec<FullGradient> = (0..s.members().len())
-        .map(|m| {
-            let (rs, r) = der(s, st, m);
-            r.full_gradient(rs, 1.0)
-        })
+/// Generalized forces the supports of every member supply, joints included.
+fn structure_gradients(s: &Structure, st: &StructureState) -> Vec<HeldForces> {
+    let mut out: Vec<HeldForces> = s
+        .members()
+        .iter()
+        .zip(&st.members)
+        .map(|(m, ms)| m.held_forces(ms, 1.0))
         .collect();
     s.add_joint_gradients(st, &mut out);
     out
@@ -180,7 +173,7 @@ fn balance(
     scene: &CompiledScene,
     k: usize,
     st: &StructureState,
-    grads: &[FullGradient],
+    grads: &[HeldForces],
 ) -> [f64; 4] {
     let s = &scene.structures[k];
     let mut total_f = Vec3::zeros();
@@ -189,8 +182,7 @@ fn balance(
     let mut m_scale = 0.0;
     let mut length = 0.0;
     // Applied loads about the origin, then reactions.
-    for m in 0..s.members().len() {
-        let (rs, r) = der(s, st, m);
+    for (r, rs) in s.members().iter().zip(&st.members) {
         let l = r.applied_loads(rs, 1.0);
         total_f += l.force;
         total_m += l.moment;
@@ -234,7 +226,7 @@ fn support_reaction(
     rod: &CompiledRod,
     si: usize,
     k: usize,
-    grads: &[FullGradient],
+    grads: &[HeldForces],
     st: &StructureState,
 ) -> Option<(usize, Vec3, Vec3, Vec3)> {
     let sup = &rod.supports[si];
@@ -247,46 +239,62 @@ fn support_reaction(
         if part.structure != k {
             continue;
         }
-        let (rs, r) = der(s, st, part.member);
-        let g = &grads[part.member];
-        let n = r.n_edges();
+        let member = &s.members()[part.member];
+        let ms = &st.members[part.member];
+        let x = ms.positions();
+        let n = member.n_edges();
         let local = |v: usize| v - part.first_vertex;
         if part.contains(sup.vertex) {
-            xv = rs.positions()[local(sup.vertex)];
+            xv = x[local(sup.vertex)];
             found = Some(pi);
         }
-        match sup.kind {
-            SupportKind::TwistHold => {
-                let e = sup.edge.expect("edge");
-                if e >= part.first_vertex && e < part.first_vertex + n {
-                    let j = e - part.first_vertex;
-                    let t = rs
-                        .frames()
-                        .edge(crate::rod::frames::EdgeId::Real(j))
-                        .tangent;
-                    moment += t * g.thetas[j];
-                    found = Some(pi);
+        match (&grads[part.member], ms) {
+            (HeldForces::Der(g), MemberState::Der(rs)) => match sup.kind {
+                SupportKind::TwistHold => {
+                    let e = sup.edge.expect("edge");
+                    if e >= part.first_vertex && e < part.first_vertex + n {
+                        let j = e - part.first_vertex;
+                        let t = rs
+                            .frames()
+                            .edge(crate::rod::frames::EdgeId::Real(j))
+                            .tangent;
+                        moment += t * g.thetas[j];
+                        found = Some(pi);
+                    }
                 }
-            }
-            _ => {
+                _ => {
+                    for &h in &sup.held {
+                        if !part.contains(h) {
+                            continue;
+                        }
+                        let lv = local(h);
+                        let f = g.vertices[lv];
+                        force += f;
+                        moment += (x[lv] - xv).cross(&f);
+                        if sup.kind == SupportKind::Clamp {
+                            if lv == 0 && rs.frames().ghost_start.is_some() {
+                                moment += g.ghost_moments[0];
+                            }
+                            if lv == n && rs.frames().ghost_end.is_some() {
+                                moment += g.ghost_moments[1];
+                            }
+                        }
+                    }
+                }
+            },
+            (HeldForces::Framed(reactions), _) => {
                 for &h in &sup.held {
                     if !part.contains(h) {
                         continue;
                     }
                     let lv = local(h);
-                    let f = g.vertices[lv];
-                    force += f;
-                    moment += (rs.positions()[lv] - xv).cross(&f);
-                    if sup.kind == SupportKind::Clamp {
-                        if lv == 0 && rs.frames().ghost_start.is_some() {
-                            moment += g.ghost_moments[0];
-                        }
-                        if lv == n && rs.frames().ghost_end.is_some() {
-                            moment += g.ghost_moments[1];
-                        }
+                    if let Some(r) = reactions.iter().find(|r| r.vertex == lv) {
+                        force += r.force;
+                        moment += (x[lv] - xv).cross(&r.force) + r.moment;
                     }
                 }
             }
+            _ => unreachable!("forces and state of different models"),
         }
     }
     found.map(|p| (p, force, moment, xv))
@@ -299,7 +307,7 @@ pub fn scene_results(
     reports: &[SolveReport],
     stability: &[StabilityResult],
 ) -> (Vec<RodResult>, Vec<StructureResult>) {
-    let grads: Vec<Vec<FullGradient>> = scene
+    let grads: Vec<Vec<HeldForces>> = scene
         .structures
         .iter()
         .zip(states)
@@ -342,7 +350,7 @@ fn rod_result(
     states: &[StructureState],
     reports: &[SolveReport],
     stability: &[StabilityResult],
-    grads: &[Vec<FullGradient>],
+    grads: &[Vec<HeldForces>],
     balances: &[[f64; 4]],
 ) -> RodResult {
     let nv = rod.n_edges + 1;
@@ -358,16 +366,16 @@ fn rod_result(
     let mut structures_of_rod = Vec::new();
     for part in &rod.parts {
         let s = &scene.structures[part.structure];
-        let (rs, r) = der(s, &states[part.structure], part.member);
+        let r = &s.members()[part.member];
+        let rs = &states[part.structure].members[part.member];
         let a = part.first_vertex;
         for (k, p) in rs.positions().iter().enumerate() {
             positions[a + k] = *p;
         }
-        for j in 0..r.n_edges() {
-            let f = rs.material_frame(j);
+        for f in r.edge_frames(rs) {
             frames.push([arr(f[0]), arr(f[1]), arr(f[2])]);
         }
-        for h in r.hinge_strains(rs) {
+        for h in r.vertex_strains(rs) {
             let v = a + h.vertex;
             curvature[v][0] += h.curvature[0];
             curvature[v][1] += h.curvature[1];

@@ -19,6 +19,7 @@ use crate::rod::{ClampHold, RodSnapshot};
 use crate::solver::{follow_unstable_mode, EquilibriumSolver, SolveReport, SolveStatus};
 use crate::structure::{MemberState, StructureState};
 
+use super::carry::FramedSnapshot;
 use super::compile::{CompiledScene, MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
 use super::error::SceneError;
 use super::result::{scene_results, SceneStep, StabilityResult};
@@ -211,8 +212,7 @@ impl Session {
         let length: f64 = s
             .members()
             .iter()
-            .filter_map(|m| m.as_der())
-            .map(|r| r.length())
+            .map(|m| m.length())
             .sum();
         let left = run.stability.unstable_modes;
         match follow_unstable_mode(
@@ -321,11 +321,7 @@ impl Session {
         let shortest = crod
             .parts
             .iter()
-            .map(|p| {
-                self.scene.structures[p.structure].members()[p.member]
-                    .as_der()
-                    .map_or(f64::INFINITY, |r| r.length())
-            })
+            .map(|p| self.scene.structures[p.structure].members()[p.member].length())
             .fold(f64::INFINITY, f64::min);
         let steps = (rotation.norm() / MAX_STEP_ROTATION)
             .max(translation.norm() / (MAX_STEP_TRANSLATION * shortest))
@@ -350,7 +346,7 @@ impl Session {
             let structure = &mut self.scene.structures[k];
             let local = |v: usize| v - part.first_vertex;
             let run = &self.runs[k];
-            let MemberState::Der(rs) = &run.state.members[part.member];
+            let ms = &run.state.members[part.member];
             match sup.kind {
                 SupportKind::Clamp | SupportKind::Pin | SupportKind::Clip => {
                     let held: Vec<usize> = sup
@@ -363,12 +359,13 @@ impl Session {
                         continue;
                     }
                     let pivot = if part.contains(sup.vertex) {
-                        rs.positions()[local(sup.vertex)]
+                        ms.positions()[local(sup.vertex)]
                     } else {
                         cur.position
                     };
-                    let r = structure.member_mut(part.member).as_der_mut().expect("rod");
-                    r.set_support_motion(&held, pivot, rotation, translation)
+                    structure
+                        .member_mut(part.member)
+                        .set_support_motion(&held, pivot, rotation, translation)
                         .map_err(|e| SceneError::model(path.clone(), e))?;
                 }
                 SupportKind::Slider => {
@@ -398,6 +395,7 @@ impl Session {
                     else {
                         continue;
                     };
+                    let rs = ms.as_der().expect("twist holds hold discrete elastic rods");
                     let t = rs
                         .frames()
                         .edge(crate::rod::frames::EdgeId::Real(le))
@@ -502,11 +500,9 @@ impl Session {
         let ks: Vec<usize> = (0..self.runs.len()).collect();
         for s in self.scene.structures.iter_mut() {
             for m in 0..s.members().len() {
-                if let Some(r) = s.member_mut(m).as_der_mut() {
-                    r.set_gravity(g);
-                    r.set_load_path(crate::rod::RodLoadPath::gravity_change(old))
-                        .map_err(|e| SceneError::model("gravity", e))?;
-                }
+                s.member_mut(m)
+                    .set_gravity_change(old, g)
+                    .map_err(|e| SceneError::model("gravity", e))?;
             }
         }
         let mut reason = None;
@@ -526,9 +522,7 @@ impl Session {
         if reason.is_some() {
             for s in self.scene.structures.iter_mut() {
                 for m in 0..s.members().len() {
-                    if let Some(r) = s.member_mut(m).as_der_mut() {
-                        r.set_gravity(old);
-                    }
+                    s.member_mut(m).set_gravity(old);
                 }
             }
             for run in self.runs.iter_mut() {
@@ -622,22 +616,30 @@ impl Session {
         let mut scene = spec.compile()?;
         // Supports keep their current poses: the scene's rest positions are where the file
         // has them, so carry the moved ones by shapes, not by the file.
-        let stitched: Vec<(RodSnapshot, Vec<InteriorClamp>)> = (0..self.scene.rods.len())
-            .map(|r| self.rod_snapshot(r))
+        let states: Vec<&StructureState> = self.runs.iter().map(|r| &r.state).collect();
+        let stitched: Vec<Carried> = (0..self.scene.rods.len())
+            .map(|r| match FramedSnapshot::of_rod(&self.scene, &states, r) {
+                Some(f) => Carried::Framed(f),
+                None => {
+                    let (snap, interior) = self.rod_snapshot(r);
+                    Carried::Der(snap, interior)
+                }
+            })
             .collect();
-        let snapshots: Vec<RodSnapshot> = stitched.iter().map(|s| s.0.clone()).collect();
         // Old and new vertices: the new mesh may have more (a vertex inserted for a support
         // given by arc length); map each new vertex to the old shape.
-        let mut mapped: Vec<RodSnapshot> = scene
+        let mut mapped: Vec<Carried> = scene
             .rods
             .iter()
             .enumerate()
             .map(|(r, rod)| {
-                remesh(
-                    &snapshots[r],
-                    &self.scene.rods[r].node_arclengths,
-                    &rod.node_arclengths,
-                )
+                let (old, new) = (&self.scene.rods[r].node_arclengths, &rod.node_arclengths);
+                match &stitched[r] {
+                    Carried::Der(snap, interior) => {
+                        Carried::Der(remesh(snap, old, new), interior.clone())
+                    }
+                    Carried::Framed(f) => Carried::Framed(f.remesh(old, new)),
+                }
             })
             .collect();
         // A new clip holds its edge along the current tangent at its *rest* length: that is the
@@ -657,13 +659,12 @@ impl Session {
                 let Some(part) = rod.parts.iter().find(|p| p.contains(a) && p.contains(b)) else {
                     continue;
                 };
-                let member = scene.structures[part.structure].members()[part.member]
-                    .as_der()
-                    .expect("rod");
-                let rest_x = member.rest_state().positions();
+                let member = &scene.structures[part.structure].members()[part.member];
+                let rest = member.rest_state();
+                let rest_x = rest.positions();
                 let rest_len =
                     (rest_x[b - part.first_vertex] - rest_x[a - part.first_vertex]).norm();
-                let x = &mut mapped[r].positions;
+                let x = mapped[r].positions_mut();
                 let t = (x[b] - x[a]).normalize();
                 if s.vertex == a {
                     x[b] = x[a] + t * rest_len;
@@ -676,17 +677,23 @@ impl Session {
         for (k, s) in scene.structures.iter().enumerate() {
             let mut state = s.rest_state().clone();
             for (r, rod) in scene.rods.iter().enumerate() {
-                let mapped = &mapped[r];
                 for part in rod.parts.iter().filter(|p| p.structure == k) {
                     let a = part.first_vertex;
                     let b = a + part.n_vertices - 1;
-                    let holds = [
-                        clamp_hold_at(&stitched[r], &self.scene, r, a, true),
-                        clamp_hold_at(&stitched[r], &self.scene, r, b, false),
-                    ];
-                    let sub = mapped.slice(a, b, holds);
-                    let member = s.members()[part.member].as_der().expect("rod");
-                    state.members[part.member] = MemberState::Der(member.state_from_snapshot(&sub));
+                    let member = &s.members()[part.member];
+                    state.members[part.member] = match (&mapped[r], &stitched[r]) {
+                        (Carried::Der(snap, _), Carried::Der(old, interior)) => {
+                            let holds = [
+                                clamp_hold_at(old, interior, &self.scene, r, a, true),
+                                clamp_hold_at(old, interior, &self.scene, r, b, false),
+                            ];
+                            let sub = snap.slice(a, b, holds);
+                            let rod = member.as_der().expect("a discrete elastic rod");
+                            MemberState::Der(rod.state_from_snapshot(&sub))
+                        }
+                        (Carried::Framed(f), _) => f.state_for(member, a, b),
+                        _ => unreachable!("a rod keeps its model"),
+                    };
                 }
             }
             s.reset_joint_twists(&mut state);
@@ -711,16 +718,15 @@ impl Session {
         for (r, rod) in scene.rods.iter().enumerate() {
             while poses[r].len() < rod.supports.len() {
                 let s = &rod.supports[poses[r].len()];
-                let now = &mapped[r];
+                let now = mapped[r].positions_mut();
                 let part = rod
                     .parts
                     .iter()
                     .find(|p| p.contains(s.vertex))
                     .expect("part");
-                let member = scene.structures[part.structure].members()[part.member]
-                    .as_der()
-                    .expect("rod");
-                let rest_x = member.rest_state().positions();
+                let member_rest = scene.structures[part.structure].members()[part.member]
+                    .rest_state();
+                let rest_x = member_rest.positions();
                 let lv = s.vertex - part.first_vertex;
                 let mut rotation = Rotation3::identity();
                 if s.kind == SupportKind::Clip {
@@ -734,12 +740,12 @@ impl Session {
                         b.min(part.first_vertex + part.n_vertices - 1) - part.first_vertex,
                     );
                     let t0 = (rest_x[lb] - rest_x[la]).normalize();
-                    let t1 = (now.positions[b] - now.positions[a]).normalize();
+                    let t1 = (now[b] - now[a]).normalize();
                     rotation =
                         Rotation3::rotation_between(&t0, &t1).unwrap_or_else(Rotation3::identity);
                 }
                 poses[r].push(SupportPose {
-                    position: now.positions[s.vertex],
+                    position: now[s.vertex],
                     rotation,
                 });
                 rest[r].push(SupportPose {
@@ -780,7 +786,9 @@ impl Session {
         for (pi, part) in rod.parts.iter().enumerate() {
             let s = &self.scene.structures[part.structure];
             let member = s.members()[part.member].as_der().expect("rod");
-            let MemberState::Der(rs) = &self.runs[part.structure].state.members[part.member];
+            let rs = self.runs[part.structure].state.members[part.member]
+                .as_der()
+                .expect("a discrete elastic rod's state");
             let ps = member.snapshot(rs);
             let a = part.first_vertex;
             for (k, p) in ps.positions.iter().enumerate() {
@@ -929,6 +937,23 @@ fn rest_poses(scene: &CompiledScene, runs: &[Run]) -> Vec<Vec<SupportPose>> {
         .collect()
 }
 
+/// A rod's shape carried over to a recompiled scene.
+enum Carried {
+    /// A discrete elastic rod's snapshot and the holds of its interior clamps.
+    Der(RodSnapshot, Vec<InteriorClamp>),
+    /// A framed rod's shape.
+    Framed(FramedSnapshot),
+}
+
+impl Carried {
+    fn positions_mut(&mut self) -> &mut Vec<Vec3> {
+        match self {
+            Self::Der(s, _) => &mut s.positions,
+            Self::Framed(f) => &mut f.positions,
+        }
+    }
+}
+
 /// The holds of an interior clamp on the parts that end (`ends`) and start (`starts`) there.
 #[derive(Clone, Copy, Debug)]
 struct InteriorClamp {
@@ -941,7 +966,8 @@ struct InteriorClamp {
 /// if `start`, else the one that ends there), if a clamp held it: at the rod's ends, or an
 /// interior clamp (either side's hold: both are the same clamp).
 fn clamp_hold_at(
-    stitched: &(RodSnapshot, Vec<InteriorClamp>),
+    snap: &RodSnapshot,
+    interior: &[InteriorClamp],
     scene: &CompiledScene,
     r: usize,
     v: usize,
@@ -949,12 +975,12 @@ fn clamp_hold_at(
 ) -> Option<ClampHold> {
     let n = scene.rods[r].n_edges;
     if start && v == 0 {
-        return stitched.0.clamps[0];
+        return snap.clamps[0];
     }
     if !start && v == n {
-        return stitched.0.clamps[1];
+        return snap.clamps[1];
     }
-    let at: Vec<&InteriorClamp> = stitched.1.iter().filter(|c| c.vertex == v).collect();
+    let at: Vec<&InteriorClamp> = interior.iter().filter(|c| c.vertex == v).collect();
     let own = at
         .iter()
         .find_map(|c| if start { c.starts } else { c.ends });

@@ -121,6 +121,48 @@ pub struct RodSpec {
     /// highlighted by `slender view`). Default: none.
     #[serde(default)]
     pub min_bend_radius: Option<f64>,
+    /// Rod formulation: `"der"` (discrete elastic rod, inextensible-shear Kirchhoff; the
+    /// default), `"cosserat"` (discrete Cosserat rod, sine Darboux measure), `"cosserat_tan"`
+    /// (its tangent measure) or `"se3"` (geometrically exact beam on SE(3)). The Cosserat and
+    /// SE(3) rods add shear; they take clamps, pins, clips, point forces and moments, line
+    /// loads and prescribed motion (not joints, closed loops, sliders, twist holds or follower
+    /// loads).
+    #[serde(default)]
+    pub model: RodModelSpec,
+    /// Shear stiffnesses [κGA₁, κGA₂] (N) of the Cosserat and SE(3) rods, along m₁ and m₂.
+    /// Default from the section: κ = 6(1+ν)/(7+6ν) for a circle, 10(1+ν)/(12+11ν) for a
+    /// rectangle (Timoshenko); required with `shape = "stiffness"`; not allowed with
+    /// `model = "der"`.
+    #[serde(default)]
+    pub shear_stiffness: Option<[f64; 2]>,
+}
+
+/// The formulation of a rod.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum RodModelSpec {
+    /// Discrete elastic rod (Kirchhoff: no shear, centerline + twist angles).
+    #[default]
+    Der,
+    /// Discrete Cosserat rod, frames on the edges, sine Darboux measure.
+    Cosserat,
+    /// Discrete Cosserat rod with the tangent (Cayley) Darboux measure.
+    CosseratTan,
+    /// Geometrically exact beam on SE(3), helicoidal elements.
+    Se3,
+}
+
+impl RodModelSpec {
+    /// The name in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Der => "der",
+            Self::Cosserat => "cosserat",
+            Self::CosseratTan => "cosserat_tan",
+            Self::Se3 => "se3",
+        }
+    }
 }
 
 /// A distributed dead load per unit rest length (N/m): uniform over [`from`, `to`], or varying

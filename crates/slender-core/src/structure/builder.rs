@@ -97,15 +97,11 @@ impl StructureBuilder {
             ));
         }
         let nm = self.members.len();
-        let rods: Vec<&crate::rod::Rod> = self
+        let length_scale = self
             .members
             .iter()
-            .map(|m| {
-                m.as_der()
-                    .expect("only discrete elastic rods are members today")
-            })
-            .collect();
-        let length_scale = rods.iter().map(|r| r.length()).fold(0.0, f64::max);
+            .map(|m| m.length())
+            .fold(0.0, f64::max);
         let mut ties: Vec<Vec<Tie>> = self
             .members
             .iter()
@@ -131,7 +127,17 @@ impl StructureBuilder {
                         format!("{}: must be < {nm} (number of members)", end.member),
                     ));
                 }
-                let last = rods[end.member].n_edges();
+                if self.members[end.member].as_der().is_none() {
+                    return Err(ModelError::structure(
+                        format!("{path}[{e}].member"),
+                        format!(
+                            "member {} is a {} rod: joints join discrete elastic rods (model \"der\") only",
+                            end.member,
+                            self.members[end.member].model_name()
+                        ),
+                    ));
+                }
+                let last = self.members[end.member].n_edges();
                 if end.vertex != 0 && end.vertex != last {
                     return Err(ModelError::structure(
                         format!("{path}[{e}].vertex"),
@@ -153,9 +159,9 @@ impl StructureBuilder {
                 used.push((end.member, end.vertex));
             }
             let master = ends[0];
-            let x0 = rods[master.member].rest_state().positions()[master.vertex];
+            let x0 = self.members[master.member].rest_state().positions()[master.vertex];
             for (e, end) in ends.iter().enumerate().skip(1) {
-                let x = rods[end.member].rest_state().positions()[end.vertex];
+                let x = self.members[end.member].rest_state().positions()[end.vertex];
                 if !((x - x0).norm() <= 1e-9 * length_scale.max(1e-300)) {
                     return Err(ModelError::structure(
                         format!("{path}[{e}]"),
@@ -212,7 +218,7 @@ impl StructureBuilder {
                     format!("{}: must be < {nm}", s.member),
                 ));
             }
-            let n = rods[s.member].n_edges();
+            let n = self.members[s.member].n_edges();
             if s.vertex > n {
                 return Err(ModelError::structure(
                     format!("{path}.vertex"),
@@ -259,14 +265,24 @@ impl StructureBuilder {
                     format!("{}: must be < {nm}", h.member),
                 ));
             }
-            let n = rods[h.member].n_edges();
+            let Some(rod) = self.members[h.member].as_der() else {
+                return Err(ModelError::structure(
+                    format!("{path}.member"),
+                    format!(
+                        "member {} is a {} rod: a twist hold holds a discrete elastic rod's edge angle (model \"der\")",
+                        h.member,
+                        self.members[h.member].model_name()
+                    ),
+                ));
+            };
+            let n = rod.n_edges();
             if h.edge >= n {
                 return Err(ModelError::structure(
                     format!("{path}.edge"),
                     format!("{}: must be < {n}", h.edge),
                 ));
             }
-            let i = rods[h.member].dofs().theta(h.edge);
+            let i = rod.dofs().theta(h.edge);
             if i == FIXED {
                 return Err(ModelError::structure(
                     format!("{path}.edge"),

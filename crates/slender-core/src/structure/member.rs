@@ -1,9 +1,17 @@
 //! The members a structure is made of, behind one interface (an enum: a structure may mix
 //! formulations).
+//!
+//! The discrete elastic rod works on the structure's DOF vector in place (its methods take
+//! the member's slice of a global vector as a closure). The framed rods (Cosserat, SE(3))
+//! work through their [`EquilibriumProblem`] on a local vector gathered from that closure: a
+//! short allocation per call, which only structures with framed members pay.
 
 use crate::assembly::Assembler;
+use crate::cosserat::CosseratRod;
+use crate::framed::{FramedCore, FramedModel, FramedState};
 use crate::linalg::SymmetricMatrix;
 use crate::rod::{Rod, RodState};
+use crate::se3::Se3Rod;
 use crate::solver::{EquilibriumProblem, MassMetric};
 
 /// A member of a structure.
@@ -11,6 +19,10 @@ use crate::solver::{EquilibriumProblem, MassMetric};
 pub enum Member {
     /// A discrete elastic rod.
     Der(Rod),
+    /// A discrete Cosserat rod.
+    Cosserat(CosseratRod),
+    /// A geometrically exact SE(3) beam.
+    Se3(Se3Rod),
 }
 
 /// The state of a member.
@@ -18,6 +30,8 @@ pub enum Member {
 pub enum MemberState {
     /// A discrete elastic rod's state.
     Der(RodState),
+    /// A Cosserat rod's or SE(3) beam's state.
+    Framed(FramedState),
 }
 
 impl MemberState {
@@ -25,6 +39,15 @@ impl MemberState {
     pub fn as_der(&self) -> Option<&RodState> {
         match self {
             Self::Der(s) => Some(s),
+            Self::Framed(_) => None,
+        }
+    }
+
+    /// The framed state, if this is a Cosserat rod or an SE(3) beam.
+    pub fn as_framed(&self) -> Option<&FramedState> {
+        match self {
+            Self::Framed(s) => Some(s),
+            Self::Der(_) => None,
         }
     }
 
@@ -32,6 +55,7 @@ impl MemberState {
     pub fn positions(&self) -> &[crate::geometry::Vec3] {
         match self {
             Self::Der(s) => s.positions(),
+            Self::Framed(s) => s.positions(),
         }
     }
 }
@@ -40,8 +64,50 @@ macro_rules! der {
     ($s:expr) => {
         match $s {
             MemberState::Der(s) => s,
+            MemberState::Framed(_) => unreachable!("a discrete elastic rod has a rod state"),
         }
     };
+}
+
+macro_rules! framed {
+    ($s:expr) => {
+        match $s {
+            MemberState::Framed(s) => s,
+            MemberState::Der(_) => unreachable!("a framed rod has a framed state"),
+        }
+    };
+}
+
+/// Runs `$body` with `$r` bound to the framed model of `$m` (Cosserat or SE(3)), or `$der`
+/// for a discrete elastic rod bound to `$d`.
+macro_rules! by_model {
+    ($m:expr, $d:ident => $der:expr, $r:ident => $body:expr) => {
+        match $m {
+            Member::Der($d) => $der,
+            Member::Cosserat($r) => $body,
+            Member::Se3($r) => $body,
+        }
+    };
+}
+
+/// The member's own free DOF step as a local vector.
+fn gather(n: usize, dx: impl Fn(usize) -> f64) -> Vec<f64> {
+    (0..n).map(dx).collect()
+}
+
+/// Calls `f` with every term's stencil of a framed model (its Hessian's sparsity pattern).
+fn framed_stencils<T: FramedModel + EquilibriumProblem>(r: &T, f: impl FnMut(&[usize])) {
+    // The framed models' terms touch a contiguous band of their DOF layout: the band of
+    // half-width HALF_BANDWIDTH is a (slightly conservative) cover of every stencil.
+    let mut f = f;
+    let n = r.n_free();
+    let hb = T::HALF_BANDWIDTH;
+    let mut window = Vec::with_capacity(hb + 1);
+    for i in 0..n {
+        window.clear();
+        window.extend(i..(i + hb + 1).min(n));
+        f(&window);
+    }
 }
 
 impl Member {
@@ -49,6 +115,7 @@ impl Member {
     pub fn as_der(&self) -> Option<&Rod> {
         match self {
             Self::Der(r) => Some(r),
+            _ => None,
         }
     }
 
@@ -56,28 +123,61 @@ impl Member {
     pub fn as_der_mut(&mut self) -> Option<&mut Rod> {
         match self {
             Self::Der(r) => Some(r),
+            _ => None,
         }
+    }
+
+    /// The shared part of a Cosserat rod or SE(3) beam.
+    pub fn as_framed(&self) -> Option<&FramedCore> {
+        match self {
+            Self::Der(_) => None,
+            Self::Cosserat(r) => Some(&r.core),
+            Self::Se3(r) => Some(&r.core),
+        }
+    }
+
+    /// Mutable access to the shared part of a Cosserat rod or SE(3) beam.
+    pub fn as_framed_mut(&mut self) -> Option<&mut FramedCore> {
+        match self {
+            Self::Der(_) => None,
+            Self::Cosserat(r) => Some(&mut r.core),
+            Self::Se3(r) => Some(&mut r.core),
+        }
+    }
+
+    /// The formulation's name in scene files (`der`, `cosserat`, `se3`).
+    pub fn model_name(&self) -> &'static str {
+        match self {
+            Self::Der(_) => "der",
+            Self::Cosserat(_) => "cosserat",
+            Self::Se3(_) => "se3",
+        }
+    }
+
+    /// Rest length (m).
+    pub fn length(&self) -> f64 {
+        by_model!(self, r => r.length(), r => r.length())
+    }
+
+    /// Number of elements (edges).
+    pub fn n_edges(&self) -> usize {
+        by_model!(self, r => r.n_edges(), r => r.n_edges())
     }
 
     /// Number of the member's own free DOFs.
     pub fn n_free(&self) -> usize {
-        match self {
-            Self::Der(r) => r.n_free(),
-        }
+        by_model!(self, r => r.n_free(), r => EquilibriumProblem::n_free(r))
     }
 
     /// The rest state.
     pub fn rest_state(&self) -> MemberState {
-        match self {
-            Self::Der(r) => MemberState::Der(r.rest_state().clone()),
-        }
+        by_model!(self, r => MemberState::Der(r.rest_state().clone()),
+            r => MemberState::Framed(r.rest_state().clone()))
     }
 
     /// Number of vertices.
     pub fn n_vertices(&self) -> usize {
-        match self {
-            Self::Der(r) => r.n_edges() + 1,
-        }
+        self.n_edges() + 1
     }
 
     /// Runs the member's terms through `asm` (a part assembler mapping its DOFs).
@@ -87,9 +187,8 @@ impl Member {
         load: f64,
         asm: &mut Assembler<'_, M>,
     ) {
-        match self {
-            Self::Der(r) => r.assemble_into(der!(state), load, asm),
-        }
+        by_model!(self, r => r.assemble_into(der!(state), load, asm),
+            r => r.assemble_into(framed!(state), load, asm))
     }
 
     /// The retraction with the member's step given by `dx`.
@@ -102,6 +201,13 @@ impl Member {
     ) {
         match (self, out) {
             (Self::Der(r), MemberState::Der(o)) => r.retract_by(der!(state), dx, alpha, o),
+            (Self::Cosserat(r), MemberState::Framed(o)) => {
+                r.displace(framed!(state), &gather(r.n_free(), dx), alpha, o)
+            }
+            (Self::Se3(r), MemberState::Framed(o)) => {
+                r.displace(framed!(state), &gather(r.n_free(), dx), alpha, o)
+            }
+            _ => unreachable!("member and state of different models"),
         }
     }
 
@@ -109,74 +215,138 @@ impl Member {
     pub fn chart_by(&self, state: &MemberState, dx: impl Fn(usize) -> f64, out: &mut MemberState) {
         match (self, out) {
             (Self::Der(r), MemberState::Der(o)) => r.displace_linear_by(der!(state), dx, 1.0, o),
+            (Self::Cosserat(r), MemberState::Framed(o)) => {
+                r.chart(framed!(state), &gather(r.n_free(), dx), o)
+            }
+            (Self::Se3(r), MemberState::Framed(o)) => {
+                r.chart(framed!(state), &gather(r.n_free(), dx), o)
+            }
+            _ => unreachable!("member and state of different models"),
         }
     }
 
     /// Calls `f(i, d)` with the difference `a ⊖ b` of every own free DOF `i`.
     pub fn difference(&self, a: &MemberState, b: &MemberState, mut f: impl FnMut(usize, f64)) {
-        match self {
-            Self::Der(r) => {
-                let (a, b) = (der!(a), der!(b));
-                for i in 0..r.n_free() {
-                    f(i, r.dof_value(a, i) - r.dof_value(b, i));
-                }
+        by_model!(self, r => {
+            let (a, b) = (der!(a), der!(b));
+            for i in 0..r.n_free() {
+                f(i, r.dof_value(a, i) - r.dof_value(b, i));
             }
-        }
+        }, r => {
+            let mut d = vec![0.0; EquilibriumProblem::n_free(r)];
+            r.difference(framed!(a), framed!(b), &mut d);
+            for (i, v) in d.into_iter().enumerate() {
+                f(i, v);
+            }
+        })
     }
 
     /// The member's step cap for the step `dx`.
     pub fn max_step_by(&self, state: &MemberState, dx: impl Fn(usize) -> f64 + Copy) -> f64 {
-        match self {
-            Self::Der(r) => r.max_step_by(der!(state), dx),
-        }
+        by_model!(self, r => r.max_step_by(der!(state), dx),
+            r => r.max_step(framed!(state), &gather(EquilibriumProblem::n_free(r), dx)))
     }
 
     /// See [`EquilibriumProblem::force_length`].
     pub fn force_length(&self, i: usize) -> f64 {
-        match self {
-            Self::Der(r) => r.force_length(i),
-        }
+        by_model!(self, r => r.force_length(i), r => EquilibriumProblem::force_length(r, i))
     }
 
     /// See [`EquilibriumProblem::dof_magnitude`].
     pub fn dof_magnitude(&self, state: &MemberState, i: usize) -> f64 {
-        match self {
-            Self::Der(r) => r.dof_magnitude(der!(state), i),
-        }
+        by_model!(self, r => r.dof_magnitude(der!(state), i),
+            r => EquilibriumProblem::dof_magnitude(r, framed!(state), i))
     }
 
     /// See [`MassMetric::inertia_metric`].
     pub fn inertia_metric(&self, i: usize) -> f64 {
-        match self {
-            Self::Der(r) => r.inertia_metric(i),
-        }
+        by_model!(self, r => r.inertia_metric(i), r => MassMetric::inertia_metric(r, i))
     }
 
     /// See [`MassMetric::eigenvalue_scale`].
     pub fn eigenvalue_scale(&self) -> f64 {
-        match self {
-            Self::Der(r) => r.eigenvalue_scale(),
-        }
+        by_model!(self, r => r.eigenvalue_scale(), r => MassMetric::eigenvalue_scale(r))
     }
 
     /// See [`EquilibriumProblem::impose_load`].
     pub fn impose_load(&self, state: &mut MemberState, from: f64, to: f64, guess: bool) {
-        match self {
-            Self::Der(r) => r.impose_load(der!(state), from, to, guess),
+        match (self, state) {
+            (Self::Der(r), MemberState::Der(s)) => r.impose_load(s, from, to, guess),
+            (Self::Cosserat(r), MemberState::Framed(s)) => {
+                EquilibriumProblem::impose_load(r, s, from, to, guess)
+            }
+            (Self::Se3(r), MemberState::Framed(s)) => {
+                EquilibriumProblem::impose_load(r, s, from, to, guess)
+            }
+            _ => unreachable!("member and state of different models"),
         }
     }
 
     /// Calls `f` with every term's stencil (own free DOFs).
     pub fn for_each_stencil(&self, f: impl FnMut(&[usize])) {
-        match self {
-            Self::Der(r) => r.for_each_stencil(f),
-        }
+        by_model!(self, r => r.for_each_stencil(f), r => framed_stencils(r, f))
     }
 
     /// The own free DOF of coordinate `k` of vertex `v`, or FIXED.
     pub fn vertex_dof(&self, v: usize, k: usize) -> usize {
+        by_model!(self, r => r.dofs().vertex(v, k), r => r.dofs().vertex(v, k))
+    }
+
+    /// Makes the load factor move the support holding `vertices` (the member's own) rigidly
+    /// from 0 to 1: rotation vector (rad) about `pivot`, translation (m).
+    pub fn set_support_motion(
+        &mut self,
+        vertices: &[usize],
+        pivot: crate::geometry::Vec3,
+        rotation: crate::geometry::Vec3,
+        translation: crate::geometry::Vec3,
+    ) -> Result<(), crate::ModelError> {
         match self {
-            Self::Der(r) => r.dofs().vertex(v, k),
+            Self::Der(r) => r.set_support_motion(vertices, pivot, rotation, translation),
+            Self::Cosserat(r) => r.core.set_support_motion(vertices, pivot, rotation, translation),
+            Self::Se3(r) => r.core.set_support_motion(vertices, pivot, rotation, translation),
+        }
+    }
+
+    /// Makes the load factor change gravity from `old` to the member's gravity `g` (m/s²),
+    /// which is set now.
+    pub fn set_gravity_change(
+        &mut self,
+        old: crate::geometry::Vec3,
+        g: crate::geometry::Vec3,
+    ) -> Result<(), crate::ModelError> {
+        let path = crate::rod::RodLoadPath::gravity_change(old);
+        match self {
+            Self::Der(r) => {
+                r.set_gravity(g);
+                r.set_load_path(path)
+            }
+            Self::Cosserat(r) => {
+                r.core.set_gravity(g);
+                r.core.set_load_path(path)
+            }
+            Self::Se3(r) => {
+                r.core.set_gravity(g);
+                r.core.set_load_path(path)
+            }
+        }
+    }
+
+    /// Sets gravity (m/s²) at load factor 1.
+    pub fn set_gravity(&mut self, g: crate::geometry::Vec3) {
+        match self {
+            Self::Der(r) => r.set_gravity(g),
+            Self::Cosserat(r) => r.core.set_gravity(g),
+            Self::Se3(r) => r.core.set_gravity(g),
+        }
+    }
+
+    /// Back to the plain load ramp.
+    pub fn clear_load_path(&mut self) {
+        match self {
+            Self::Der(r) => r.clear_load_path(),
+            Self::Cosserat(r) => r.core.clear_load_path(),
+            Self::Se3(r) => r.core.clear_load_path(),
         }
     }
 }

@@ -1,8 +1,9 @@
 //! Structures: several members (rods) joined rigidly at shared vertices, with supports that
 //! act across a member's own DOFs (sliders, twist holds), solved as one problem.
 //!
-//! A member is a model of its own (today the discrete elastic rod) with its own free DOFs,
-//! terms and retraction. The structure maps every member DOF to a global DOF (or drops it) with
+//! A member is a model of its own (a discrete elastic rod, a discrete Cosserat rod or an
+//! SE(3) beam) with its own free DOFs, terms and retraction; joints, sliders and twist holds
+//! join discrete elastic rods. The structure maps every member DOF to a global DOF (or drops it) with
 //! a coefficient ([`MapSlot`](crate::assembly::MapSlot)):
 //! * a **joint** identifies a vertex of several members (a branch point, a splice, the two ends
 //!   of a closed ring): their coordinates map to the same global DOFs, and *joint hinges*
@@ -21,7 +22,9 @@ pub mod dof_map;
 pub mod joint;
 pub mod member;
 pub mod model;
+pub mod output;
 
 pub use builder::{JointEnd, SliderSupport, StructureBuilder, TwistHold};
 pub use member::{Member, MemberState};
 pub use model::{Structure, StructureState};
+pub use output::{HeldForces, VertexStrain};

@@ -7,6 +7,16 @@ use crate::assembly::{Assembler, TermGroup, FIXED};
 use crate::geometry::Vec3;
 use crate::linalg::{AdaptiveMatrix, SymmetricMatrix};
 use crate::rod::groups::ALL_GROUPS;
+
+/// The term groups of a structure with shearable members (Cosserat rods, SE(3) beams): the
+/// discrete elastic rod's, which they share bit for bit, and shear.
+const WITH_SHEAR: [TermGroup; 5] = [
+    ALL_GROUPS[0],
+    ALL_GROUPS[1],
+    ALL_GROUPS[2],
+    ALL_GROUPS[3],
+    crate::framed::groups::SHEAR,
+];
 use crate::solver::{EquilibriumProblem, MassMetric};
 
 use super::builder::{SliderSupport, TwistHold};
@@ -129,13 +139,15 @@ impl Structure {
 
     /// Adds the joint hinges' generalized forces to the members' full gradients (see
     /// [`Rod::full_gradient`](crate::rod::Rod::full_gradient)): the forces supports at or
-    /// next to a joint carry.
-    pub fn add_joint_gradients(
-        &self,
-        state: &StructureState,
-        out: &mut [crate::rod::FullGradient],
-    ) {
+    /// next to a joint carry. Joints join discrete elastic rods only.
+    pub fn add_joint_gradients(&self, state: &StructureState, out: &mut [super::HeldForces]) {
         use crate::assembly::{LocalDerivatives, StencilTerm, TermSet};
+        fn der(h: &mut super::HeldForces) -> &mut crate::rod::FullGradient {
+            match h {
+                super::HeldForces::Der(g) => g,
+                super::HeldForces::Framed(_) => unreachable!("joints join discrete elastic rods"),
+            }
+        }
         let ctx = StructureContext {
             structure: self,
             state,
@@ -151,18 +163,18 @@ impl Structure {
             j.evaluate(&ctx, TermSet::ALL, &mut out_local);
             let [s0, s1] = j.sides;
             let slot = |a: usize| Vec3::new(g[a], g[a + 1], g[a + 2]);
-            out[s0.member].vertices[s0.outer_vertex] += slot(0);
-            out[s0.member].vertices[s0.joint_vertex] += slot(4);
-            out[s1.member].vertices[s1.outer_vertex] += slot(8);
-            out[s0.member].thetas[s0.edge] += g[3];
-            out[s1.member].thetas[s1.edge] += g[7];
+            der(&mut out[s0.member]).vertices[s0.outer_vertex] += slot(0);
+            der(&mut out[s0.member]).vertices[s0.joint_vertex] += slot(4);
+            der(&mut out[s1.member]).vertices[s1.outer_vertex] += slot(8);
+            der(&mut out[s0.member]).thetas[s0.edge] += g[3];
+            der(&mut out[s1.member]).thetas[s1.edge] += g[7];
         }
         // A joint is one point: its forces are gathered on the master end's vertex.
         for group in &self.joint_groups {
             let (m0, v0) = group[0];
             for &(m, v) in &group[1..] {
-                let f = std::mem::take(&mut out[m].vertices[v]);
-                out[m0].vertices[v0] += f;
+                let f = std::mem::take(&mut der(&mut out[m]).vertices[v]);
+                der(&mut out[m0]).vertices[v0] += f;
             }
         }
     }
@@ -185,9 +197,7 @@ impl Structure {
         self.path.sliders.clear();
         self.path.holds.clear();
         for m in self.members.iter_mut() {
-            if let Some(r) = m.as_der_mut() {
-                r.clear_load_path();
-            }
+            m.clear_load_path();
         }
     }
 
@@ -242,7 +252,11 @@ impl EquilibriumProblem for Structure {
     }
 
     fn term_groups(&self) -> &[TermGroup] {
-        &ALL_GROUPS
+        if self.members.iter().any(|m| m.as_der().is_none()) {
+            &WITH_SHEAR
+        } else {
+            &ALL_GROUPS
+        }
     }
 
     fn assemble_selected<M: SymmetricMatrix>(
@@ -384,6 +398,9 @@ impl crate::testing::RigidMotion for Structure {
                 .map(|m| match m {
                     MemberState::Der(s) => {
                         MemberState::Der(s.rigidly_transformed(rotation, offset))
+                    }
+                    MemberState::Framed(s) => {
+                        MemberState::Framed(s.rigidly_transformed(rotation, offset))
                     }
                 })
                 .collect(),

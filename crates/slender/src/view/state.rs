@@ -258,9 +258,9 @@ fn bending_stress(session: &Session, r: usize) -> Option<Vec<f64>> {
     let mut hits = vec![0usize; nv];
     for part in &rod.parts {
         let structure = &session.compiled().structures[part.structure];
-        let member = structure.members()[part.member].as_der()?;
-        let state = session.state(part.structure).members[part.member].as_der()?;
-        for h in member.hinge_strains(state) {
+        let member = &structure.members()[part.member];
+        let state = &session.state(part.structure).members[part.member];
+        for h in member.vertex_strains(state) {
             let v = part.first_vertex + h.vertex;
             dk[v][0] += h.curvature[0] - h.rest_curvature[0];
             dk[v][1] += h.curvature[1] - h.rest_curvature[1];

@@ -51,10 +51,8 @@ impl CompiledScene {
         let r = &self.rods[rod];
         let mut out = vec![Vec3::zeros(); r.n_edges + 1];
         for part in &r.parts {
-            let member = self.structures[part.structure].members()[part.member]
-                .as_der()
-                .expect("rod");
-            for (k, p) in member.rest_state().positions().iter().enumerate() {
+            let rest = self.structures[part.structure].members()[part.member].rest_state();
+            for (k, p) in rest.positions().iter().enumerate() {
                 out[part.first_vertex + k] = *p;
             }
         }

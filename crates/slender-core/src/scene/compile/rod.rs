@@ -8,14 +8,19 @@
 //! on the next one (twist left free). Sliders and twist holds act across a part's own DOFs
 //! and belong to the structure the part is a member of.
 
+use crate::cosserat::CosseratBuilder;
+use crate::framed::{FramedRodBuilder, ShearStiffness};
 use crate::geometry::Vec3;
-use crate::rod::{Grading, RestCurve, Rod, RodBuilder, RodProperties};
+use crate::lie::DarbouxMeasure;
+use crate::rod::{Grading, RestCurve, RodBuilder, RodProperties};
+use crate::se3::Se3Builder;
 use crate::solver::SolverParams;
+use crate::structure::Member;
 
 use super::super::error::SceneError;
 use super::super::magnitudes::check_magnitudes;
-use super::super::spec::{Centerline, RodSpec, SupportKind};
-use super::section::{check_name, section};
+use super::super::spec::{Centerline, RodModelSpec, RodSpec, SupportKind};
+use super::section::{check_name, section, shear};
 
 /// Default number of elements of a rod whose centerline is not a polyline.
 pub const DEFAULT_ELEMENTS: usize = 20;
@@ -81,8 +86,8 @@ pub struct CompiledRod {
 /// A rod being compiled: its parts' rods, before they are grouped into structures.
 pub(super) struct RodDraft {
     pub(super) rod: CompiledRod,
-    /// The parts' rods (same order as `rod.parts`).
-    pub(super) members: Vec<Rod>,
+    /// The parts' members (same order as `rod.parts`).
+    pub(super) members: Vec<Member>,
 }
 
 fn finite3(path: &str, v: [f64; 3]) -> Result<Vec3, SceneError> {
@@ -148,6 +153,7 @@ pub(super) fn compile_rod(
         .map_err(|e| SceneError::model(format!("{path}.centerline"), e))?;
     let length = curve.length();
     let (properties, display_radius) = section(path, spec, length)?;
+    let shear = shear(path, spec)?;
     if let Some(r) = spec.min_bend_radius {
         if !(r.is_finite() && r > 0.0) {
             return Err(SceneError::new(
@@ -350,6 +356,9 @@ pub(super) fn compile_rod(
             forces.push((v, f));
         }
     }
+    if spec.model != RodModelSpec::Der {
+        framed_restrictions(path, spec)?;
+    }
     let first_director = match spec.first_director {
         Some(d) => Some(finite3(&format!("{path}.first_director"), d)?),
         None => None,
@@ -412,70 +421,100 @@ pub(super) fn compile_rod(
     for w in bounds.windows(2) {
         let (a, b) = (w[0], w[1]);
         let single = bounds.len() == 2;
-        let mut builder = if single {
-            RodBuilder::new(curve.clone(), properties).nodes_at(nodes.clone())
+        let part_curve = if single {
+            curve.clone()
         } else {
             let pts: Vec<[f64; 3]> = positions[a..=b].iter().map(|p| [p.x, p.y, p.z]).collect();
-            RodBuilder::new(RestCurve::Polyline { points: pts }, properties)
-                .nodes_at(chord_nodes(&positions[a..=b]))
+            RestCurve::Polyline { points: pts }
         };
-        builder = builder.allow_rigid_motion();
-        if let Some(d) = part_director(a)? {
-            builder = builder.first_director(d);
-        }
-        builder = builder.gravity(gravity);
-        if clamped.contains(&a) {
-            builder = builder.clamp_start();
-        }
-        if clamped.contains(&b) {
-            builder = builder.clamp_end();
-        }
-        for s in &supports {
-            match s.kind {
-                SupportKind::Pin | SupportKind::Clip => {
-                    for &h in s.held.iter().filter(|&&h| h >= a && h <= b) {
-                        builder = builder.pin(h - a);
-                    }
-                }
-                _ => {}
-            }
-        }
+        let part_nodes = if single {
+            nodes.clone()
+        } else {
+            chord_nodes(&positions[a..=b])
+        };
         // A load on a vertex shared by two parts (an interior clamp) goes to the first.
         let owns = |v: usize| v >= a && (v < b || b == n_edges);
-        for &(v, f) in &forces {
-            if owns(v) {
-                builder = builder.point_force(v - a, f);
-            }
-        }
-        for &(v, m) in &moments {
-            if owns(v) {
-                builder = builder.point_moment(v - a, m);
-            }
-        }
-        for &(v, f, m) in &followers {
-            if owns(v) {
-                builder = builder.follower_load(v - a, f, m);
-            }
-        }
+        let pins: Vec<usize> = supports
+            .iter()
+            .filter(|s| matches!(s.kind, SupportKind::Pin | SupportKind::Clip))
+            .flat_map(|s| s.held.iter().copied())
+            .filter(|&h| h >= a && h <= b)
+            .map(|h| h - a)
+            .collect();
+        let part_forces: Vec<(usize, Vec3)> = forces
+            .iter()
+            .filter(|(v, _)| owns(*v))
+            .map(|&(v, f)| (v - a, f))
+            .collect();
+        let part_moments: Vec<(usize, Vec3)> = moments
+            .iter()
+            .filter(|(v, _)| owns(*v))
+            .map(|&(v, m)| (v - a, m))
+            .collect();
         let part_path = if single {
             path.to_string()
         } else {
             format!("{path} (part between vertices {a} and {b})")
         };
-        let rod = builder
-            .build()
-            .map_err(|e| SceneError::model(part_path.clone(), e))?;
-        if rod
-            .rest_state()
-            .positions()
-            .iter()
-            .flatten()
-            .any(|c| !c.is_finite())
-            || rod
-                .rest_lengths()
-                .iter()
-                .any(|l| !(l.is_finite() && *l > 0.0))
-        {
+        let director = part_director(a)?;
+        let member = match shear {
+            None => {
+                let mut builder = RodBuilder::new(part_curve, properties)
+                    .nodes_at(part_nodes)
+                    .allow_rigid_motion()
+                    .gravity(gravity);
+                if let Some(d) = director {
+                    builder = builder.first_director(d);
+                }
+                if clamped.contains(&a) {
+                    builder = builder.clamp_start();
+                }
+                if clamped.contains(&b) {
+                    builder = builder.clamp_end();
+                }
+                for &p in &pins {
+                    builder = builder.pin(p);
+                }
+                for &(v, f) in &part_forces {
+                    builder = builder.point_force(v, f);
+                }
+                for &(v, m) in &part_moments {
+                    builder = builder.point_moment(v, m);
+                }
+                for &(v, f, m) in &followers {
+                    if owns(v) {
+                        builder = builder.follower_load(v - a, f, m);
+                    }
+                }
+                Member::Der(
+                    builder
+                        .build()
+                        .map_err(|e| SceneError::model(part_path.clone(), e))?,
+                )
+            }
+            Some(shear) => {
+                let setup = FramedSetup {
+                    curve: part_curve,
+                    nodes: part_nodes,
+                    properties,
+                    shear,
+                    director,
+                    gravity,
+                    clamps: [clamped.contains(&a), clamped.contains(&b)],
+                    pins: &pins,
+                    forces: &part_forces,
+                    moments: &part_moments,
+                };
+                framed_member(spec.model, &setup)
+                    .map_err(|e| SceneError::model(part_path.clone(), e))?
+            }
+        };
+        let rest = member.rest_state();
+        let rest_lengths_ok = rest.positions().windows(2).all(|w| {
+            let l = (w[1] - w[0]).norm();
+            l.is_finite() && l > 0.0
+        });
+        if rest.positions().iter().flatten().any(|c| !c.is_finite()) || !rest_lengths_ok {
             return Err(SceneError::new(
                 path,
                 format!("{part_path}: the mesh has non-finite coordinates; check lengths, radii and points for overflow"),
@@ -487,7 +526,7 @@ pub(super) fn compile_rod(
             structure: usize::MAX,
             member: usize::MAX,
         });
-        members.push(rod);
+        members.push(member);
     }
     Ok(RodDraft {
         rod: CompiledRod {
@@ -502,5 +541,106 @@ pub(super) fn compile_rod(
             min_bend_radius: spec.min_bend_radius,
         },
         members,
+    })
+}
+
+/// What the Cosserat and SE(3) rods cannot take in a scene (each names its field).
+fn framed_restrictions(path: &str, spec: &RodSpec) -> Result<(), SceneError> {
+    let model = spec.model.name();
+    if spec.closed {
+        return Err(SceneError::new(
+            format!("{path}.closed"),
+            format!("closed loops are discrete elastic rods only (model = \"der\"), not model = \"{model}\""),
+        ));
+    }
+    for (k, s) in spec.supports.iter().enumerate() {
+        if matches!(s.kind, SupportKind::Slider | SupportKind::TwistHold) {
+            return Err(SceneError::new(
+                format!("{path}.supports[{k}].kind"),
+                format!("{:?} is not available with model = \"{model}\"; valid: clamp, pin, clip (sliders and twist holds need model = \"der\")", s.kind),
+            ));
+        }
+    }
+    for (k, f) in spec.forces.iter().enumerate() {
+        if f.follower {
+            return Err(SceneError::new(
+                format!("{path}.forces[{k}].follower"),
+                format!("follower loads need model = \"der\"; with model = \"{model}\" loads are dead"),
+            ));
+        }
+    }
+    for (k, m) in spec.moments.iter().enumerate() {
+        if m.follower {
+            return Err(SceneError::new(
+                format!("{path}.moments[{k}].follower"),
+                format!("follower loads need model = \"der\"; with model = \"{model}\" loads are dead"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A part of a framed rod, as the scene gives it.
+struct FramedSetup<'a> {
+    curve: RestCurve,
+    nodes: Vec<f64>,
+    properties: RodProperties,
+    shear: ShearStiffness,
+    director: Option<Vec3>,
+    gravity: Vec3,
+    /// Clamped at its start and end.
+    clamps: [bool; 2],
+    pins: &'a [usize],
+    forces: &'a [(usize, Vec3)],
+    moments: &'a [(usize, Vec3)],
+}
+
+impl FramedSetup<'_> {
+    /// The builder input both framed models share.
+    fn apply<K>(&self, mut b: FramedRodBuilder<K>) -> FramedRodBuilder<K> {
+        b = b.nodes_at(self.nodes.clone()).gravity(self.gravity);
+        if let Some(d) = self.director {
+            b = b.first_director(d);
+        }
+        if self.clamps[0] {
+            b = b.clamp_start();
+        }
+        if self.clamps[1] {
+            b = b.clamp_end();
+        }
+        for &p in self.pins {
+            b = b.pin(p);
+        }
+        for &(v, f) in self.forces {
+            b = b.point_force(v, f);
+        }
+        for &(v, m) in self.moments {
+            b = b.point_moment(v, m);
+        }
+        b
+    }
+}
+
+/// Builds a Cosserat rod or an SE(3) beam part.
+fn framed_member(
+    model: RodModelSpec,
+    s: &FramedSetup<'_>,
+) -> Result<Member, crate::error::ModelError> {
+    let (c, p, g) = (s.curve.clone(), s.properties, s.shear);
+    Ok(match model {
+        RodModelSpec::Cosserat | RodModelSpec::CosseratTan => {
+            let measure = if model == RodModelSpec::CosseratTan {
+                DarbouxMeasure::Tangent
+            } else {
+                DarbouxMeasure::Sine
+            };
+            Member::Cosserat(
+                s.apply(CosseratBuilder::new(c, p, g))
+                    .darboux(measure)
+                    .build()?,
+            )
+        }
+        RodModelSpec::Se3 => Member::Se3(s.apply(Se3Builder::new(c, p, g)).build()?),
+        RodModelSpec::Der => unreachable!("the discrete elastic rod is built by RodBuilder"),
     })
 }

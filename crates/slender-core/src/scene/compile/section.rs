@@ -2,10 +2,11 @@
 //! radius drawn in shape files; and the name check shared by rods and shells.
 
 use crate::error::ModelError;
+use crate::framed::ShearStiffness;
 use crate::rod::{CrossSection, Material, RodProperties, SectionStiffness};
 
 use super::super::error::SceneError;
-use super::super::spec::{MaterialSpec, RodSpec, SectionSpec};
+use super::super::spec::{MaterialSpec, RodModelSpec, RodSpec, SectionSpec};
 
 pub(super) fn material(path: &str, m: &MaterialSpec) -> Result<Material, SceneError> {
     let poisson = match (m.poisson, m.shear_modulus) {
@@ -111,6 +112,57 @@ pub(super) fn section(
             Ok((props, radius))
         }
     }
+}
+
+/// The shear stiffnesses of a Cosserat rod or SE(3) beam: `shear_stiffness` if given, else
+/// κGA of the geometric section with Timoshenko's coefficient (solid circle
+/// κ = 6(1+ν)/(7+6ν), solid rectangle κ = 10(1+ν)/(12+11ν)). `None` for the discrete
+/// elastic rod, which has no shear (and may not be given one).
+pub(super) fn shear(path: &str, spec: &RodSpec) -> Result<Option<ShearStiffness>, SceneError> {
+    let field = format!("{path}.shear_stiffness");
+    if spec.model == RodModelSpec::Der {
+        return match spec.shear_stiffness {
+            Some(_) => Err(SceneError::new(
+                field,
+                "only the shearable models (model = \"cosserat\", \"cosserat_tan\" or \"se3\") take a shear stiffness; the discrete elastic rod has none",
+            )),
+            None => Ok(None),
+        };
+    }
+    if let Some([ga1, ga2]) = spec.shear_stiffness {
+        for (k, v) in [ga1, ga2].iter().enumerate() {
+            if !(v.is_finite() && *v > 0.0) {
+                return Err(SceneError::new(
+                    format!("{field}[{k}]"),
+                    format!("{v}: must be finite and > 0 (N); a rod with no shear stiffness has no equilibrium"),
+                ));
+            }
+        }
+        return Ok(Some(ShearStiffness { ga1, ga2 }));
+    }
+    let (area, kappa_of): (f64, fn(f64) -> f64) = match spec.section {
+        SectionSpec::Circle { diameter } => (
+            std::f64::consts::FRAC_PI_4 * diameter * diameter,
+            |nu| 6.0 * (1.0 + nu) / (7.0 + 6.0 * nu),
+        ),
+        SectionSpec::Rectangle { width, height } => (width * height, |nu| {
+            10.0 * (1.0 + nu) / (12.0 + 11.0 * nu)
+        }),
+        SectionSpec::Stiffness { .. } => {
+            return Err(SceneError::new(
+                field,
+                format!(
+                    "missing: model = \"{}\" with section shape = \"stiffness\" needs the shear stiffnesses [κGA₁, κGA₂] (N)",
+                    spec.model.name()
+                ),
+            ))
+        }
+    };
+    // The section's own checks (diameter, material) ran in `section`.
+    let m = spec.material.as_ref().expect("checked with the section");
+    let mat = material(&format!("{path}.material"), m)?;
+    let g = mat.young / (2.0 * (1.0 + mat.poisson));
+    Ok(Some(ShearStiffness::isotropic(kappa_of(mat.poisson) * g * area)))
 }
 
 /// Name check: safe as a file-name stem.

@@ -3,7 +3,7 @@
 //! nothing else are structures of their own.
 
 use crate::geometry::Vec3;
-use crate::structure::{JointEnd, Member, SliderSupport, Structure, StructureBuilder, TwistHold};
+use crate::structure::{JointEnd, SliderSupport, Structure, StructureBuilder, TwistHold};
 
 use super::super::error::SceneError;
 use super::super::spec::{JointSpec, RodEnd, SupportKind};
@@ -47,19 +47,18 @@ pub(super) fn build_structures(
         let mut ends = Vec::new();
         for (e, end) in j.ends.iter().enumerate() {
             let Some(r) = drafts.iter().position(|d| d.rod.name == end.rod) else {
+                return Err(unknown_rod(&path, e, &end.rod, drafts));
+            };
+            if let Some(m) = drafts[r].members.first().filter(|m| m.as_der().is_none()) {
                 return Err(SceneError::new(
                     format!("{path}.ends[{e}].rod"),
                     format!(
-                        "{:?}: no rod has this name (rods: {})",
+                        "{:?} is a {} rod: joints join discrete elastic rods (model = \"der\") only",
                         end.rod,
-                        drafts
-                            .iter()
-                            .map(|d| d.rod.name.as_str())
-                            .collect::<Vec<_>>()
-                            .join(", ")
+                        m.model_name()
                     ),
                 ));
-            };
+            }
             if drafts[r].rod.closed {
                 return Err(SceneError::new(
                     format!("{path}.ends[{e}].rod"),
@@ -130,7 +129,7 @@ pub(super) fn build_structures(
             |r: usize, p: usize| members.iter().position(|&m| m == (r, p)).expect("member");
         let mut b = StructureBuilder::new();
         for &(r, p) in members {
-            b = b.member(Member::Der(drafts[r].members[p].clone()));
+            b = b.member(drafts[r].members[p].clone());
         }
         for (_, ends) in &part_joints {
             if !members.contains(&(ends[0].0, ends[0].1)) {
@@ -201,4 +200,19 @@ pub(super) fn build_structures(
         structures.push(structure);
     }
     Ok(structures)
+}
+
+/// The error for a joint end naming no rod.
+fn unknown_rod(path: &str, e: usize, name: &str, drafts: &[RodDraft]) -> SceneError {
+    SceneError::new(
+        format!("{path}.ends[{e}].rod"),
+        format!(
+            "{name:?}: no rod has this name (rods: {})",
+            drafts
+                .iter()
+                .map(|d| d.rod.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    )
 }
