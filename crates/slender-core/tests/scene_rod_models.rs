@@ -142,7 +142,10 @@ fn each_model_pushed_past_buckling_by_moving_a_clamp_ends_on_the_clamped_elastic
                 )
                 .unwrap();
             assert!(r.converged, "{model} step {k}: {r:?}");
-            assert!(r.stable, "{model} step {k}: unstable equilibrium returned: {r:?}");
+            assert!(
+                r.stable,
+                "{model} step {k}: unstable equilibrium returned: {r:?}"
+            );
         }
         let res = s.results(steps, None, 1.0, 1);
         let rod = &res.rods[0];
@@ -201,12 +204,31 @@ fn each_model_moved_and_moved_back_returns_to_its_equilibrium() {
         let start = s.results(0, None, 1.0, 1).rods[0].positions.clone();
         let there = Vector3::new(-0.1, 0.08, 0.05);
         let turn = Vector3::new(0.0, 0.3, -0.4);
-        assert!(s.move_support_by(0, 1, Vector3::zeros(), there).unwrap().converged);
-        assert!(s.move_support_by(0, 0, turn, Vector3::zeros()).unwrap().converged);
+        assert!(
+            s.move_support_by(0, 1, Vector3::zeros(), there)
+                .unwrap()
+                .converged
+        );
+        assert!(
+            s.move_support_by(0, 0, turn, Vector3::zeros())
+                .unwrap()
+                .converged
+        );
         let moved = s.results(0, None, 1.0, 1).rods[0].positions.clone();
-        assert!(distance(&start, &moved) > 0.05, "{model}: the moves did nothing");
-        assert!(s.move_support_by(0, 0, -turn, Vector3::zeros()).unwrap().converged);
-        assert!(s.move_support_by(0, 1, Vector3::zeros(), -there).unwrap().converged);
+        assert!(
+            distance(&start, &moved) > 0.05,
+            "{model}: the moves did nothing"
+        );
+        assert!(
+            s.move_support_by(0, 0, -turn, Vector3::zeros())
+                .unwrap()
+                .converged
+        );
+        assert!(
+            s.move_support_by(0, 1, Vector3::zeros(), -there)
+                .unwrap()
+                .converged
+        );
         let back = s.results(0, None, 1.0, 1).rods[0].positions.clone();
         let d = distance(&start, &back);
         assert!(d < 1e-9 * 0.6, "{model}: back at {d:e} m from the start");
@@ -252,7 +274,10 @@ fn each_model_takes_a_clip_added_in_a_session_and_its_saved_scene_round_trips() 
         assert!(r.converged, "{model}: {r:?}");
         let without = s.results(0, None, 1.0, 1).rods[0].positions.clone();
         let d = distance(&before, &without);
-        assert!(d < 1e-9 * 0.6, "{model}: without the clip, {d:e} m from before");
+        assert!(
+            d < 1e-9 * 0.6,
+            "{model}: without the clip, {d:e} m from before"
+        );
     }
 }
 
@@ -316,7 +341,10 @@ section = { shape = "stiffness", ea = 1.0e6, ei1 = 1.0, ei2 = 1.0, gj = 0.77, li
 supports = [ { kind = "clamp", vertex = "start" } ]
 "#,
     );
-    assert!(e.contains("rods[0].shear_stiffness") && e.contains("missing"), "{e}");
+    assert!(
+        e.contains("rods[0].shear_stiffness") && e.contains("missing"),
+        "{e}"
+    );
     // Joints join discrete elastic rods only.
     let e = error_of(&format!(
         "[[rods]]\nname = \"a\"\nmodel = \"se3\"\n{ROD}supports = [ {{ kind = \"clamp\", vertex = \"start\" }} ]\n\
@@ -324,7 +352,10 @@ supports = [ { kind = "clamp", vertex = "start" } ]
          section = {{ shape = \"circle\", diameter = 0.004 }}\nmaterial = {{ young = 1.0e9, poisson = 0.4, density = 1400.0 }}\n\
          [[joints]]\nends = [ {{ rod = \"a\", end = \"end\" }}, {{ rod = \"b\", end = \"start\" }} ]\n"
     ));
-    assert!(e.contains("joints[0].ends[0].rod") && e.contains("se3"), "{e}");
+    assert!(
+        e.contains("joints[0].ends[0].rod") && e.contains("se3"),
+        "{e}"
+    );
     // An unknown model name is a parse error that lists the valid ones.
     let bad: Result<Scene, _> = toml::from_str(&format!(
         "[[rods]]\n{ROD}model = \"timoshenko\"\nsupports = [ {{ kind = \"clamp\", vertex = \"start\" }} ]\n"

@@ -8,8 +8,7 @@ use slender_core::geometry::Vec3;
 use slender_core::rod::{RestCurve, Rod, RodBuilder, RodProperties, RodState, SectionStiffness};
 use slender_core::solver::{EquilibriumProblem, EquilibriumSolver, SolverParams};
 use slender_core::structure::{
-    JointEnd, Member, SliderSupport, Structure, StructureBuilder, StructureState,
-    TwistHold,
+    JointEnd, Member, SliderSupport, Structure, StructureBuilder, StructureState, TwistHold,
 };
 use slender_core::testing::{check_model, Rng};
 

@@ -7,8 +7,10 @@ use std::process::Command;
 
 use serde_json::Value;
 use slender_core::solver::SolverParams;
+use slender_validation::cantilever::master_curve::master_ratio;
 use slender_validation::cantilever::{end_point_ratio, CantileverCase, MeshKind};
 use slender_validation::materials::OMEGA_ROD;
+use slender_validation::rod_model::RodModel;
 
 type V3 = [f64; 3];
 
@@ -520,6 +522,66 @@ fn cantilever_scene_reproduces_the_benchmark() {
         &[],
         1e-9,
     );
+}
+
+#[test]
+fn rod_models_cantilever_matches_each_models_benchmark_and_the_master_curve() {
+    let out = solve("rod_models_cantilever");
+    let s0 = step(&out, 0);
+    let g = OMEGA_ROD.gravity_for_gamma(10.0);
+    let master = master_ratio(10.0).unwrap();
+    let shear = OMEGA_ROD.shear();
+    let text = std::fs::read_to_string(repo().join("examples/rod_models_cantilever.toml")).unwrap();
+    assert!(
+        text.contains(&format!("[{:?}, {:?}]", shear.ga1, shear.ga2)),
+        "the file's shear stiffness is Ω_rod's solid-circle κGA = {}",
+        shear.ga1
+    );
+    let case = CantileverCase {
+        material: OMEGA_ROD,
+        mesh: MeshKind::Graded,
+        n_elements: 20,
+        gamma: 10.0,
+    };
+    let tight = SolverParams {
+        force_tolerance: 1e-14,
+        energy_tolerance: 1e-30,
+        ..SolverParams::default()
+    };
+    for (k, model) in [RodModel::Der, RodModel::Cosserat, RodModel::Se3]
+        .into_iter()
+        .enumerate()
+    {
+        let rod = &s0["rods"][k];
+        assert_eq!(rod["name"].as_str().unwrap(), model.name());
+        let x = positions(rod);
+        let (a, b) = (x[0], x[x.len() - 1]);
+        let ratio = (a[1] - b[1]) / (b[0] - a[0]);
+        let run = case.run_with(model, &tight).unwrap();
+        assert!(run.report.converged());
+        assert!(
+            (ratio - run.ratio).abs() <= 1e-10 * run.ratio.abs(),
+            "{}: scene Δy/Δx = {ratio}, benchmark {}",
+            model.name(),
+            run.ratio
+        );
+        let err = ratio / master - 1.0;
+        assert!(
+            err.abs() < 5e-3,
+            "{}: {err:+.2e} from the master curve",
+            model.name()
+        );
+        assert!(rod["relative_force_imbalance"].as_f64().unwrap() <= 1e-9);
+        assert!(rod["relative_moment_imbalance"].as_f64().unwrap() <= 1e-9);
+        // The clamp carries the whole weight ρA g L.
+        let fy = rod["supports"][0]["force"][1].as_f64().unwrap();
+        let weight = OMEGA_ROD.properties.linear_density * g;
+        assert!(
+            (fy / weight - 1.0).abs() < 1e-9,
+            "{}: {fy} vs {weight}",
+            model.name()
+        );
+    }
 }
 
 #[test]

@@ -169,12 +169,7 @@ fn structure_gradients(s: &Structure, st: &StructureState) -> Vec<HeldForces> {
 }
 
 /// Force and moment balance of a structure: (imbalance, relative) for force and moment.
-fn balance(
-    scene: &CompiledScene,
-    k: usize,
-    st: &StructureState,
-    grads: &[HeldForces],
-) -> [f64; 4] {
+fn balance(scene: &CompiledScene, k: usize, st: &StructureState, grads: &[HeldForces]) -> [f64; 4] {
     let s = &scene.structures[k];
     let mut total_f = Vec3::zeros();
     let mut total_m = Vec3::zeros();

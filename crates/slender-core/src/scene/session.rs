@@ -209,11 +209,7 @@ impl Session {
             return false;
         }
         let s = &self.scene.structures[k];
-        let length: f64 = s
-            .members()
-            .iter()
-            .map(|m| m.length())
-            .sum();
+        let length: f64 = s.members().iter().map(|m| m.length()).sum();
         let left = run.stability.unstable_modes;
         match follow_unstable_mode(
             s,
@@ -724,8 +720,8 @@ impl Session {
                     .iter()
                     .find(|p| p.contains(s.vertex))
                     .expect("part");
-                let member_rest = scene.structures[part.structure].members()[part.member]
-                    .rest_state();
+                let member_rest =
+                    scene.structures[part.structure].members()[part.member].rest_state();
                 let rest_x = member_rest.positions();
                 let lv = s.vertex - part.first_vertex;
                 let mut rotation = Rotation3::identity();

@@ -147,7 +147,9 @@ pub enum RodModelSpec {
     Der,
     /// Discrete Cosserat rod, frames on the edges, sine Darboux measure.
     Cosserat,
-    /// Discrete Cosserat rod with the tangent (Cayley) Darboux measure.
+    /// Discrete Cosserat rod with the tangent (Cayley) Darboux measure (also `"cosserat-tan"`,
+    /// as on the command line).
+    #[serde(alias = "cosserat-tan")]
     CosseratTan,
     /// Geometrically exact beam on SE(3), helicoidal elements.
     Se3,

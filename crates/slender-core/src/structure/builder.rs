@@ -97,11 +97,7 @@ impl StructureBuilder {
             ));
         }
         let nm = self.members.len();
-        let length_scale = self
-            .members
-            .iter()
-            .map(|m| m.length())
-            .fold(0.0, f64::max);
+        let length_scale = self.members.iter().map(|m| m.length()).fold(0.0, f64::max);
         let mut ties: Vec<Vec<Tie>> = self
             .members
             .iter()

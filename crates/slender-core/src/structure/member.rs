@@ -303,8 +303,12 @@ impl Member {
     ) -> Result<(), crate::ModelError> {
         match self {
             Self::Der(r) => r.set_support_motion(vertices, pivot, rotation, translation),
-            Self::Cosserat(r) => r.core.set_support_motion(vertices, pivot, rotation, translation),
-            Self::Se3(r) => r.core.set_support_motion(vertices, pivot, rotation, translation),
+            Self::Cosserat(r) => r
+                .core
+                .set_support_motion(vertices, pivot, rotation, translation),
+            Self::Se3(r) => r
+                .core
+                .set_support_motion(vertices, pivot, rotation, translation),
         }
     }
 

@@ -100,10 +100,9 @@ impl Member {
                 (0..=e.len())
                     .map(|v| {
                         let (k, k0) = match (v.checked_sub(1).map(|j| &e[j]), e.get(v)) {
-                            (Some(a), Some(b)) => (
-                                (a.darboux() + b.darboux()) * 0.5,
-                                (rest(a) + rest(b)) * 0.5,
-                            ),
+                            (Some(a), Some(b)) => {
+                                ((a.darboux() + b.darboux()) * 0.5, (rest(a) + rest(b)) * 0.5)
+                            }
                             (Some(a), None) => (a.darboux(), rest(a)),
                             (None, Some(b)) => (b.darboux(), rest(b)),
                             (None, None) => (Vector3::zeros(), Vector3::zeros()),
@@ -150,9 +149,7 @@ impl Member {
     pub fn held_forces(&self, state: &MemberState, load: f64) -> HeldForces {
         match (self, state) {
             (Self::Der(r), MemberState::Der(s)) => HeldForces::Der(r.full_gradient(s, load)),
-            (Self::Cosserat(r), MemberState::Framed(s)) => {
-                HeldForces::Framed(r.reactions(s, load))
-            }
+            (Self::Cosserat(r), MemberState::Framed(s)) => HeldForces::Framed(r.reactions(s, load)),
             (Self::Se3(r), MemberState::Framed(s)) => HeldForces::Framed(r.reactions(s, load)),
             _ => unreachable!("member and state of different models"),
         }

@@ -11,7 +11,11 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 14] = [
+pub const EXAMPLES: [(&str, &str); 15] = [
+    (
+        "rod_models_cantilever",
+        include_str!("../../../../examples/rod_models_cantilever.toml"),
+    ),
     (
         "cantilever_tip_force",
         include_str!("../../../../examples/cantilever_tip_force.toml"),

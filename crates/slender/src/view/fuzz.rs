@@ -199,6 +199,40 @@ fn valid_edits_change_the_equilibrium_and_errors_after_them_do_not() {
     assert_eq!(v["gltf"]["asset"]["version"], json!("2.0"));
 }
 
+#[test]
+fn every_rod_model_is_dragged_to_the_equilibrium_of_the_equivalent_prescribed_motion() {
+    // The drag a page sends for the end pin, and the same move as a motion stage of the scene
+    // file (what `slender solve` runs): the same equilibrium, whatever the rod's formulation.
+    for model in ["der", "cosserat", "cosserat_tan", "se3"] {
+        let text = SCENE.replace(
+            "name = \"cable\"",
+            &format!("name = \"cable\"\nmodel = \"{model}\""),
+        );
+        let mut dragged = Session::new(toml::from_str(&text).unwrap()).unwrap();
+        let (v, kept) = exchange(
+            &mut dragged,
+            r#"{"op": "move_by", "rod": 0, "support": 2, "translation": [-0.05, 0.05, 0.02]}"#,
+        );
+        assert_eq!(v["ok"], json!(true), "{model}: {v}");
+        assert_eq!(v["edit"]["converged"], json!(true), "{model}: {v}");
+        assert!(!kept);
+        assert_eq!(v["view"]["rods"][0]["model"], json!(model));
+        let moved =
+            format!("{text}\n[[motion]]\nrod = 0\nsupport = 2\ntranslate = [-0.05, 0.05, 0.02]\n");
+        let mut solved = Session::new(toml::from_str(&moved).unwrap()).unwrap();
+        assert!(solved.run_motion_step(1).converged);
+        let (a, b) = (equilibrium(&dragged).0, equilibrium(&solved).0);
+        let tip = |x: &Vec<Vec<[f64; 3]>>| *x[0].last().unwrap();
+        let (ta, tb) = (tip(&a), tip(&b));
+        for k in 0..3 {
+            assert!(
+                (ta[k] - tb[k]).abs() <= 1e-9 * 0.6,
+                "{model}: {ta:?} vs {tb:?}"
+            );
+        }
+    }
+}
+
 /// A number a hostile client might send: ordinary, huge, tiny, negative, or not a number.
 fn hostile_number() -> impl Strategy<Value = String> {
     prop_oneof![

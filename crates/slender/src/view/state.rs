@@ -37,6 +37,8 @@ pub struct RodView {
     pub display_radius: f64,
     /// True for a closed loop.
     pub closed: bool,
+    /// Rod formulation as in scene files (`der`, `cosserat`, `cosserat_tan`, `se3`).
+    pub model: &'static str,
     /// Rest arc length (m) of every vertex from vertex 0: where a clip added at a point of the
     /// cable goes (`at`).
     pub arclengths: Vec<f64>,
@@ -170,6 +172,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 name: res.name.clone(),
                 display_radius: rod.display_radius,
                 closed: rod.closed,
+                model: session.spec().rods[r].model.name(),
                 arclengths: rod.node_arclengths.clone(),
                 positions: res.positions.clone(),
                 directors: res.frames.iter().map(|f| f[0]).collect(),

@@ -565,7 +565,9 @@ fn framed_restrictions(path: &str, spec: &RodSpec) -> Result<(), SceneError> {
         if f.follower {
             return Err(SceneError::new(
                 format!("{path}.forces[{k}].follower"),
-                format!("follower loads need model = \"der\"; with model = \"{model}\" loads are dead"),
+                format!(
+                    "follower loads need model = \"der\"; with model = \"{model}\" loads are dead"
+                ),
             ));
         }
     }
@@ -573,7 +575,9 @@ fn framed_restrictions(path: &str, spec: &RodSpec) -> Result<(), SceneError> {
         if m.follower {
             return Err(SceneError::new(
                 format!("{path}.moments[{k}].follower"),
-                format!("follower loads need model = \"der\"; with model = \"{model}\" loads are dead"),
+                format!(
+                    "follower loads need model = \"der\"; with model = \"{model}\" loads are dead"
+                ),
             ));
         }
     }

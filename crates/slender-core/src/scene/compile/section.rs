@@ -162,7 +162,9 @@ pub(super) fn shear(path: &str, spec: &RodSpec) -> Result<Option<ShearStiffness>
     let m = spec.material.as_ref().expect("checked with the section");
     let mat = material(&format!("{path}.material"), m)?;
     let g = mat.young / (2.0 * (1.0 + mat.poisson));
-    Ok(Some(ShearStiffness::isotropic(kappa_of(mat.poisson) * g * area)))
+    Ok(Some(ShearStiffness::isotropic(
+        kappa_of(mat.poisson) * g * area,
+    )))
 }
 
 /// Name check: safe as a file-name stem.

@@ -453,7 +453,7 @@ function updatePanel(reply) {
       const sel = selected && selected.userData.rod === ri && selected.userData.support === si ? "selected" : "";
       return `<tr class="${sel}"><td>${si}</td><td>${s.kind.replace("_", " ")}</td><td>v ${s.vertex}</td><td>${fmtForce(Math.hypot(...s.force))}</td><td>${Math.hypot(...s.moment).toExponential(2)} N m</td></tr>`;
     }).join("");
-    return `<div class="rod"><b>${rod.name}</b>${rod.stable ? "" : ' <b class="bad">unstable</b>'}${rod.converged ? "" : ' <b class="bad">not converged</b>'}<br>${radius}
+    return `<div class="rod"><b>${rod.name}</b> <span class="muted">${rod.model}</span>${rod.stable ? "" : ' <b class="bad">unstable</b>'}${rod.converged ? "" : ' <b class="bad">not converged</b>'}<br>${radius}
       <table><tr><td>#</td><td>support</td><td>at</td><td>|force|</td><td>|moment|</td></tr>${rows}</table></div>`;
   }).join("");
   $("rods").innerHTML = html;
