@@ -164,7 +164,10 @@ pub fn scene_checks() -> Result<Vec<Check>> {
 fn shell_example_checks() -> Result<Vec<Check>> {
     use slender_core::scene::shells::centre_line_ratio;
     use slender_validation::cantilever::master_curve::master_ratio;
-    let (_, text) = EXAMPLES[7];
+    let (_, text) = EXAMPLES
+        .iter()
+        .find(|(name, _)| *name == "flat_cable_shell_cantilever")
+        .expect("the shell example is listed");
     let scene = parse_scene(text, Syntax::Toml, "flat_cable_shell_cantilever")?;
     let compiled = match scene.compile() {
         Ok(c) => c,
