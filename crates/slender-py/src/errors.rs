@@ -51,3 +51,10 @@ pub fn guarded<T>(f: impl FnOnce() -> T) -> PyResult<T> {
         SolverPanic::new_err(format!("internal error in slender: {msg}"))
     })
 }
+
+/// Panics inside the guard with `message`: the test suite's way to check that a panic in
+/// the solver reaches Python as `SolverPanic` (never an abort, never a `PanicException`).
+#[pyfunction]
+pub fn _panic_for_test(message: &str) -> PyResult<()> {
+    guarded(|| panic!("{message}"))
+}

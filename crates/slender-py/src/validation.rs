@@ -89,19 +89,20 @@ fn lateral_buckling_critical_gamma(
     nu: f64,
     curve: &str,
 ) -> PyResult<f64> {
-    let c =
-        match curve {
-            "kirchhoff_plate" => MasterCurve::KirchhoffPlate,
-            "vlasov_beam" => MasterCurve::VlasovBeamStiffness,
-            "vlasov_plate" => MasterCurve::VlasovPlateStiffness,
-            other => return Err(scene_error(
+    let c = match curve {
+        "kirchhoff_plate" => MasterCurve::KirchhoffPlate,
+        "vlasov_beam" => MasterCurve::VlasovBeamStiffness,
+        "vlasov_plate" => MasterCurve::VlasovPlateStiffness,
+        other => {
+            return Err(scene_error(
                 py,
                 "curve",
                 &format!(
                     "{other:?}: must be \"kirchhoff_plate\", \"vlasov_beam\" or \"vlasov_plate\""
                 ),
-            )),
-        };
+            ))
+        }
+    };
     py.detach(|| guarded(|| critical_gamma(w_over_l, nu, c)))?
         .map_err(|e| scene_error(py, "w_over_l", &e.to_string()))
 }
