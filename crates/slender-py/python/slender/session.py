@@ -28,6 +28,12 @@ class NotConvergedError(RuntimeError):
 
 
 def _vec3(value: Any, name: str) -> list[float]:
+    # Fast path for plain sequences of three numbers (the common case of interactive edits).
+    if type(value) in (list, tuple) and len(value) == 3:
+        try:
+            return [float(value[0]), float(value[1]), float(value[2])]
+        except (TypeError, ValueError):
+            pass
     try:
         a = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
