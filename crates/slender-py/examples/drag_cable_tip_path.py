@@ -1,8 +1,9 @@
 """Drag a cable's clamped end along a path and plot the path of its free tip.
 
 A 0.6 m cable (d = 6 mm, E = 200 MPa) is clamped at one end and hangs under gravity; the
-clamp is carried around a horizontal circle of radius 0.15 m in 48 warm re-solves (each
-edit starts from the previous equilibrium, as in `slender view`). The free tip's path, the
+clamp is carried around a horizontal circle of radius 0.15 m while it pitches up and down
+by ±0.5 rad, in 48 warm re-solves (each edit starts from the previous equilibrium, as in
+`slender view`; a pure translation would only move the hanging cable rigidly). The free tip's path, the
 clamp's path and a few shapes are plotted to drag_cable_tip_path.png.
 
     pip install ./crates/slender-py matplotlib
@@ -35,9 +36,10 @@ radius, steps = 0.15, 48
 clamp_path, tip_path, shapes = [], [], []
 for k in range(steps + 1):
     a = 2.0 * math.pi * k / steps
-    # Absolute clamp position on the circle (starting at the origin), orientation kept.
+    # Absolute clamp pose: on the circle (starting at the origin), pitched about y by
+    # 0.5 sin(a) rad from its rest orientation.
     target = [radius * (1.0 - math.cos(a)), radius * math.sin(a), 0.0]
-    report = session.move_support(0, 0, position=target)
+    report = session.move_support(0, 0, position=target, rotation=[0.0, 0.5 * math.sin(a), 0.0])
     rod = session.results().rods["cable"]
     clamp_path.append(rod.positions[0])
     tip_path.append(rod.positions[-1])

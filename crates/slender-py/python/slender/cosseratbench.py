@@ -74,7 +74,7 @@ class SlenderSolver:
         for i, rod in enumerate(scenario.rods):
             if rod.start_motion is not None or rod.end_motion is not None:
                 raise NotImplementedError(
-                    "driven ends (Motion) are not mapped to slender's support motion yet"
+                    "driven clamped ends (Motion), not mapped to slender's support motion"
                 )
             if rod.start is EndCondition.FREE and rod.end is EndCondition.FREE:
                 raise NotImplementedError("a rod held by nothing has no static equilibrium")
