@@ -74,3 +74,13 @@ def test_dict_scene_equals_file_scene() -> None:
     a = slender.Session(path).results()
     b = slender.Session(slender.load_scene(path)).results()
     assert _without_time(a.raw) == _without_time(b.raw)
+
+
+def test_json_file_equals_toml_file(tmp_path: Path) -> None:
+    """The JSON form of a scene file solves to the same bits as its TOML form."""
+    path = EXAMPLES / "branched_harness.toml"
+    as_json = tmp_path / "scene.json"
+    as_json.write_text(json.dumps(slender.load_scene(path)))
+    a = slender.solve(path)
+    b = slender.solve(as_json)
+    assert [_without_time(s.raw) for s in a] == [_without_time(s.raw) for s in b]
