@@ -1,0 +1,223 @@
+"""The incremental simulation API: a scene solved once, then edited and re-solved warm."""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any, Optional, Union
+
+import numpy as np
+
+from . import _slender
+from ._slender import EditReport, SceneError
+from .results import Results
+from .scene import _syntax, plain
+
+
+class NotConvergedError(RuntimeError):
+    """A solve or an edit did not reach an equilibrium. ``report`` (an :class:`EditReport`)
+    or ``results`` (a :class:`Results` marked not converged) say where and why; a session
+    keeps its last equilibrium and stays usable."""
+
+    def __init__(self, message: str, report: Any = None, results: Any = None) -> None:
+        super().__init__(message)
+        self.report = report
+        self.results = results
+
+
+def _vec3(value: Any, name: str) -> list[float]:
+    # Fast path for plain sequences of three numbers (the common case of interactive edits).
+    if type(value) in (list, tuple) and len(value) == 3:
+        try:
+            return [float(value[0]), float(value[1]), float(value[2])]
+        except (TypeError, ValueError):
+            pass
+    try:
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        a = np.asarray([np.nan])
+    if a.shape != (3,):
+        e = SceneError(f"{name}: must be 3 numbers, got {value!r}")
+        e.field = name
+        raise e
+    return [float(x) for x in a]
+
+
+def _index(value: Any, name: str) -> int:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < 0:
+        e = SceneError(f"{name}: {value!r}: must be an integer >= 0")
+        e.field = name
+        raise e
+    return int(value)
+
+
+class Session:
+    """A scene compiled, solved (the loaded equilibrium, step 0) and ready to edit.
+
+    ``scene`` is a path to a TOML/JSON scene file, or a dict with the same structure (see
+    :func:`load_scene`, :func:`rod_scene`). A bad scene raises :class:`SceneError` (a
+    ``ValueError``) whose message starts with the field, e.g. ``rods[0].material.young``.
+
+    Every edit re-solves warm from the last equilibrium with the GIL released and returns an
+    :class:`EditReport`; with ``check=True`` (default) an edit that does not converge raises
+    :class:`NotConvergedError` (the session keeps its last equilibrium and the support stays
+    where it was). Sessions are independent: several threads may each solve their own at
+    once; one session is used by one thread at a time.
+    """
+
+    def __init__(self, scene: Union[str, "os.PathLike[str]", Mapping[str, Any]]) -> None:
+        if isinstance(scene, Mapping):
+            self._inner = _slender.Session.from_dict(plain(scene))
+        elif isinstance(scene, (str, os.PathLike)):
+            p = Path(scene)
+            text = p.read_text(encoding="utf-8")
+            if _syntax(p) == "json":
+                self._inner = _slender.Session.from_json(text, str(p))
+            else:
+                self._inner = _slender.Session.from_toml(text, str(p))
+        else:
+            raise TypeError(f"scene must be a path or a dict, not {type(scene).__name__}")
+        self._step = 0
+
+    @classmethod
+    def from_toml(cls, text: str) -> "Session":
+        """A session of scene TOML text."""
+        s = cls.__new__(cls)
+        s._inner = _slender.Session.from_toml(text, "scene")
+        s._step = 0
+        return s
+
+    # --- results -------------------------------------------------------------------------
+
+    def results(self) -> Results:
+        """The current equilibria as arrays (see :class:`Results`)."""
+        return Results.from_json(self._inner.results(self._step))
+
+    @property
+    def converged(self) -> bool:
+        """True if every structure of the scene is at a converged equilibrium."""
+        return self.results().converged
+
+    @property
+    def n_structures(self) -> int:
+        """Number of structures (groups of rod parts solved together)."""
+        return self._inner.n_structures()
+
+    def pose(self, rod: int, support: int) -> tuple[np.ndarray, np.ndarray]:
+        """Where a support is: (position (3,) m, rotation vector (3,) rad from rest)."""
+        p = self._inner.pose(_index(rod, "rod"), _index(support, "support"))
+        if p is None:
+            e = SceneError(f"rods[{rod}].supports[{support}]: no such support")
+            e.field = f"rods[{rod}].supports[{support}]"
+            raise e
+        return np.asarray(p[0]), np.asarray(p[1])
+
+    def scene(self) -> dict[str, Any]:
+        """The scene as edited (supports as edited, gravity as set)."""
+        return json.loads(self._inner.spec_json())
+
+    def saved(self) -> dict[str, Any]:
+        """The edited scene as a scene that re-solves to the current equilibrium (one motion
+        stage per moved support)."""
+        return json.loads(self._inner.saved_json())
+
+    # --- edits ---------------------------------------------------------------------------
+
+    def _checked(self, report: EditReport, check: bool, what: str) -> EditReport:
+        if check and not report.converged:
+            raise NotConvergedError(
+                f"{what} did not converge ({report.reason}); the last equilibrium is kept",
+                report=report,
+            )
+        return report
+
+    def move_support(
+        self,
+        rod: int,
+        support: int,
+        position: Optional[Sequence[float]] = None,
+        rotation: Optional[Sequence[float]] = None,
+        *,
+        translation: Optional[Sequence[float]] = None,
+        check: bool = True,
+    ) -> EditReport:
+        """Moves support ``support`` of rod ``rod`` and re-solves warm.
+
+        Either to the absolute ``position`` (m) with orientation ``rotation`` (rotation
+        vector, rad, relative to the support's rest orientation; kept if None), or by
+        ``translation`` (m) and ``rotation`` (turned further by it, about the support's
+        vertex). A move too large for one Newton solve is split into load steps.
+        """
+        r, s = _index(rod, "rod"), _index(support, "support")
+        if (position is None) == (translation is None):
+            raise TypeError("give exactly one of position= or translation=")
+        if translation is not None:
+            rot = [0.0, 0.0, 0.0] if rotation is None else _vec3(rotation, "rotation")
+            report = self._inner.move_support_by(r, s, _vec3(translation, "translation"), rot)
+        else:
+            rot = None if rotation is None else _vec3(rotation, "rotation")
+            report = self._inner.move_support(r, s, _vec3(position, "position"), rot)
+        return self._checked(report, check, f"moving rods[{r}].supports[{s}]")
+
+    def add_support(self, rod: int, support: Mapping[str, Any], *, check: bool = True) -> EditReport:
+        """Adds a support (``{"kind": "clip", "at": 0.3}``, like a scene's ``supports``
+        entry; clip, pin, slider or twist_hold) where the rod is now, and re-solves."""
+        r = _index(rod, "rod")
+        report = self._inner.add_support(r, plain(dict(support)))
+        return self._checked(report, check, f"adding a support to rods[{r}]")
+
+    def remove_support(self, rod: int, support: int, *, check: bool = True) -> EditReport:
+        """Removes a support and re-solves."""
+        r, s = _index(rod, "rod"), _index(support, "support")
+        return self._checked(self._inner.remove_support(r, s), check, f"removing rods[{r}].supports[{s}]")
+
+    def set_gravity(self, gravity: Sequence[float], *, check: bool = True) -> EditReport:
+        """Sets gravity (m/s²) and re-solves warm."""
+        return self._checked(self._inner.set_gravity(_vec3(gravity, "gravity")), check, "changing gravity")
+
+    def follow_stable(self) -> EditReport:
+        """Follows every unstable equilibrium along its unstable mode to a stable one."""
+        return self._inner.follow_stable()
+
+    def set_unstable_policy(self, policy: str) -> None:
+        """"follow" (default): unstable equilibria are followed to stable ones; "keep"."""
+        self._inner.set_unstable_policy(policy)
+
+    # --- the scene's prescribed motion ---------------------------------------------------
+
+    @property
+    def motion_steps(self) -> int:
+        """Number of motion steps of the scene's ``motion`` stages."""
+        return self._inner.motion_steps()
+
+    def run_motion_step(self, step: int) -> Results:
+        """Runs motion step ``step`` (1-based, in order) and returns its results (check
+        ``converged``)."""
+        out = Results.from_json(self._inner.run_motion_step(_index(step, "step")))
+        self._step = out.step
+        return out
+
+    def run_motion(self) -> list[Results]:
+        """Step 0 and every motion step, as ``slender solve`` runs them (stops after a step
+        that did not converge)."""
+        steps = [self.results()]
+        for k in range(1, self.motion_steps + 1):
+            r = self.run_motion_step(k)
+            steps.append(r)
+            if not r.converged:
+                break
+        return steps
+
+
+def solve(scene: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, check: bool = True) -> list[Results]:
+    """Solves a scene as ``slender solve`` does: step 0 (the loaded scene) and every motion
+    step. With ``check`` a step that does not converge raises :class:`NotConvergedError`
+    (its ``results`` holds the steps so far, the failed one last)."""
+    steps = Session(scene).run_motion()
+    if check and not all(s.converged for s in steps):
+        bad = next(s for s in steps if not s.converged)
+        reasons = "; ".join(r.reason for r in bad.reports() if not r.converged)
+        raise NotConvergedError(f"step {bad.step} did not converge: {reasons}", results=steps)
+    return steps

@@ -1,0 +1,232 @@
+"""The Python API: array shapes, dtypes and units against closed forms, bad input, solves
+that do not converge, threads, and the benchmarks' master curves."""
+
+from __future__ import annotations
+
+import math
+import threading
+
+import numpy as np
+import pytest
+
+import slender
+
+from conftest import EXAMPLES, cable_scene
+
+# A cantilever: L = 1 m, d = 10 mm steel-like, tip force small enough for linear theory.
+L, D, E, NU, RHO = 1.0, 0.01, 2.0e9, 0.3, 1000.0
+I = math.pi * D**4 / 64.0
+A = math.pi * D**2 / 4.0
+F = 1e-3 * 3.0 * E * I / L**2  # tip deflection = L/1000
+
+
+def cantilever(n: int = 50, force: float = F) -> dict:
+    x = np.linspace(0.0, L, n + 1)
+    pts = np.stack([x, np.zeros_like(x), np.zeros_like(x)], axis=1)
+    return slender.rod_scene(
+        pts,
+        section={"shape": "circle", "diameter": D},
+        material={"young": E, "poisson": NU, "density": RHO},
+        supports=[{"kind": "clamp", "vertex": "start"}],
+        forces=[{"vertex": "end", "force": [0.0, 0.0, -force]}],
+        name="beam",
+    )
+
+
+def test_shapes_dtypes_and_units() -> None:
+    n = 50
+    r = slender.Session(cantilever(n)).results()
+    assert r.converged and r.stable
+    rod = r.rods["beam"]
+    expect = {
+        "positions": (n + 1, 3),
+        "frames": (n, 3, 3),
+        "curvature": (n + 1, 2),
+        "twist": (n + 1,),
+        "edge_strain": (n,),
+        "axial_force": (n,),
+        "bending_moment": (n + 1, 2),
+        "twisting_moment": (n + 1,),
+        "support_forces": (1, 3),
+        "support_moments": (1, 3),
+        "support_positions": (1, 3),
+        "applied_force": (3,),
+    }
+    for key, shape in expect.items():
+        a = getattr(rod, key)
+        assert a.shape == shape, key
+        assert a.dtype == np.float64, key
+    assert rod.support_vertices.dtype == np.int64
+    # Frames are orthonormal rows (m1, m2, t), t along the edge.
+    for j in range(n):
+        fr = rod.frames[j]
+        assert np.allclose(fr @ fr.T, np.eye(3), atol=1e-12)
+        e = rod.positions[j + 1] - rod.positions[j]
+        assert np.allclose(fr[2], e / np.linalg.norm(e), atol=1e-12)
+    # Units against linear beam theory (independent closed forms):
+    # tip deflection F L^3 / 3EI (m) ...
+    tip = -rod.positions[-1, 2]
+    assert tip == pytest.approx(F * L**3 / (3 * E * I), rel=2e-3)
+    # ... the clamp reaction (N, N m) ...
+    assert np.allclose(rod.support_forces[0], [0.0, 0.0, F], rtol=1e-9, atol=1e-6 * F)
+    assert rod.support_moments[0][1] == pytest.approx(-F * L, rel=1e-3)
+    # ... the bending moment F (L - s) (N m) at interior vertices ...
+    s = rod.positions[:, 0]
+    m = np.linalg.norm(rod.bending_moment, axis=1)
+    inner = slice(5, n - 5)
+    assert np.allclose(m[inner], F * (L - s[inner]), rtol=5e-3)
+    # ... and the axial force is EA times the strain (N).
+    assert np.allclose(rod.axial_force, E * A * rod.edge_strain, rtol=1e-12, atol=0.0)
+    rep = rod.reports[0]
+    assert rep.converged and rep.iterations >= 1
+    assert rep.inertia is not None and rep.inertia[0] == 0
+    assert rep.lambda_min is not None and rep.lambda_min > 0
+
+
+def test_bad_input_names_the_field() -> None:
+    good = cantilever(10)
+    cases = []
+    bad = cantilever(10)
+    bad["rods"][0]["material"]["young"] = -1.0
+    cases.append((bad, "rods[0].material.young"))
+    bad = cantilever(10)
+    bad["rods"][0]["material"]["yuong"] = 1.0
+    cases.append((bad, "rods[0].material.yuong"))
+    bad = cantilever(10)
+    bad["rods"][0]["supports"][0]["vertex"] = 99
+    cases.append((bad, "rods[0].supports[0].vertex"))
+    bad = cantilever(10)
+    bad["gravity"] = [0.0, float("nan"), 0.0]
+    cases.append((bad, "gravity[1]"))
+    bad = cantilever(10)
+    bad["rods"][0]["section"]["diameter"] = 0.0
+    cases.append((bad, "rods[0].section"))
+    for scene, field in cases:
+        with pytest.raises(ValueError) as e:
+            slender.Session(scene)
+        assert field in str(e.value), (field, str(e.value))
+        assert isinstance(e.value, slender.SceneError)
+    with pytest.raises(ValueError, match=r"rods\[0\]\.centerline\.points"):
+        slender.rod_scene(np.zeros((4, 2)), section={"shape": "circle", "diameter": 0.01})
+    s = slender.Session(good)
+    with pytest.raises(ValueError, match="gravity"):
+        s.set_gravity([0.0, 0.0, float("inf")])
+    with pytest.raises(ValueError, match=r"supports\[5\]"):
+        s.move_support(0, 5, translation=[0.0, 0.0, 0.01])
+    with pytest.raises(ValueError, match="translation"):
+        s.move_support(0, 0, translation=[0.0, 0.01])
+    with pytest.raises(ValueError, match="kind"):
+        s.add_support(0, {"kind": "hook", "vertex": 3})
+    with pytest.raises(ValueError):
+        slender.load_scene(EXAMPLES / "scene.schema.json")
+
+
+def test_not_converged_is_reported_not_returned() -> None:
+    # A heavy tip load that one Newton iteration per step with tiny steps cannot reach.
+    scene = cantilever(20, force=200 * F)
+    scene["solver"] = {"max_iterations": 2, "min_load_step": 0.5}
+    with pytest.raises(slender.NotConvergedError) as e:
+        slender.solve(scene)
+    steps = e.value.results
+    assert not steps[0].converged
+    rep = steps[0].rods[0].reports[0]
+    assert not rep.converged and rep.reason
+    s = slender.Session(scene)
+    assert not s.results().converged
+    # An edit that does not converge keeps the last equilibrium and says so.
+    ok = slender.Session(cable_scene(40))
+    ok_before = ok.results().rods[0].positions
+    ok_scene = cable_scene(40)
+    ok_scene["solver"] = {"max_iterations": 1, "min_load_step": 0.5}
+    weak = slender.Session(ok_scene)
+    before = weak.results()
+    with pytest.raises(slender.NotConvergedError) as e:
+        weak.move_support(0, 1, translation=[-0.3, 0.2, 0.1])
+    assert not e.value.report.converged
+    after = weak.results()
+    assert np.array_equal(after.rods[0].positions, before.rods[0].positions)
+    rep = weak.move_support(0, 1, translation=[-0.3, 0.2, 0.1], check=False)
+    assert not rep.converged and rep.reason
+    assert ok_before.shape == (41, 3)
+
+
+def _drag(session: slender.Session, moves: int) -> np.ndarray:
+    for k in range(moves):
+        sign = 1.0 if k % 2 == 0 else -1.0
+        session.move_support(0, 1, translation=[0.0, 0.02 * sign, 0.01])
+    return session.results().rods[0].positions
+
+
+def test_two_threads_solve_at_once() -> None:
+    moves = 12
+    expected = [_drag(slender.Session(cable_scene(100, clips)), moves) for clips in [(), (50,)]]
+    sessions = [slender.Session(cable_scene(100, clips)) for clips in [(), (50,)]]
+    out: list = [None, None]
+    errors: list = []
+
+    def work(i: int) -> None:
+        try:
+            out[i] = _drag(sessions[i], moves)
+        except Exception as e:  # pragma: no cover - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+    for i in range(2):
+        # Same bits as the same edits made one thread at a time.
+        assert np.array_equal(out[i], expected[i])
+
+
+def test_panic_becomes_an_exception() -> None:
+    from slender import _slender
+
+    with pytest.raises(slender.SolverPanic, match="boom"):
+        _slender._panic_for_test("boom")
+    assert issubclass(slender.SolverPanic, RuntimeError)
+
+
+def test_incremental_edits() -> None:
+    s = slender.Session(cable_scene(40))
+    p0, _ = s.pose(0, 1)
+    rep = s.move_support(0, 1, translation=[-0.1, 0.0, 0.0])
+    assert rep.converged and rep.iterations > 0
+    p1, _ = s.pose(0, 1)
+    assert np.allclose(p1 - p0, [-0.1, 0.0, 0.0])
+    r = s.results()
+    assert np.allclose(r.rods[0].positions[-1], p1)
+    rep = s.add_support(0, {"kind": "clip", "at": 0.5})
+    assert rep.converged
+    assert len(s.results().rods[0].support_kinds) == 3
+    rep = s.remove_support(0, 2)
+    assert rep.converged
+    rep = s.set_gravity([0.0, 0.0, -2 * 9.81])
+    assert rep.converged
+    # Weight balance: the clamps carry the doubled weight (N).
+    rod = s.results().rods[0]
+    weight = 1400.0 * math.pi * 0.006**2 / 4 * 1.0 * 2 * 9.81
+    assert rod.support_forces[:, 2].sum() == pytest.approx(weight, rel=1e-9)
+    saved = s.saved()
+    assert slender.Session(saved).results().converged
+
+
+def test_master_curves_against_closed_forms() -> None:
+    # Small Γ: the linear beam under its weight, dy/L = Γ/8.
+    e = slender.heavy_elastica(1e-3, n=20)
+    assert e["dy"] == pytest.approx(1e-3 / 8, rel=1e-3)
+    assert e["shape"].shape == (21, 2) and e["shape"].dtype == np.float64
+    # The lateral-buckling narrow-strip limit 12.854 (1 - ν) sqrt(2 (1 + ν)); at w/L = 0.01
+    # the warping stiffness still raises it by 0.7 %.
+    nu = 0.35
+    g = slender.lateral_buckling_critical_gamma(0.01, nu, "vlasov_beam")
+    assert g == pytest.approx(12.854 * (1 - nu) * math.sqrt(2 * (1 + nu)), rel=1e-2)
+    assert g > 12.854 * (1 - nu) * math.sqrt(2 * (1 + nu))
+    rec = slender.cantilever_case(10.0, n_elements=20)
+    assert rec["converged"] and abs(rec["rel_error"]) < 1e-2
+    with pytest.raises(ValueError, match="material"):
+        slender.cantilever_case(10.0, material="steel")
+    with pytest.raises(ValueError, match="gamma"):
+        slender.heavy_elastica(-1.0)
