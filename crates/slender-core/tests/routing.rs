@@ -7,6 +7,9 @@ use nalgebra::Vector3;
 use slender_core::scene::spec::UnstablePolicy;
 use slender_core::scene::{Scene, Session};
 
+mod common;
+use common::{clamped_elastica_deflection, elliptic_ke};
+
 fn scene(text: &str) -> Scene {
     toml::from_str(text).expect("scene")
 }
@@ -21,44 +24,6 @@ material = { young = 3.0e9, poisson = 0.35, density = 1140.0 }
 elements = 40
 supports = [ { kind = "clamp", vertex = "start" }, { kind = "clamp", vertex = "end" } ]
 "#;
-
-/// Complete elliptic integrals K(m), E(m) of parameter m = k² by the arithmetic–geometric mean.
-fn elliptic_ke(m: f64) -> (f64, f64) {
-    let (mut a, mut b) = (1.0_f64, (1.0 - m).sqrt());
-    let mut c2_sum = 0.5 * m;
-    let mut pow = 0.5;
-    for _ in 0..40 {
-        let an = 0.5 * (a + b);
-        let bn = (a * b).sqrt();
-        let cn = 0.5 * (a - b);
-        pow *= 2.0;
-        c2_sum += pow * cn * cn;
-        a = an;
-        b = bn;
-    }
-    let k = std::f64::consts::FRAC_PI_2 / a;
-    (k, k * (1.0 - c2_sum))
-}
-
-/// Midspan deflection (m) of an inextensible clamped–clamped elastica of length `l` whose ends
-/// are brought `shortening` (m) closer: it is four quarter-waves of Euler's elastica, so with
-/// k = sin(α/2), shortening/l = 2(1 − E(k)/K(k)) and the midspan deflection is l·k/K(k)·… ;
-/// here deflection = 2 × the pinned elastica of length l/2, i.e. l·k/K(k).
-fn clamped_elastica_deflection(l: f64, shortening: f64) -> f64 {
-    let target = shortening / l;
-    let (mut lo, mut hi) = (1e-12_f64, 0.999_f64);
-    for _ in 0..200 {
-        let k = 0.5 * (lo + hi);
-        let (kk, ee) = elliptic_ke(k * k);
-        if 2.0 * (1.0 - ee / kk) < target {
-            lo = k;
-        } else {
-            hi = k;
-        }
-    }
-    let k = 0.5 * (lo + hi);
-    l * k / elliptic_ke(k * k).0
-}
 
 fn push(imperfection: f64) {
     let mut s = Session::new(scene(PUSH)).unwrap();

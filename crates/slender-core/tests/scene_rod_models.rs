@@ -7,28 +7,13 @@ use nalgebra::Vector3;
 use slender_core::scene::spec::{SupportKind, SupportSpec};
 use slender_core::scene::{Scene, Session};
 
+mod common;
+use common::{clamped_elastica_deflection, elliptic_ke};
+
 const SHEARABLE: [&str; 3] = ["cosserat", "cosserat_tan", "se3"];
 
 fn scene(text: &str) -> Scene {
     toml::from_str(text).expect("scene")
-}
-
-/// Complete elliptic integrals K(m), E(m) of parameter m = k² by the arithmetic–geometric mean.
-fn elliptic_ke(m: f64) -> (f64, f64) {
-    let (mut a, mut b) = (1.0_f64, (1.0 - m).sqrt());
-    let mut c2_sum = 0.5 * m;
-    let mut pow = 0.5;
-    for _ in 0..40 {
-        let an = 0.5 * (a + b);
-        let bn = (a * b).sqrt();
-        let cn = 0.5 * (a - b);
-        pow *= 2.0;
-        c2_sum += pow * cn * cn;
-        a = an;
-        b = bn;
-    }
-    let k = std::f64::consts::FRAC_PI_2 / a;
-    (k, k * (1.0 - c2_sum))
 }
 
 /// A clamped–free column (EI₁ = 1 N m², EI₂ = 2 N m²), 1 m along x, pushed at its tip by a
@@ -91,24 +76,6 @@ fn each_model_buckles_a_clamped_free_column_at_one_and_a_half_euler_loads_onto_t
         // The buckled plane is the soft one (EI₁ bends along m₁).
         assert!(res.rods[0].relative_force_imbalance < 1e-9);
     }
-}
-
-/// Midspan deflection (m) of an inextensible clamped–clamped elastica of length `l` whose ends
-/// are brought `shortening` (m) closer (four quarter-waves of Euler's elastica).
-fn clamped_elastica_deflection(l: f64, shortening: f64) -> f64 {
-    let target = shortening / l;
-    let (mut lo, mut hi) = (1e-12_f64, 0.999_f64);
-    for _ in 0..200 {
-        let k = 0.5 * (lo + hi);
-        let (kk, ee) = elliptic_ke(k * k);
-        if 2.0 * (1.0 - ee / kk) < target {
-            lo = k;
-        } else {
-            hi = k;
-        }
-    }
-    let k = 0.5 * (lo + hi);
-    l * k / elliptic_ke(k * k).0
 }
 
 /// A 1 m PMMA-like cable, d = 4 mm, clamped at both ends (shear stiffness from the section).
