@@ -330,3 +330,41 @@ supports = [ { kind = "clamp", vertex = "start" } ]
     let e = bad.unwrap_err().to_string();
     assert!(e.contains("timoshenko") && e.contains("cosserat"), "{e}");
 }
+
+#[test]
+fn a_move_to_a_pose_within_round_off_of_the_current_orientation_is_a_pure_translation() {
+    // The page sends the support's orientation back as it got it: R·R⁻¹ is the identity only
+    // to round-off, where `Rotation3::scaled_axis` may give NaN; the move must still converge.
+    use nalgebra::Rotation3;
+    use slender_core::scene::SupportPose;
+    for model in ["der", "cosserat", "se3"] {
+        let mut s = Session::new(scene(&sag_scene(model))).unwrap();
+        let turn = Rotation3::new(Vector3::new(0.3, -0.2, 0.7));
+        assert!(
+            s.move_support(
+                0,
+                0,
+                SupportPose {
+                    position: s.pose(0, 0).unwrap().position,
+                    rotation: turn,
+                }
+            )
+            .unwrap()
+            .converged
+        );
+        let cur = s.pose(0, 0).unwrap();
+        let noisy = Rotation3::new(Vector3::new(1e-17, 0.0, 0.0)) * cur.rotation;
+        let r = s
+            .move_support(
+                0,
+                0,
+                SupportPose {
+                    position: cur.position + Vector3::new(0.0, 0.01, 0.0),
+                    rotation: noisy,
+                },
+            )
+            .unwrap();
+        assert!(r.converged, "{model}: {r:?}");
+        assert!(r.relative_residual.is_finite());
+    }
+}

@@ -295,7 +295,7 @@ impl Session {
         {
             return Err(SceneError::new(path, "the target pose must be finite"));
         }
-        let rotation = (target.rotation * cur.rotation.inverse()).scaled_axis();
+        let rotation = rotation_vector(&(target.rotation * cur.rotation.inverse()));
         let translation = target.position - cur.position;
         let crod = &self.scene.rods[rod];
         let sup = crod.supports[support].clone();
@@ -880,7 +880,7 @@ impl Session {
         for (r, poses) in self.poses.iter().enumerate() {
             for (s, pose) in poses.iter().enumerate() {
                 let rest = self.rest_poses[r][s];
-                let rotation = (pose.rotation * rest.rotation.inverse()).scaled_axis();
+                let rotation = rotation_vector(&(pose.rotation * rest.rotation.inverse()));
                 let translation = pose.position - rest.position;
                 if rotation.norm() == 0.0 && translation.norm() == 0.0 {
                     continue;
@@ -905,6 +905,13 @@ impl Session {
         }
         spec
     }
+}
+
+/// The rotation vector (rad) of `r`, through its quaternion: `Rotation3::scaled_axis` can
+/// return NaN for a rotation within round-off of the identity (what a page sends when it keeps
+/// the orientation), and a NaN move would never converge.
+pub(crate) fn rotation_vector(r: &Rotation3<f64>) -> Vec3 {
+    nalgebra::UnitQuaternion::from_rotation_matrix(r).scaled_axis()
 }
 
 /// The rest poses of every support (vertex positions of the solved loaded scene are where

@@ -159,7 +159,10 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                         vertex: sup.vertex,
                         at: rod.node_arclengths[sup.vertex],
                         position: sup.position,
-                        rotation: pose.map_or([0.0; 3], |p| arr(p.rotation.scaled_axis())),
+                        rotation: pose.map_or([0.0; 3], |p| {
+                            arr(nalgebra::UnitQuaternion::from_rotation_matrix(&p.rotation)
+                                .scaled_axis())
+                        }),
                         force: sup.force,
                         moment: sup.moment,
                         axis: rod.supports[s].axis.map(arr),
