@@ -17,6 +17,7 @@
 
 pub mod assembly;
 pub mod bspline_shell;
+pub mod contact;
 pub mod cosserat;
 pub mod error;
 pub mod framed;
