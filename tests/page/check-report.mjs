@@ -6,7 +6,7 @@
 // Usage: node check-report.mjs REPORT_DIR [SCREENSHOT.png]
 // Chromium: $CHROMIUM or /usr/bin/chromium (Debian's package; .ci/run installs it).
 
-import { chromium } from "playwright-core";
+import { launchChromium } from "./chromium.mjs";
 import { readdirSync, statSync, existsSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { pathToFileURL } from "node:url";
@@ -27,20 +27,7 @@ for (const sub of readdirSync(dir)) {
   for (const f of readdirSync(p)) if (f.endsWith(".png")) expected.push(`${sub}/${f}`);
 }
 
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  headless: true,
-  // The machine has no network: background services of Chromium must stay quiet.
-  args: [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-  ],
-});
+const browser = await launchChromium();
 const problems = [];
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });

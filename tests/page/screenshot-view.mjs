@@ -1,7 +1,7 @@
 // The README's screenshot of `slender view` (assets/view.png): examples/clipped_cable.toml with
 // its end pin dragged, coloured by curvature, the pin selected.
 // Usage: node screenshot-view.mjs SLENDER_BINARY OUT.png
-import { chromium } from "playwright-core";
+import { launchChromium } from "./chromium.mjs";
 import { spawn } from "node:child_process";
 import { resolve, dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
@@ -13,9 +13,7 @@ const url = await new Promise((res) => {
   let buf = "";
   proc.stdout.on("data", (d) => { buf += d; const m = buf.match(/http:\/\/\S+/); if (m) res(m[0]); });
 });
-const browser = await chromium.launch({ executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium", headless: true,
-  args: ["--no-sandbox", "--disable-gpu", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-    "--disable-background-networking", "--disable-component-update", "--no-first-run"] });
+const browser = await launchChromium();
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 760 } });
   await page.goto(url);

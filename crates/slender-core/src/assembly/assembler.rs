@@ -183,20 +183,10 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             if let Some(ab) = self.abs_grad.as_deref_mut() {
                 ab[i] += g[a].abs();
             }
-            if let Some(hm) = self.hess.as_deref_mut() {
-                // Lower triangle of the stencil (b ≤ a): each unordered pair once.
-                for (b, &j) in stencil.iter().enumerate().take(a + 1) {
-                    if j == FIXED {
-                        continue;
-                    }
-                    let v = h[(a, b)];
-                    if i == j && a != b {
-                        hm.add(i, j, 2.0 * v);
-                    } else {
-                        hm.add(i, j, v);
-                    }
-                }
-            }
+        }
+        if let Some(hm) = self.hess.as_deref_mut() {
+            // Lower triangle of the stencil (b ≤ a): each unordered pair once.
+            hm.add_lower_block(stencil, |a, b| h[(a, b)]);
         }
     }
 
@@ -216,26 +206,21 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             let m = remap[i];
             (m.dof != FIXED).then_some(m)
         };
+        let mut dofs = [FIXED; D];
+        let mut coefs = [0.0; D];
         for a in 0..D {
             let Some(ma) = slot(a) else { continue };
             let i = ma.dof;
+            (dofs[a], coefs[a]) = (i, ma.coef);
             if let Some(gr) = self.grad.as_deref_mut() {
                 gr[i] += ma.coef * g[a];
             }
             if let Some(ab) = self.abs_grad.as_deref_mut() {
                 ab[i] += (ma.coef * g[a]).abs();
             }
-            if let Some(hm) = self.hess.as_deref_mut() {
-                for b in 0..=a {
-                    let Some(mb) = slot(b) else { continue };
-                    let v = ma.coef * mb.coef * h[(a, b)];
-                    if mb.dof == i && a != b {
-                        hm.add(i, i, 2.0 * v);
-                    } else {
-                        hm.add(i, mb.dof, v);
-                    }
-                }
-            }
+        }
+        if let Some(hm) = self.hess.as_deref_mut() {
+            hm.add_lower_block(&dofs, |a, b| coefs[a] * coefs[b] * h[(a, b)]);
         }
     }
 

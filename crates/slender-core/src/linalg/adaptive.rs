@@ -52,6 +52,18 @@ impl SymmetricMatrix for AdaptiveMatrix {
         }
     }
 
+    #[inline]
+    fn add_lower_block<const D: usize>(
+        &mut self,
+        dofs: &[usize; D],
+        value: impl Fn(usize, usize) -> f64,
+    ) {
+        match self {
+            Self::Band(m) => m.add_lower_block(dofs, value),
+            Self::Sparse(m) => m.add_lower_block(dofs, value),
+        }
+    }
+
     fn diagonal(&self, i: usize) -> f64 {
         match self {
             Self::Band(m) => SymmetricMatrix::diagonal(m, i),

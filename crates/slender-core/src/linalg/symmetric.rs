@@ -20,6 +20,35 @@ pub trait SymmetricMatrix: Clone + std::fmt::Debug {
     /// the matrix with NaN so that the next factorization fails).
     fn add(&mut self, i: usize, j: usize, v: f64);
 
+    /// Adds a term's local Hessian block: for every pair of slots b ≤ a of `dofs` that are
+    /// not [`FIXED`](crate::assembly::FIXED), `value(a, b)` to entry (dofs[a], dofs[b]) — twice
+    /// when two different slots name the same DOF (the pair (a, b) and its mirror (b, a) both
+    /// land on that diagonal). Storages override it to dispatch once per block instead of once
+    /// per entry; the additions happen in the same order either way (same bits).
+    #[inline]
+    fn add_lower_block<const D: usize>(
+        &mut self,
+        dofs: &[usize; D],
+        value: impl Fn(usize, usize) -> f64,
+    ) {
+        for (a, &i) in dofs.iter().enumerate() {
+            if i == crate::assembly::FIXED {
+                continue;
+            }
+            for (b, &j) in dofs.iter().enumerate().take(a + 1) {
+                if j == crate::assembly::FIXED {
+                    continue;
+                }
+                let v = value(a, b);
+                if i == j && a != b {
+                    self.add(i, j, 2.0 * v);
+                } else {
+                    self.add(i, j, v);
+                }
+            }
+        }
+    }
+
     /// Diagonal entry a_ii.
     fn diagonal(&self, i: usize) -> f64;
 

@@ -8,13 +8,15 @@
 //! predicts each step's start by extrapolating the last two converged states with the model's
 //! [`difference`](EquilibriumProblem::difference) (a log map on rotation DOFs).
 
-use crate::linalg::{SymmetricBandMatrix, SymmetricMatrix};
+use crate::linalg::{SymmetricBandMatrix, SymmetricFactor, SymmetricMatrix};
 
 use super::newton::{newton, IterateMeasures, NewtonWorkspace};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
 use super::report::{SolveReport, SolveStatus};
-use super::stability::{classify_modes, is_stable, lowest_mode_with, EigenWorkspace, LowestMode};
+use super::stability::{
+    classify_modes, is_stable, lowest_mode_with, null_band, EigenWorkspace, LowestMode, ModeCounts,
+};
 
 /// A state and the report that says what it is.
 #[derive(Clone, Debug)]
@@ -91,6 +93,10 @@ pub struct EquilibriumSolver<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     eigen: EigenWorkspace,
     mode: LowestMode,
     mode_valid: bool,
+    /// True when `ws.ldlt` holds the positive definite factorization of the Hessian at the
+    /// last converged solve's final state: the next solve's first predictor is then
+    /// corrected by a chord step with it (see [`Self::chord_step`]).
+    factor_at_equilibrium: bool,
 }
 
 impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
@@ -115,6 +121,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                 shape: Vec::with_capacity(n),
             },
             mode_valid: false,
+            factor_at_equilibrium: false,
         }
     }
 
@@ -175,6 +182,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         let mut bracketing = 0;
         let mut switches = 0;
         self.mode_valid = false;
+        let mut chord = std::mem::replace(&mut self.factor_at_equilibrium, false);
 
         // Span 0 (e.g. a warm re-solve at the same load): a single Newton solve.
         if span == 0.0 {
@@ -201,6 +209,9 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     load,
                     target,
                 );
+                if std::mem::take(&mut chord) && params.chord_predictor {
+                    self.chord_step(problem, target);
+                }
                 let mut out = newton(problem, &mut self.candidate, target, &params, &mut self.ws);
                 iterations += out.iterations;
                 if !out.converged
@@ -349,8 +360,18 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             )
             .is_ok();
         }
+        self.factor_at_equilibrium =
+            failure.is_none() && last.inertia.is_some_and(|i| i.is_positive_definite());
         let modes = if failure.is_none() && params.follow_stable {
-            classify_modes(problem, &self.ws.hess, &mut self.scaled, &mut self.ws.ldlt).map(|m| m.0)
+            if self.mode_valid && self.mode.value > null_band(problem, &self.ws.hess) {
+                // The lowest eigenvalue is above the null band: no unstable and no null mode,
+                // without the two shifted factorizations.
+                Some(ModeCounts::default())
+            } else {
+                self.factor_at_equilibrium = false;
+                classify_modes(problem, &self.ws.hess, &mut self.scaled, &mut self.ws.ldlt)
+                    .map(|m| m.0)
+            }
         } else {
             None
         };
@@ -447,6 +468,43 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                 self.candidate = start;
                 (None, its)
             }
+        }
+    }
+
+    /// Corrects the predictor in `self.candidate` by one chord step: the Newton step with the
+    /// factorization of the previous equilibrium's Hessian (no assembly of a new Hessian, no
+    /// new factorization), kept only if it lowers the energy. After a small change of the
+    /// loads (an interactive drag) it makes the start first-order accurate, which saves a
+    /// Newton iteration.
+    fn chord_step<P: EquilibriumProblem<State = S, Hessian = M>>(
+        &mut self,
+        problem: &P,
+        load: f64,
+    ) {
+        let n = problem.n_free();
+        let mut asm = crate::assembly::Assembler::<M>::new(
+            crate::assembly::TermSet::ALL,
+            Some(&mut self.ws.grad),
+            None,
+            None,
+        );
+        problem.assemble_selected(&self.candidate, load, &mut asm);
+        let info = asm.finish();
+        for i in 0..n {
+            self.predictor[i] = -self.ws.grad[i];
+        }
+        if self
+            .ws
+            .ldlt
+            .try_solve_in_place(&mut self.predictor)
+            .is_err()
+        {
+            return;
+        }
+        let alpha = problem.max_step(&self.candidate, &self.predictor).min(1.0);
+        problem.displace(&self.candidate, &self.predictor, alpha, &mut self.ws.trial);
+        if problem.energy(&self.ws.trial, load) < info.energy {
+            std::mem::swap(&mut self.candidate, &mut self.ws.trial);
         }
     }
 

@@ -101,6 +101,8 @@ const FLOOR_ACCEPT: f64 = 1e-6;
 
 /// Largest relative step (per DOF magnitude) still considered a change of the state.
 const TINY_STEP: f64 = 1e-13;
+/// Relative step (per DOF magnitude) at which a polishing step is rounding noise: 16 ε.
+const ROUNDOFF_STEP: f64 = 16.0 * f64::EPSILON;
 /// Smallest shift, relative to the largest ratio of Hessian diagonal to mass.
 const MIN_SHIFT: f64 = 1e-8;
 /// Largest shift before giving up, in the same relative units.
@@ -357,6 +359,13 @@ fn polish<P: EquilibriumProblem>(
     let steps = params.polish_iterations.unwrap_or(0);
     for _ in 0..steps {
         if last.inertia.is_none() {
+            return;
+        }
+        // A step of a few ulps of every DOF only moves the state by its rounding: the residual
+        // it reaches is round-off noise, not an improvement worth an assembly.
+        if (0..ws.dx.len())
+            .all(|i| ws.dx[i].abs() <= ROUNDOFF_STEP * problem.dof_magnitude(state, i))
+        {
             return;
         }
         problem.displace(state, &ws.dx, 1.0, &mut ws.trial);

@@ -56,6 +56,14 @@ pub struct SolverParams {
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub follow_stable: bool,
+    /// Correct the first predictor of a solve that starts where the previous one converged
+    /// (a warm re-solve after a small change: an interactive drag) by a chord step with the
+    /// previous equilibrium's factorization; it saves about one Newton iteration per edit.
+    /// Not part of the scene file: scene sessions turn it on; benchmarks keep it off (their
+    /// protocols' load paths stay exactly the published ones).
+    #[serde(skip)]
+    #[cfg_attr(feature = "schema", schemars(skip))]
+    pub chord_predictor: bool,
 }
 
 impl Default for SolverParams {
@@ -75,6 +83,7 @@ impl Default for SolverParams {
             snap_iterations: 300,
             polish_iterations: None,
             follow_stable: false,
+            chord_predictor: false,
         }
     }
 }

@@ -33,6 +33,14 @@ pub struct ModeCounts {
 /// known to about ε times the largest.
 const NULL_BAND: f64 = 1e4;
 
+/// τ (1/s²): eigenvalues of H v = λ M v within [−τ, τ] are zero to round-off.
+pub fn null_band<P: EquilibriumProblem>(problem: &P, hess: &P::Hessian) -> f64 {
+    let scale = (0..hess.dim())
+        .map(|i| hess.diagonal(i).abs() / problem.inertia_metric(i))
+        .fold(0.0, f64::max);
+    NULL_BAND * f64::EPSILON * scale
+}
+
 /// Counts the unstable and null modes of `hess` by the inertia of H ± τM (two factorizations
 /// in `scratch` and `ldlt`); returns them with τ (1/s²). `None` if a factorization fails.
 pub fn classify_modes<P: EquilibriumProblem>(
@@ -42,10 +50,7 @@ pub fn classify_modes<P: EquilibriumProblem>(
     ldlt: &mut <P::Hessian as SymmetricMatrix>::Factor,
 ) -> Option<(ModeCounts, f64)> {
     let n = hess.dim();
-    let scale = (0..n)
-        .map(|i| hess.diagonal(i).abs() / problem.inertia_metric(i))
-        .fold(0.0, f64::max);
-    let tau = NULL_BAND * f64::EPSILON * scale;
+    let tau = null_band(problem, hess);
     let mut count = |shift: f64| -> Option<usize> {
         scratch.clone_from(hess);
         for i in 0..n {
@@ -84,10 +89,17 @@ pub struct EigenWorkspace {
     inv_sqrt_m: Vec<f64>,
     v: [Vec<f64>; BLOCK],
     w: [Vec<f64>; BLOCK],
+    /// True when `v` holds the Ritz vectors of the last converged inverse iteration of this
+    /// size: a warm re-solve (an interactive drag) then starts from them and converges in two
+    /// or three sweeps instead of a dozen.
+    warm: bool,
 }
 
 impl EigenWorkspace {
     fn prepare<P: MassMetric>(&mut self, problem: &P, n: usize) {
+        if self.mass.len() != n {
+            self.warm = false;
+        }
         self.mass.resize(n, 0.0);
         self.inv_sqrt_m.resize(n, 0.0);
         for i in 0..n {
@@ -184,14 +196,29 @@ fn inverse_iteration<P: EquilibriumProblem>(
     if n < BLOCK {
         return false;
     }
-    let EigenWorkspace { mass, v, w, .. } = ws;
+    let EigenWorkspace {
+        mass, v, w, warm, ..
+    } = ws;
     // Deterministic starts with generic components (never orthogonal to a symmetric mode).
-    for (k, vk) in v.iter_mut().enumerate() {
+    // Warm: the two lowest Ritz vectors of the last call are kept, and the third slot gets the
+    // generic start again, so that a mode that has become the lowest since is still present
+    // in the block.
+    let first_generic = if *warm { BLOCK - 1 } else { 0 };
+    for (k, vk) in v.iter_mut().enumerate().skip(first_generic) {
         for (i, x) in vk.iter_mut().enumerate() {
             *x = 1.0 + ((i as f64 + 1.0) * (0.754_877_666 + 0.31 * k as f64)).fract();
         }
     }
     let m_dot = |a: &[f64], b: &[f64]| -> f64 { (0..n).map(|i| a[i] * mass[i] * b[i]).sum() };
+    // Kept vectors scaled to the generic one's M-norm (a well-conditioned projected pencil).
+    let target = m_dot(&v[BLOCK - 1], &v[BLOCK - 1]).sqrt();
+    for k in 0..first_generic {
+        let norm = m_dot(&v[k], &v[k]).sqrt();
+        if norm > 0.0 && norm.is_finite() {
+            v[k].iter_mut().for_each(|x| *x *= target / norm);
+        }
+    }
+    *warm = false;
     let mut rho_old = f64::INFINITY;
     for _ in 0..60 {
         for k in 0..BLOCK {
@@ -223,6 +250,7 @@ fn inverse_iteration<P: EquilibriumProblem>(
             return false;
         }
         if (rho - rho_old).abs() <= rel_tol * rho {
+            *warm = true;
             let norm = m_dot(&v[0], &v[0]).sqrt();
             mode.value = rho;
             mode.normalized = rho / problem.eigenvalue_scale();

@@ -142,6 +142,7 @@ impl Scene {
             .polish_iterations
             .get_or_insert(SCENE_POLISH_ITERATIONS);
         solver.follow_stable = self.unstable == UnstablePolicy::Follow;
+        solver.chord_predictor = true;
         Ok(CompiledScene {
             rods,
             structures,
