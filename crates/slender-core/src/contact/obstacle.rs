@@ -33,6 +33,11 @@ pub trait Obstacle: std::fmt::Debug + Send + Sync {
     /// because the rod's radius is small against the obstacle.
     fn surface(&self, p: &Vector3<f64>) -> SurfacePoint;
 
+    /// The largest α ∈ [0, 1] such that the whole segment p + [0, α]·dp keeps a distance of
+    /// at least `clearance` (m, ≥ 0) from the surface, given that p does (the step cap that
+    /// keeps a contact barrier's gaps positive; no tunnelling through thin parts).
+    fn time_of_impact(&self, p: &Vector3<f64>, dp: &Vector3<f64>, clearance: f64) -> f64;
+
     /// Coulomb friction coefficient μ ≥ 0 of this obstacle's surface (dimensionless; μ_s = μ_d).
     fn friction(&self) -> f64;
 

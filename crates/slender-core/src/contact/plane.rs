@@ -68,6 +68,17 @@ impl Obstacle for Plane {
         }
     }
 
+    fn time_of_impact(&self, p: &Vector3<f64>, dp: &Vector3<f64>, clearance: f64) -> f64 {
+        // The distance is linear along the segment.
+        let approach = -dp.dot(&self.normal);
+        let room = (p - self.point).dot(&self.normal) - clearance;
+        if approach <= room.max(0.0) {
+            1.0
+        } else {
+            (room / approach).max(0.0)
+        }
+    }
+
     fn friction(&self) -> f64 {
         self.friction
     }

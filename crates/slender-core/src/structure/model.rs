@@ -69,6 +69,20 @@ pub struct StructureContext<'a> {
 }
 
 impl Structure {
+    /// Where coordinate `k` of vertex `v` of member `m` goes among the structure's free DOFs
+    /// (global DOF and coefficient; the DOF is [`FIXED`] when a support holds it).
+    pub fn vertex_slot(&self, m: usize, v: usize, k: usize) -> crate::assembly::MapSlot {
+        let own = self.members[m].vertex_dof(v, k);
+        if own == FIXED {
+            crate::assembly::MapSlot {
+                dof: FIXED,
+                coef: 0.0,
+            }
+        } else {
+            self.dofs.maps[m][own]
+        }
+    }
+
     /// The members.
     pub fn members(&self) -> &[Member] {
         &self.members

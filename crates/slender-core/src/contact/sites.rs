@@ -1,0 +1,119 @@
+//! Contact sites: the points of a model that touch obstacles (its centerline vertices), where
+//! they are, which free DOFs move them, and how much centerline each stands for.
+
+use nalgebra::Vector3;
+
+use crate::assembly::{MapSlot, FIXED};
+use crate::rod::{Rod, RodState};
+use crate::solver::EquilibriumProblem;
+use crate::structure::{Structure, StructureState};
+
+/// Where one coordinate of a site goes among the free DOFs: the coordinate is `coef` × free
+/// DOF `dof` (plus a prescribed part), or held when `dof` is [`FIXED`].
+pub type SiteDof = MapSlot;
+
+/// One contact site: a centerline vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactSite {
+    /// Member of a structure (0 for a single rod).
+    pub member: usize,
+    /// Vertex of that member.
+    pub vertex: usize,
+    /// The free DOF and coefficient of each coordinate.
+    pub dofs: [SiteDof; 3],
+    /// Centerline length (m) the site stands for at rest (half of each adjacent edge): the
+    /// weight of its contact energy, so that the contact stiffness is per unit length and
+    /// does not depend on the mesh.
+    pub length: f64,
+}
+
+/// A model whose centerline vertices can touch obstacles.
+pub trait ContactSites: EquilibriumProblem {
+    /// Every site, once (a joint's vertex is one site).
+    fn contact_sites(&self) -> Vec<ContactSite>;
+    /// Position (m) of `site` in `state`.
+    fn site_position(&self, state: &Self::State, site: &ContactSite) -> Vector3<f64>;
+}
+
+/// Half of each rest edge next to vertex `v` of a polyline of rest edge lengths `lengths`
+/// (`closed`: the last edge joins the last vertex to the first).
+fn voronoi_length(lengths: &[f64], v: usize, closed: bool) -> f64 {
+    let n = lengths.len();
+    let left = if v > 0 {
+        lengths[v - 1]
+    } else if closed && n > 0 {
+        lengths[n - 1]
+    } else {
+        0.0
+    };
+    let right = if v < n { lengths[v] } else { 0.0 };
+    0.5 * (left + right)
+}
+
+fn edge_lengths(points: &[Vector3<f64>]) -> Vec<f64> {
+    points.windows(2).map(|w| (w[1] - w[0]).norm()).collect()
+}
+
+impl ContactSites for Rod {
+    fn contact_sites(&self) -> Vec<ContactSite> {
+        let n = self.rest_state().positions().len();
+        let closed = self.rest_lengths().len() == n;
+        (0..n)
+            .map(|v| ContactSite {
+                member: 0,
+                vertex: v,
+                dofs: std::array::from_fn(|c| {
+                    let dof = self.dofs().vertex(v, c);
+                    MapSlot {
+                        dof,
+                        coef: if dof == FIXED { 0.0 } else { 1.0 },
+                    }
+                }),
+                length: voronoi_length(self.rest_lengths(), v, closed),
+            })
+            .collect()
+    }
+
+    fn site_position(&self, state: &RodState, site: &ContactSite) -> Vector3<f64> {
+        state.positions()[site.vertex]
+    }
+}
+
+impl ContactSites for Structure {
+    fn contact_sites(&self) -> Vec<ContactSite> {
+        let rest = self.rest_state();
+        let lengths: Vec<Vec<f64>> = rest
+            .members
+            .iter()
+            .map(|m| edge_lengths(m.positions()))
+            .collect();
+        let mut sites = Vec::new();
+        for (m, member) in self.members().iter().enumerate() {
+            for v in 0..member.n_vertices() {
+                let group = self.joints().iter().find(|g| g.contains(&(m, v)));
+                if group.is_some_and(|g| g[0] != (m, v)) {
+                    continue; // a copy of a joint's vertex: the master stands for it
+                }
+                // A joint's vertex stands for the edges of every member meeting there.
+                let length = match group {
+                    Some(g) => g
+                        .iter()
+                        .map(|&(m2, v2)| voronoi_length(&lengths[m2], v2, false))
+                        .sum(),
+                    None => voronoi_length(&lengths[m], v, false),
+                };
+                sites.push(ContactSite {
+                    member: m,
+                    vertex: v,
+                    dofs: std::array::from_fn(|c| self.vertex_slot(m, v, c)),
+                    length,
+                });
+            }
+        }
+        sites
+    }
+
+    fn site_position(&self, state: &StructureState, site: &ContactSite) -> Vector3<f64> {
+        state.members[site.member].positions()[site.vertex]
+    }
+}

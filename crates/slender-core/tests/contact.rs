@@ -1,0 +1,358 @@
+//! Contact with rigid obstacles (`slender_core::contact`): exact derivatives of the barrier
+//! energy against finite differences, and equilibria against closed forms — a heavy cable
+//! clamped above the ground touches down where small-deflection beam theory says, a cable
+//! draped over a drum conforms to it — with no penetration and forces that balance the weight.
+
+use nalgebra::Vector3;
+use slender_core::assembly::TermSet;
+use slender_core::contact::{
+    ContactParams, ContactProblem, Cylinder, Obstacle, Plane, Sphere, CONTACT,
+};
+use slender_core::rod::{RestCurve, RodBuilder, RodProperties, SectionStiffness};
+use slender_core::solver::{EquilibriumProblem, EquilibriumSolver, SolverParams};
+use slender_core::testing::{check_derivatives, Rng};
+
+/// A cable of d = 6 mm, ρ = 1400 kg/m³ (q = 0.388 N/m) and Young's modulus `e` (Pa; 137 MPa
+/// gives EI = 8.7e-3 N m²); returns its properties and radius.
+fn cable_properties_with(e: f64) -> (RodProperties, f64) {
+    let d: f64 = 0.006;
+    let area = std::f64::consts::PI * d * d / 4.0;
+    let i = std::f64::consts::PI * d.powi(4) / 64.0;
+    let props = RodProperties {
+        stiffness: SectionStiffness::isotropic(e * area, e * i, e * i / 1.3),
+        linear_density: 1400.0 * area,
+    };
+    (props, d / 2.0)
+}
+
+fn cable_properties() -> (RodProperties, f64) {
+    cable_properties_with(1.37e8)
+}
+
+fn boxed(o: impl Obstacle + 'static) -> Box<dyn Obstacle> {
+    Box::new(o)
+}
+
+#[test]
+fn barrier_derivatives_match_finite_differences_for_every_obstacle() {
+    let props = RodProperties {
+        stiffness: SectionStiffness::isotropic(50.0, 1.3, 0.7),
+        linear_density: 0.9,
+    };
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        props,
+    )
+    .elements(8)
+    .clamp_start()
+    .gravity(Vector3::new(0.0, 0.0, -2.0))
+    .build()
+    .unwrap();
+    let mut rng = Rng(11);
+    let n = rod.n_free();
+    let dx: Vec<f64> = (0..n)
+        .map(|i| rng.uniform() * if rod.dofs().is_angle(i) { 0.3 } else { 0.004 })
+        .collect();
+    let mut state = rod.rest_state().clone();
+    rod.displace(&rod.rest_state().clone(), &dx, 1.0, &mut state);
+    // Every vertex within the activation distance of the plane and the ball, and of the drum
+    // all but the first three; none within a few perturbations of it (the barrier's third
+    // derivative jumps there, which would spoil the O(ε²) decay).
+    let obstacles = vec![
+        boxed(Plane::new(Vector3::new(0.0, 0.0, -0.03), Vector3::z(), 0.0).unwrap()),
+        boxed(Sphere::new(Vector3::new(0.5, 0.0, 0.07), 0.03, 0.0).unwrap()),
+        boxed(Cylinder::new(Vector3::new(0.8, 0.0, -0.06), Vector3::y(), 0.02, 0.0).unwrap()),
+    ];
+    let params = ContactParams {
+        radius: 0.01,
+        activation: 0.5,
+        stiffness: 3.0,
+    };
+    let problem = ContactProblem::new(&rod, obstacles, params, &state).unwrap();
+    let active = problem.contact_forces(&state).len();
+    assert!(
+        active >= 20,
+        "only {active} active contacts: the check would see little"
+    );
+    // Directions large enough that the finite-difference truncation error, not round-off,
+    // dominates at the largest ε (ε·scale ≤ 2e-4 m against gaps ≥ 1.6e-2 m).
+    let scale = |i: usize| if rod.dofs().is_angle(i) { 1.0 } else { 0.1 };
+    check_derivatives(
+        &problem,
+        &state,
+        1.0,
+        CONTACT.set(),
+        &mut rng,
+        scale,
+        "contact",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    check_derivatives(&problem, &state, 1.0, TermSet::ALL, &mut rng, scale, "all")
+        .unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn heavy_cable_touches_down_where_beam_theory_says() {
+    // Clamped horizontally at height h above the ground, a heavy cable lies on the ground
+    // beyond a suspended length a = (72 EI h / q)^(1/4) (small deflection: w = w' = w'' = 0 at
+    // touchdown); the clamp carries 2qa/3 of the weight and the ground the rest.
+    let (props, radius) = cable_properties();
+    let h = 0.005;
+    let (length, n) = (1.0, 200);
+    let g = 9.81;
+    let q = props.linear_density * g;
+    let ei = props.stiffness.ei1;
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0, 0.0, radius + h],
+            direction: [1.0, 0.0, 0.0],
+            length,
+        },
+        props,
+    )
+    .elements(n)
+    .clamp_start()
+    .gravity(Vector3::new(0.0, 0.0, -g))
+    .build()
+    .unwrap();
+    let activation = 1e-7;
+    let params = ContactParams::for_line_load(radius, activation, q);
+    let ground = boxed(Plane::new(Vector3::zeros(), Vector3::z(), 0.0).unwrap());
+    let rest = rod.rest_state().clone();
+    let problem = ContactProblem::new(&rod, vec![ground], params, &rest).unwrap();
+    let mut solver = EquilibriumSolver::new(&problem, &rest, SolverParams::default());
+    let solution = solver.solve(&problem, &rest, 0.0, 1.0);
+    assert!(solution.report.converged(), "{:?}", solution.report);
+    let state = &solution.state;
+    let gap = problem.min_gap(state);
+    assert!(
+        gap > 0.0 && gap < activation,
+        "min gap {gap:e}: penetration or no contact"
+    );
+    let forces = problem.contact_forces(state);
+    let ground_force: f64 = forces.iter().map(|f| f.force.z).sum();
+    let weight = q * length;
+    let a = (72.0 * ei * (h - 0.5 * activation) / q).powf(0.25);
+    let expected = weight - 2.0 * q * a / 3.0;
+    let rel = (ground_force - expected) / weight;
+    println!(
+        "touchdown: a = {a:.4} m, ground force {ground_force:.6} N vs {expected:.6} N (rel. to weight {rel:.2e}), min gap {gap:.2e} m"
+    );
+    assert!(
+        rel.abs() < 5e-3,
+        "ground force off by {rel:e} of the weight"
+    );
+    // The first vertex that the ground carries (half its weight or more; vertices just
+    // before touchdown sit within ĝ too, since the cable comes down like (a − x)³) is within
+    // two elements of the touchdown point.
+    let vertex_weight = q * length / n as f64;
+    let first = forces
+        .iter()
+        .filter(|f| f.force.z >= 0.5 * vertex_weight)
+        .map(|f| problem.sites()[f.site].vertex)
+        .min()
+        .unwrap();
+    // Resolution: two elements, plus the span over which the cable comes within ĝ of the
+    // ground before touchdown, w ≈ (qa/18EI)(a − x)³ < ĝ.
+    let s_touch = first as f64 * length / n as f64;
+    let fuzz = (18.0 * ei * activation / (q * a)).cbrt();
+    assert!(
+        (s_touch - a).abs() <= 2.0 * length / n as f64 + fuzz,
+        "touchdown at s = {s_touch} vs a = {a} (± {fuzz})"
+    );
+    // Every force balances: clamp + ground + weight = 0.
+    let clamp: Vector3<f64> = rod.reactions(state, 1.0).iter().map(|r| r.force).sum();
+    let balance = clamp + Vector3::new(0.0, 0.0, ground_force - weight);
+    assert!(
+        balance.norm() <= 1e-6 * weight,
+        "forces do not balance: {balance:?} (clamp {clamp:?})"
+    );
+}
+
+#[test]
+fn heavy_cable_draped_over_a_drum_wraps_it_without_penetrating() {
+    // Clamped horizontally 2 cm above the top of a drum half-way along it, a heavy, limp
+    // cable (qL²/EI ≈ 450) comes down on the drum and hangs over it: the half beyond the drum
+    // bends it more sharply than the drum's curvature, so it wraps the drum along an arc,
+    // lies on the drum's surface there within ĝ, never inside, and the clamp and the drum
+    // carry its weight.
+    let (props, radius) = cable_properties_with(1.37e7);
+    let (length, n) = (1.0, 100);
+    let g = 9.81;
+    let q = props.linear_density * g;
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0, 0.0, 0.0],
+            direction: [1.0, 0.0, 0.0],
+            length,
+        },
+        props,
+    )
+    .elements(n)
+    .clamp_start()
+    .gravity(Vector3::new(0.0, 0.0, -g))
+    .build()
+    .unwrap();
+    let drum_radius = 0.1;
+    let centre = Vector3::new(0.5, 0.0, -0.02 - radius - drum_radius);
+    let drum = boxed(Cylinder::new(centre, Vector3::y(), drum_radius, 0.0).unwrap());
+    let activation = 1e-6;
+    let params = ContactParams::for_line_load(radius, activation, q);
+    let rest = rod.rest_state().clone();
+    let problem = ContactProblem::new(&rod, vec![drum], params, &rest).unwrap();
+    let mut solver = EquilibriumSolver::new(&problem, &rest, SolverParams::default());
+    let solution = solver.solve(&problem, &rest, 0.0, 1.0);
+    assert!(solution.report.converged(), "{:?}", solution.report);
+    let state = &solution.state;
+    let gap = problem.min_gap(state);
+    assert!(gap > 0.0 && gap < activation, "min gap {gap:e}");
+    let forces = problem.contact_forces(state);
+    let carried: Vec<_> = forces
+        .iter()
+        .filter(|f| f.force.norm() > 1e-3 * q)
+        .collect();
+    assert!(
+        carried.len() >= 5,
+        "{} contacts: not wrapped",
+        carried.len()
+    );
+    // Touching vertices lie on the drum's surface offset by the radius, within ĝ.
+    for f in &forces {
+        let p = state.positions()[problem.sites()[f.site].vertex];
+        let d = ((p - centre) - Vector3::y() * (p - centre).y).norm() - drum_radius - radius;
+        assert!(
+            d > 0.0 && d < activation,
+            "vertex at {d:e} from the surface"
+        );
+    }
+    // The wrapped arc: from near the top of the drum down its far side.
+    let angle = |f: &&slender_core::contact::ContactForce| f.normal.z.atan2(f.normal.x);
+    let (a0, a1) = carried
+        .iter()
+        .map(angle)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| {
+            (lo.min(a), hi.max(a))
+        });
+    // Forces balance.
+    let weight = q * length;
+    let contact: Vector3<f64> = forces.iter().map(|f| f.force).sum();
+    let clamps: Vector3<f64> = rod.reactions(state, 1.0).iter().map(|r| r.force).sum();
+    let balance = contact + clamps - Vector3::new(0.0, 0.0, weight);
+    println!(
+        "drape: {} contacts carrying load, on the drum from {:.1}° to {:.1}° (from +x), drum force {:?} N of weight {weight:.5} N, min gap {gap:.2e} m, balance {:.2e} N",
+        carried.len(),
+        a0.to_degrees(),
+        a1.to_degrees(),
+        contact,
+        balance.norm()
+    );
+    assert!(a1 - a0 > 0.2, "wrap angle {} rad", a1 - a0);
+    assert!(balance.norm() <= 1e-6 * weight, "{balance:?}");
+    // Frictionless: every contact force is along the drum's normal (no tangential part).
+    for f in &forces {
+        assert!(f.force.cross(&f.normal).norm() <= 1e-12 * f.force.norm());
+    }
+}
+
+#[test]
+fn bad_input_names_the_field() {
+    let (props, radius) = cable_properties();
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        props,
+    )
+    .elements(10)
+    .clamp_start()
+    .build()
+    .unwrap();
+    let rest = rod.rest_state().clone();
+    let plane = || boxed(Plane::new(Vector3::new(0.0, 0.0, -0.1), Vector3::z(), 0.0).unwrap());
+    let ok = ContactParams {
+        radius,
+        activation: 1e-4,
+        stiffness: 1.0,
+    };
+    for (params, field) in [
+        (
+            ContactParams {
+                activation: 0.0,
+                ..ok
+            },
+            "activation",
+        ),
+        (
+            ContactParams {
+                stiffness: f64::NAN,
+                ..ok
+            },
+            "stiffness",
+        ),
+        (ContactParams { radius: -1.0, ..ok }, "radius"),
+    ] {
+        let e = ContactProblem::new(&rod, vec![plane()], params, &rest).unwrap_err();
+        assert!(e.to_string().contains(field), "{e}");
+    }
+    // The cable starting inside an obstacle is refused, naming it.
+    let inside = boxed(Sphere::new(Vector3::new(0.5, 0.0, 0.0), 0.05, 0.0).unwrap());
+    let e = ContactProblem::new(&rod, vec![plane(), inside], ok, &rest).unwrap_err();
+    assert!(e.to_string().contains("obstacles[1]"), "{e}");
+    // Obstacles refuse bad shapes and friction.
+    assert!(Sphere::new(Vector3::zeros(), 0.0, 0.1)
+        .unwrap_err()
+        .to_string()
+        .contains("radius"));
+    assert!(Cylinder::new(Vector3::zeros(), Vector3::zeros(), 1.0, 0.1)
+        .unwrap_err()
+        .to_string()
+        .contains("axis"));
+    assert!(Cylinder::new(Vector3::zeros(), Vector3::x(), 1.0, -0.5)
+        .unwrap_err()
+        .to_string()
+        .contains("friction"));
+}
+
+#[test]
+fn steps_stop_short_of_every_obstacle() {
+    // The time of impact of each shape against a closed form.
+    let plane = Plane::new(Vector3::zeros(), Vector3::z(), 0.0).unwrap();
+    let p = Vector3::new(0.0, 0.0, 1.0);
+    assert_eq!(
+        plane.time_of_impact(&p, &Vector3::new(3.0, 0.0, -4.0), 0.2),
+        0.2
+    );
+    assert_eq!(
+        plane.time_of_impact(&p, &Vector3::new(0.0, 0.0, -0.5), 0.2),
+        1.0
+    );
+    assert_eq!(
+        plane.time_of_impact(&p, &Vector3::new(0.0, 0.0, 5.0), 0.2),
+        1.0
+    );
+    let ball = Sphere::new(Vector3::zeros(), 1.0, 0.0).unwrap();
+    let from = Vector3::new(-3.0, 0.0, 0.0);
+    let t = ball.time_of_impact(&from, &Vector3::new(4.0, 0.0, 0.0), 0.5);
+    assert!((t - 1.5 / 4.0).abs() < 1e-15, "{t}");
+    // A chord passing outside the inflated ball is free.
+    let t = ball.time_of_impact(
+        &Vector3::new(-3.0, 2.0, 0.0),
+        &Vector3::new(6.0, 0.0, 0.0),
+        0.5,
+    );
+    assert_eq!(t, 1.0);
+    let drum = Cylinder::new(Vector3::zeros(), Vector3::y(), 1.0, 0.0).unwrap();
+    // Motion along the axis never hits; across it, at the inflated radius.
+    assert_eq!(
+        drum.time_of_impact(&from, &Vector3::new(0.0, 9.0, 0.0), 0.0),
+        1.0
+    );
+    let t = drum.time_of_impact(&from, &Vector3::new(4.0, 7.0, 0.0), 0.0);
+    assert!((t - 0.5).abs() < 1e-15, "{t}");
+}
