@@ -30,7 +30,7 @@ use super::scheme::Scheme;
 /// is not (a buckled state), so a step rarely needs the solver's shift.
 ///
 /// `difference`, `displace`, `chart`, step caps and scales are the model's.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct IncrementalProblem<'m, P: FlatDofs> {
     model: &'m P,
     scheme: Scheme,

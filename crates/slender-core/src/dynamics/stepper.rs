@@ -14,7 +14,9 @@ use super::report::StepReport;
 ///
 /// Supports stay where the initial state has them (the load path is not driven), and loads
 /// act at the constant load factor `params.load`. A step whose Newton solve fails leaves
-/// state, velocity and time unchanged and says why in its report.
+/// state, velocity and time unchanged and says why in its report (a smaller `dt`, see
+/// [`Self::set_dt`], is the usual remedy).
+#[derive(Clone)]
 pub struct TimeStepper<'m, P: FlatDofs> {
     problem: IncrementalProblem<'m, P>,
     params: DynamicsParams,
