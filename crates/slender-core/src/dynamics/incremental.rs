@@ -64,7 +64,12 @@ impl<'m, P: FlatDofs> IncrementalProblem<'m, P> {
     /// (m/s, rad/s), mass `mass` (the diagonal, kg or kg m²), Rayleigh damping α (1/s) and
     /// β (s), and a `quadrature_points`-point average for the energy-conserving scheme.
     /// Inputs are not checked here ([`TimeStepper::new`](super::TimeStepper::new) checks
-    /// them); `restart` is the stepper's.
+    /// them). Call [`Self::restart`] before use when β > 0 (it computes ∇E(xₙ)).
+    ///
+    /// # Panics
+    ///
+    /// If the scheme is energy-conserving and `quadrature_points` is not in
+    /// 1..=[`MAX_QUADRATURE_POINTS`](super::quadrature::MAX_QUADRATURE_POINTS).
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         model: &'m P,
