@@ -1,4 +1,4 @@
-//! The lumped (diagonal) mass of a model's free DOFs, taken from its [`MassMetric`].
+//! The lumped (diagonal) mass of a model's free DOFs, taken from its [`MassMetric`](crate::solver::MassMetric).
 //!
 //! The models already attach an inertia to every DOF for their eigenvalue problems; dynamics
 //! reuses it, so that the natural frequencies of the linearized equations of motion are the

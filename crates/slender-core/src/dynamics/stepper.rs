@@ -33,7 +33,7 @@ pub struct TimeStepper<'m, P: FlatDofs> {
 
 impl<'m, P: FlatDofs> TimeStepper<'m, P> {
     /// A stepper starting at `state` with free-DOF velocity `velocity` (m/s for coordinates,
-    /// rad/s for angles; length [`EquilibriumProblem::n_free`]) at time 0.
+    /// rad/s for angles; length [`EquilibriumProblem::n_free`](crate::solver::EquilibriumProblem::n_free)) at time 0.
     ///
     /// Errors name the field: `dt`, `rayleigh_mass`, `rayleigh_stiffness`, `load`, a solver
     /// tolerance, `velocity` (wrong length or not finite), `inertia_metric[i]` (a DOF without
