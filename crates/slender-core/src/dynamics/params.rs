@@ -15,6 +15,9 @@ pub struct DynamicsParams {
     pub scheme: Scheme,
     /// Gauss–Legendre nodes of the energy-conserving scheme's average force, in
     /// 1..=5 (1 is the implicit midpoint rule). Default 3. Unused by the other schemes.
+    /// Each node is one assembly per Newton iteration. Measured on a released 20-element
+    /// cantilever (Γ ≈ 61, 1000 steps of 2 ms), max |E − E₀| / max kinetic energy:
+    /// q = 1: 0.63, 2: 1.1e-4, 3: 1.3e-7, 4: 3.7e-10.
     pub quadrature_points: usize,
     /// Mass-proportional Rayleigh damping α (1/s): damping force α M v. Finite and ≥ 0.
     /// Default 0.
