@@ -19,6 +19,7 @@ pub mod assembly;
 pub mod bspline_shell;
 pub mod contact;
 pub mod cosserat;
+pub mod dynamics;
 pub mod error;
 pub mod framed;
 pub mod geometry;

@@ -36,6 +36,12 @@ pub struct Assembler<'o, M: SymmetricMatrix> {
     /// For a part of a larger system: the global DOF and coefficient of each of the part's
     /// own free DOFs (see [`Self::part`]).
     remap: Option<&'o [MapSlot]>,
+    /// Factor on everything added (energies, loads, derivatives): 1 except in a
+    /// [`Self::rescaled`] assembly (e.g. stiffness-proportional damping scales the energy).
+    weight: f64,
+    /// Scale of the chart the derivatives are taken in: gradients are multiplied by it and
+    /// Hessians by its square (1 except in a [`Self::rescaled`] assembly).
+    chart_scale: f64,
 }
 
 /// Where one free DOF of a part (a member of a composite structure) goes in the whole: the
@@ -75,6 +81,8 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             abs_grad,
             info: AssemblyInfo::default(),
             remap: None,
+            weight: 1.0,
+            chart_scale: 1.0,
         }
     }
 
@@ -90,6 +98,27 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             abs_grad: self.abs_grad.as_deref_mut(),
             info: AssemblyInfo::default(),
             remap: Some(remap),
+            weight: self.weight,
+            chart_scale: self.chart_scale,
+        }
+    }
+
+    /// An assembler into this one's outputs (not zeroed again) for the energy `weight`·E(z)
+    /// of a state z that moves by `chart_scale` per unit of the caller's chart (z = x ⊕ c·dx):
+    /// energies and loads are multiplied by `weight`, gradients by `weight`·c and Hessians by
+    /// `weight`·c². E.g. (1 + β/τ)·E for stiffness-proportional damping (c = 1), or a
+    /// quadrature node E(xₙ + s d)/s of an average along a step (c = s). Add its measures back
+    /// with [`Self::absorb`] (they are weighted already).
+    pub fn rescaled<'r>(&'r mut self, weight: f64, chart_scale: f64) -> Assembler<'r, M> {
+        Assembler {
+            selection: self.selection,
+            grad: self.grad.as_deref_mut(),
+            hess: self.hess.as_deref_mut(),
+            abs_grad: self.abs_grad.as_deref_mut(),
+            info: AssemblyInfo::default(),
+            remap: self.remap,
+            weight: self.weight * weight,
+            chart_scale: self.chart_scale * chart_scale,
         }
     }
 
@@ -167,8 +196,10 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         g: &SVector<f64, D>,
         h: &SMatrix<f64, D, D>,
     ) {
-        self.info.energy += energy;
-        self.info.energy_magnitude += magnitude;
+        // Factors of 1 multiply exactly: plain assemblies are bit-for-bit unchanged.
+        let (w, gw, hw) = self.factors();
+        self.info.energy += w * energy;
+        self.info.energy_magnitude += w.abs() * magnitude;
         if let Some(remap) = self.remap {
             self.scatter_mapped(stencil, remap, g, h);
             return;
@@ -178,15 +209,15 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
                 continue;
             }
             if let Some(gr) = self.grad.as_deref_mut() {
-                gr[i] += g[a];
+                gr[i] += gw * g[a];
             }
             if let Some(ab) = self.abs_grad.as_deref_mut() {
-                ab[i] += g[a].abs();
+                ab[i] += (gw * g[a]).abs();
             }
         }
         if let Some(hm) = self.hess.as_deref_mut() {
             // Lower triangle of the stencil (b ≤ a): each unordered pair once.
-            hm.add_lower_block(stencil, |a, b| h[(a, b)]);
+            hm.add_lower_block(stencil, |a, b| hw * h[(a, b)]);
         }
     }
 
@@ -198,6 +229,7 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         g: &SVector<f64, D>,
         h: &SMatrix<f64, D, D>,
     ) {
+        let (_, gw, hw) = self.factors();
         let slot = |a: usize| -> Option<MapSlot> {
             let i = stencil[a];
             if i == FIXED {
@@ -213,14 +245,14 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             let i = ma.dof;
             (dofs[a], coefs[a]) = (i, ma.coef);
             if let Some(gr) = self.grad.as_deref_mut() {
-                gr[i] += ma.coef * g[a];
+                gr[i] += gw * ma.coef * g[a];
             }
             if let Some(ab) = self.abs_grad.as_deref_mut() {
-                ab[i] += (ma.coef * g[a]).abs();
+                ab[i] += (gw * ma.coef * g[a]).abs();
             }
         }
         if let Some(hm) = self.hess.as_deref_mut() {
-            hm.add_lower_block(&dofs, |a, b| coefs[a] * coefs[b] * h[(a, b)]);
+            hm.add_lower_block(&dofs, |a, b| hw * coefs[a] * coefs[b] * h[(a, b)]);
         }
     }
 
@@ -228,6 +260,8 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
     /// the energy falls by it. `max_force` (N; moments count as force × length) updates the
     /// largest external nodal force, the scale of the force convergence test.
     pub fn load(&mut self, work: f64, max_force: f64) {
+        let (w, gw, _) = self.factors();
+        let (work, max_force) = (w * work, gw.abs() * max_force);
         self.info.energy -= work;
         self.info.energy_magnitude += work.abs();
         self.info.external_work += work;
@@ -250,6 +284,7 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             }
             None => (dof, force),
         };
+        let force = self.weight * self.chart_scale * force;
         if let Some(gr) = self.grad.as_deref_mut() {
             gr[dof] -= force;
         }
@@ -261,6 +296,7 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
     /// Adds a potential energy (J) that is part of the external loads (e.g. an absolute
     /// gravity potential) without its derivatives; see [`Self::generalized_force`].
     pub fn external_energy(&mut self, energy: f64, work: f64) {
+        let (energy, work) = (self.weight * energy, self.weight * work);
         self.info.energy += energy;
         self.info.energy_magnitude += energy.abs();
         self.info.external_work += work;
@@ -268,7 +304,15 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
 
     /// Raises the largest external nodal force (N) to at least `force`.
     pub fn external_force(&mut self, force: f64) {
-        self.info.external_force = self.info.external_force.max(force);
+        let gw = self.weight * self.chart_scale;
+        self.info.external_force = self.info.external_force.max(gw.abs() * force);
+    }
+
+    /// The factors on energies, gradients and Hessians (see [`Self::rescaled`]).
+    fn factors(&self) -> (f64, f64, f64) {
+        let w = self.weight;
+        let c = self.chart_scale;
+        (w, w * c, w * c * c)
     }
 
     /// The scalar measures of the assembly.

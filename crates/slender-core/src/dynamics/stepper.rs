@@ -1,0 +1,189 @@
+//! The time stepper: state, velocity and time, advanced one implicit step at a time.
+
+use crate::error::ModelError;
+use crate::solver::{newton, NewtonWorkspace};
+
+use super::energy::MechanicalEnergy;
+use super::flat::FlatDofs;
+use super::incremental::IncrementalProblem;
+use super::mass::LumpedMass;
+use super::params::DynamicsParams;
+use super::report::StepReport;
+
+/// Integrates the motion of `model` in time (see the module docs for the schemes).
+///
+/// Supports stay where the initial state has them (the load path is not driven), and loads
+/// act at the constant load factor `params.load`. A step whose Newton solve fails leaves
+/// state, velocity and time unchanged and says why in its report (a smaller `dt`, see
+/// [`Self::set_dt`], is the usual remedy).
+#[derive(Clone)]
+pub struct TimeStepper<'m, P: FlatDofs> {
+    problem: IncrementalProblem<'m, P>,
+    params: DynamicsParams,
+    mass: LumpedMass,
+    state: P::State,
+    velocity: Vec<f64>,
+    time: f64,
+    /// The Newton iterate (the stage y).
+    stage: P::State,
+    /// y ⊖ xₙ of the last step.
+    increment: Vec<f64>,
+    ws: NewtonWorkspace<P::State, P::Hessian>,
+}
+
+impl<'m, P: FlatDofs> TimeStepper<'m, P> {
+    /// A stepper starting at `state` with free-DOF velocity `velocity` (m/s for coordinates,
+    /// rad/s for angles; length [`EquilibriumProblem::n_free`](crate::solver::EquilibriumProblem::n_free)) at time 0.
+    ///
+    /// Errors name the field: `dt`, `rayleigh_mass`, `rayleigh_stiffness`, `load`, a solver
+    /// tolerance, `velocity` (wrong length or not finite), `inertia_metric[i]` (a DOF without
+    /// mass) or `model` (DOFs on a rotation group, see [`FlatDofs`]).
+    pub fn new(
+        model: &'m P,
+        state: P::State,
+        velocity: Vec<f64>,
+        params: DynamicsParams,
+    ) -> Result<Self, ModelError> {
+        params.validate()?;
+        if !model.has_flat_dofs() {
+            return Err(ModelError::structure(
+                "model",
+                "time stepping needs flat DOFs (discrete elastic rods); this model has \
+                 rotation DOFs",
+            ));
+        }
+        let n = model.n_free();
+        if velocity.len() != n {
+            return Err(ModelError::structure(
+                "velocity",
+                format!(
+                    "has {} entries, the model has {n} free DOFs",
+                    velocity.len()
+                ),
+            ));
+        }
+        if let Some((i, &v)) = velocity.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(ModelError::parameter(
+                format!("velocity[{i}]"),
+                v,
+                "finite (m/s or rad/s)",
+            ));
+        }
+        let mass = LumpedMass::of(model)?;
+        let mut problem = IncrementalProblem::new(
+            model,
+            params.scheme,
+            state.clone(),
+            velocity.clone(),
+            mass.diagonal().to_vec(),
+            params.dt,
+            (params.rayleigh_mass, params.rayleigh_stiffness),
+            params.quadrature_points,
+        );
+        problem.restart(&state, &velocity, params.load);
+        let ws = NewtonWorkspace::new(&problem, &state);
+        Ok(Self {
+            problem,
+            params,
+            mass,
+            stage: state.clone(),
+            state,
+            velocity,
+            time: 0.0,
+            increment: vec![0.0; n],
+            ws,
+        })
+    }
+
+    /// A stepper starting at rest at `state`.
+    pub fn at_rest(
+        model: &'m P,
+        state: P::State,
+        params: DynamicsParams,
+    ) -> Result<Self, ModelError> {
+        let n = model.n_free();
+        Self::new(model, state, vec![0.0; n], params)
+    }
+
+    /// The current state.
+    pub fn state(&self) -> &P::State {
+        &self.state
+    }
+
+    /// The current free-DOF velocity (m/s, rad/s).
+    pub fn velocity(&self) -> &[f64] {
+        &self.velocity
+    }
+
+    /// The current time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &DynamicsParams {
+        &self.params
+    }
+
+    /// The mass matrix (diagonal).
+    pub fn mass(&self) -> &LumpedMass {
+        &self.mass
+    }
+
+    /// Changes the time step (s) for the following steps; errors (field `dt`) unless finite
+    /// and > 0.
+    pub fn set_dt(&mut self, dt: f64) -> Result<(), ModelError> {
+        DynamicsParams { dt, ..self.params }.validate()?;
+        self.params.dt = dt;
+        self.problem.set_dt(dt);
+        Ok(())
+    }
+
+    /// Kinetic and potential energy (J) of the current state and velocity.
+    pub fn energy(&self) -> MechanicalEnergy {
+        MechanicalEnergy {
+            kinetic: self.mass.kinetic_energy(&self.velocity),
+            potential: self.problem.model().energy(&self.state, self.params.load),
+        }
+    }
+
+    /// Advances by one time step: solves the scheme's equation by Newton from the inertial
+    /// target xₙ ⊕ (stage·vₙ), then forms x_{n+1} and v_{n+1} by the scheme.
+    pub fn step(&mut self) -> StepReport {
+        let model = self.problem.model();
+        let tau = self.problem.stage();
+        model.displace(&self.state, &self.velocity, tau, &mut self.stage);
+        let outcome = newton(
+            &self.problem,
+            &mut self.stage,
+            self.params.load,
+            &self.params.solver,
+            &mut self.ws,
+        );
+        if !outcome.converged {
+            return StepReport {
+                converged: false,
+                iterations: outcome.iterations,
+                residual: outcome.last.residual,
+                time: self.time,
+                failure: outcome.failure,
+            };
+        }
+        self.problem.finish_step(
+            &self.stage,
+            &mut self.increment,
+            &mut self.velocity,
+            &mut self.state,
+        );
+        self.time += self.params.dt;
+        self.problem
+            .restart(&self.state, &self.velocity, self.params.load);
+        StepReport {
+            converged: true,
+            iterations: outcome.iterations,
+            residual: outcome.last.residual,
+            time: self.time,
+            failure: None,
+        }
+    }
+}
