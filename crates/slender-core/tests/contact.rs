@@ -71,6 +71,7 @@ fn barrier_derivatives_match_finite_differences_for_every_obstacle() {
         radius: 0.01,
         activation: 0.5,
         stiffness: 3.0,
+        stick_stiffness: 5.0,
     };
     let problem = ContactProblem::new(&rod, obstacles, params, &state).unwrap();
     let active = problem.contact_forces(&state).len();
@@ -279,6 +280,7 @@ fn bad_input_names_the_field() {
         radius,
         activation: 1e-4,
         stiffness: 1.0,
+        stick_stiffness: 1.0,
     };
     for (params, field) in [
         (

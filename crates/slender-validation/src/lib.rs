@@ -14,3 +14,4 @@ pub mod numerics;
 pub mod ode;
 pub mod rod_model;
 pub mod shell_model;
+pub mod stick_slip;

@@ -9,6 +9,8 @@
 
 pub mod barrier;
 pub mod cylinder;
+pub mod friction;
+pub mod frictional_step;
 pub mod obstacle;
 pub mod plane;
 pub mod problem;
@@ -16,9 +18,11 @@ pub mod sites;
 pub mod sphere;
 
 pub use cylinder::Cylinder;
+pub use friction::{Friction, FrictionUpdate};
+pub use frictional_step::step_with_friction;
 pub use obstacle::{Obstacle, SurfacePoint};
 pub use plane::Plane;
-pub use problem::{ContactForce, ContactParams, ContactProblem, CONTACT};
+pub use problem::{ContactForce, ContactParams, ContactProblem, CONTACT, FRICTION};
 pub use sites::{ContactSite, ContactSites, SiteDof};
 pub use sphere::Sphere;
 

@@ -10,8 +10,12 @@
 //! energy of a penetration, so no gap ever closes: contacts rest within the activation
 //! distance ĝ of the surface, which is the stated position tolerance of the contact.
 //!
-//! Contacts here are frictionless; each contact's normal force is reported
-//! ([`ContactProblem::contact_forces`]).
+//! Dry Coulomb friction ([`friction`](super::friction)) adds, per contact, a tangential anchor
+//! while it sticks or the kinetic force while it slides; [`ContactProblem::update_friction`]
+//! is the active-set step between solves. Each contact's normal and friction force is
+//! reported ([`ContactProblem::contact_forces`]).
+
+use std::cell::RefCell;
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -21,6 +25,7 @@ use crate::solver::{EquilibriumProblem, MassMetric};
 use crate::ModelError;
 
 use super::barrier::barrier;
+use super::friction::{Friction, FrictionUpdate};
 use super::obstacle::Obstacle;
 use super::sites::{ContactSite, ContactSites};
 
@@ -28,6 +33,12 @@ use super::sites::{ContactSite, ContactSites};
 pub const CONTACT: TermGroup = TermGroup {
     bit: 31,
     name: "contact",
+};
+
+/// The term group of the friction terms (anchors of sticking contacts, forces of sliding ones).
+pub const FRICTION: TermGroup = TermGroup {
+    bit: 30,
+    name: "friction",
 };
 
 /// Fraction of a site's gap that a step must leave open.
@@ -45,6 +56,10 @@ pub struct ContactParams {
     /// rests it at the gap where −κ b′(g) = q (about ĝ/2 for κ = q/(1.19 ĝ); see
     /// [`Self::for_line_load`]). Larger loads only close the gap further, never through.
     pub stiffness: f64,
+    /// Stiffness k_t (N/m², > 0) per unit length of the anchor that holds a sticking contact
+    /// tangentially: at the friction limit μ q it deflects by μ q / k_t (a bounded elastic
+    /// deflection, never a creep).
+    pub stick_stiffness: f64,
 }
 
 impl ContactParams {
@@ -57,6 +72,9 @@ impl ContactParams {
             radius,
             activation,
             stiffness: line_load / slope,
+            // The tangential deflection at the friction limit, μ q / k_t, stays below
+            // μ · 10⁻⁴ ĝ: far below the normal position tolerance.
+            stick_stiffness: line_load / (1e-4 * activation),
         }
     }
 
@@ -65,6 +83,7 @@ impl ContactParams {
         require_non_negative("radius", self.radius)?;
         require_positive("activation", self.activation)?;
         require_positive("stiffness", self.stiffness)?;
+        require_positive("stick_stiffness", self.stick_stiffness)?;
         Ok(())
     }
 }
@@ -80,8 +99,13 @@ pub struct ContactForce {
     pub gap: f64,
     /// Outward unit normal of the surface at the contact.
     pub normal: Vector3<f64>,
-    /// Force on the structure (N): the normal force, along `normal`.
+    /// Normal force on the structure (N), along `normal`.
     pub force: Vector3<f64>,
+    /// Friction force on the structure (N), tangential: the anchor's pull while sticking,
+    /// the kinetic force while sliding, zero on a frictionless surface.
+    pub friction: Vector3<f64>,
+    /// True while the contact sticks.
+    pub sticking: bool,
 }
 
 /// `model` in contact with `obstacles` (see the module docs).
@@ -92,6 +116,10 @@ pub struct ContactProblem<'m, P: ContactSites> {
     params: ContactParams,
     sites: Vec<ContactSite>,
     groups: Vec<TermGroup>,
+    /// Per (site, obstacle) pair, at index site·n_obstacles + obstacle: what friction does
+    /// there. Changed between solves only ([`Self::update_friction`]), through a shared
+    /// reference so that a time stepper holding the problem can update it.
+    friction: RefCell<Vec<Friction>>,
 }
 
 impl<'m, P: ContactSites> ContactProblem<'m, P> {
@@ -127,15 +155,108 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                 }
             }
         }
+        if model.term_groups().iter().any(|g| g.bit == FRICTION.bit) {
+            return Err(ModelError::structure(
+                "obstacles",
+                "the model already uses the friction term group's bit",
+            ));
+        }
         let mut groups = model.term_groups().to_vec();
         groups.push(CONTACT);
+        groups.push(FRICTION);
+        let pairs = sites.len() * obstacles.len();
         Ok(Self {
             model,
             obstacles,
             params,
             sites,
             groups,
+            friction: RefCell::new(vec![Friction::Free; pairs]),
         })
+    }
+
+    /// The friction state of the contact of site `site` with obstacle `obstacle`.
+    pub fn friction(&self, site: usize, obstacle: usize) -> Friction {
+        self.friction.borrow()[site * self.obstacles.len() + obstacle]
+    }
+
+    /// Normal gap (m), outward normal and normal force (N, ≥ 0) of a site at `p` against
+    /// obstacle `o`, with `length` (m) the centerline the site stands for.
+    fn normal_contact(&self, p: &Vector3<f64>, o: usize, length: f64) -> (f64, Vector3<f64>, f64) {
+        let s = self.obstacles[o].surface(p);
+        let gap = s.distance - self.params.radius;
+        let force = if gap < self.params.activation {
+            -self.params.stiffness * length * barrier(gap, self.params.activation).1
+        } else {
+            0.0
+        };
+        (gap, s.normal, force)
+    }
+
+    /// The active-set step of Coulomb friction at `state`, an equilibrium (or time step)
+    /// solved with the current friction set; `previous` is the state before that solve (to
+    /// detect slides that stopped). A contact on a rough surface starts to stick where it is;
+    /// a sticking contact whose anchor pulls harder than μ f_n slides against μ f_n along
+    /// that pull; a sliding contact whose slip since `previous` runs against its friction
+    /// force no more (it stopped or reversed) sticks again; a contact that opened is freed.
+    /// Sliding forces are refreshed to μ times the current normal force. When the update says
+    /// [`changed`](FrictionUpdate::changed), solve again from `previous`.
+    pub fn update_friction(&self, state: &P::State, previous: Option<&P::State>) -> FrictionUpdate {
+        let mut update = FrictionUpdate::default();
+        let mut friction = self.friction.borrow_mut();
+        let n_obstacles = self.obstacles.len();
+        for (k, site) in self.sites.iter().enumerate() {
+            let x = self.model.site_position(state, site);
+            for o in 0..n_obstacles {
+                let slot = &mut friction[k * n_obstacles + o];
+                let mu = self.obstacles[o].friction();
+                let (_, normal, f_n) = self.normal_contact(&x, o, site.length);
+                if f_n <= 0.0 || mu == 0.0 {
+                    if *slot != Friction::Free {
+                        update.released += 1;
+                        *slot = Friction::Free;
+                    }
+                    continue;
+                }
+                let limit = mu * f_n;
+                *slot = match *slot {
+                    Friction::Free => {
+                        update.stuck += 1;
+                        Friction::Stick { anchor: x, normal }
+                    }
+                    stick @ Friction::Stick { .. } => {
+                        let pull = stick.force(&x, site.length, self.params.stick_stiffness);
+                        let magnitude = pull.norm();
+                        if magnitude > limit {
+                            update.slipped += 1;
+                            Friction::Slide {
+                                force: pull * (limit / magnitude),
+                            }
+                        } else {
+                            stick
+                        }
+                    }
+                    Friction::Slide { force } => {
+                        let direction = force.normalize();
+                        let slip = previous.map_or(Vector3::zeros(), |p| {
+                            let d = x - self.model.site_position(p, site);
+                            d - normal * normal.dot(&d)
+                        });
+                        if previous.is_some() && slip.dot(&direction) >= 0.0 {
+                            // Kinetic friction opposes the slip: a slip along the force means
+                            // the contact stopped (or reversed) within the solve.
+                            update.stuck += 1;
+                            Friction::Stick { anchor: x, normal }
+                        } else {
+                            Friction::Slide {
+                                force: direction * limit,
+                            }
+                        }
+                    }
+                };
+            }
+        }
+        update
     }
 
     /// The model.
@@ -163,12 +284,15 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                 let gap = s.distance - self.params.radius;
                 if gap < self.params.activation {
                     let (_, slope, _) = barrier(gap, self.params.activation);
+                    let friction = self.friction(k, o);
                     out.push(ContactForce {
                         site: k,
                         obstacle: o,
                         gap,
                         normal: s.normal,
                         force: s.normal * (-self.params.stiffness * site.length * slope),
+                        friction: friction.force(&p, site.length, self.params.stick_stiffness),
+                        sticking: matches!(friction, Friction::Stick { .. }),
                     });
                 }
             }
@@ -188,17 +312,24 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         g
     }
 
-    /// The contact energy (J) of `state`.
+    /// The contact and friction energy (J) of `state`.
     fn contact_energy(&self, state: &P::State) -> f64 {
         let mut e = 0.0;
-        for site in &self.sites {
+        let friction = self.friction.borrow();
+        for (k, site) in self.sites.iter().enumerate() {
             let p = self.model.site_position(state, site);
-            for obstacle in &self.obstacles {
+            for (o, obstacle) in self.obstacles.iter().enumerate() {
                 let gap = obstacle.surface(&p).distance - self.params.radius;
                 if gap < self.params.activation {
                     e += self.params.stiffness
                         * site.length
                         * barrier(gap, self.params.activation).0;
+                }
+                let f = friction[k * self.obstacles.len() + o];
+                if let Some((energy, _, _)) =
+                    f.derivatives(&p, site.length, self.params.stick_stiffness)
+                {
+                    e += energy;
                 }
             }
         }
@@ -239,6 +370,23 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
         asm: &mut Assembler<'_, M>,
     ) {
         self.model.assemble_selected(state, load, asm);
+        if asm.selects(FRICTION) {
+            let friction = self.friction.borrow();
+            for (k, site) in self.sites.iter().enumerate() {
+                let p = self.model.site_position(state, site);
+                for o in 0..self.obstacles.len() {
+                    let f = friction[k * self.obstacles.len() + o];
+                    if let Some((energy, grad, hess)) =
+                        f.derivatives(&p, site.length, self.params.stick_stiffness)
+                    {
+                        let mut part = asm.part(&site.dofs);
+                        part.local(&[0, 1, 2], energy, energy.abs(), &grad, &hess);
+                        let info = part.finish();
+                        asm.absorb(info);
+                    }
+                }
+            }
+        }
         if !asm.selects(CONTACT) {
             return;
         }
@@ -317,5 +465,13 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
 
     fn dof_magnitude(&self, state: &P::State, i: usize) -> f64 {
         self.model.dof_magnitude(state, i)
+    }
+}
+
+impl<P: ContactSites + crate::dynamics::FlatDofs> crate::dynamics::FlatDofs
+    for ContactProblem<'_, P>
+{
+    fn has_flat_dofs(&self) -> bool {
+        self.model.has_flat_dofs()
     }
 }

@@ -30,7 +30,7 @@ use super::scheme::Scheme;
 /// is not (a buckled state), so a step rarely needs the solver's shift.
 ///
 /// `difference`, `displace`, `chart`, step caps and scales are the model's.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct IncrementalProblem<'m, P: FlatDofs> {
     model: &'m P,
     scheme: Scheme,
@@ -48,6 +48,27 @@ pub struct IncrementalProblem<'m, P: FlatDofs> {
     scratch: RefCell<(Vec<f64>, Vec<f64>)>,
     /// The states xₙ ⊕ s d at the quadrature nodes.
     nodes: RefCell<Vec<P::State>>,
+}
+
+// By hand: the derive would ask `P: Clone`, and the model is only borrowed (a problem
+// holding obstacles is not cloneable, its steppers are).
+impl<P: FlatDofs> Clone for IncrementalProblem<'_, P> {
+    fn clone(&self) -> Self {
+        Self {
+            model: self.model,
+            scheme: self.scheme,
+            start: self.start.clone(),
+            velocity: self.velocity.clone(),
+            mass: self.mass.clone(),
+            dt: self.dt,
+            rayleigh_mass: self.rayleigh_mass,
+            rayleigh_stiffness: self.rayleigh_stiffness,
+            rule: self.rule.clone(),
+            start_gradient: self.start_gradient.clone(),
+            scratch: self.scratch.clone(),
+            nodes: self.nodes.clone(),
+        }
+    }
 }
 
 /// The scheme-dependent coefficients of Π (see [`IncrementalProblem`]).

@@ -16,7 +16,6 @@ use super::report::StepReport;
 /// act at the constant load factor `params.load`. A step whose Newton solve fails leaves
 /// state, velocity and time unchanged and says why in its report (a smaller `dt`, see
 /// [`Self::set_dt`], is the usual remedy).
-#[derive(Clone)]
 pub struct TimeStepper<'m, P: FlatDofs> {
     problem: IncrementalProblem<'m, P>,
     params: DynamicsParams,
@@ -29,6 +28,23 @@ pub struct TimeStepper<'m, P: FlatDofs> {
     /// y ⊖ xₙ of the last step.
     increment: Vec<f64>,
     ws: NewtonWorkspace<P::State, P::Hessian>,
+}
+
+// By hand: the derive would ask `P: Clone`, and the model is only borrowed.
+impl<P: FlatDofs> Clone for TimeStepper<'_, P> {
+    fn clone(&self) -> Self {
+        Self {
+            problem: self.problem.clone(),
+            params: self.params,
+            mass: self.mass.clone(),
+            state: self.state.clone(),
+            velocity: self.velocity.clone(),
+            time: self.time,
+            stage: self.stage.clone(),
+            increment: self.increment.clone(),
+            ws: self.ws.clone(),
+        }
+    }
 }
 
 impl<'m, P: FlatDofs> TimeStepper<'m, P> {

@@ -1,0 +1,47 @@
+//! One implicit time step with Coulomb friction: the step is solved with the current
+//! stick/slide set, the set is updated from the result ([`ContactProblem::update_friction`]),
+//! and while a contact changed between sticking and sliding the step is solved again from
+//! its start with the new set — so every accepted step satisfies Coulomb's law at its end.
+
+use crate::dynamics::{FlatDofs, StepReport, TimeStepper};
+
+use super::problem::ContactProblem;
+use super::sites::ContactSites;
+
+/// Times a step may be re-solved with a new stick/slide set before it is reported as failed.
+const MAX_SET_CHANGES: usize = 8;
+
+/// Advances `stepper` (stepping `problem`) by one step with friction (see the module docs).
+/// A step whose stick/slide set does not settle is reported as not converged, and the
+/// stepper is left at the step's start.
+pub fn step_with_friction<P: ContactSites + FlatDofs>(
+    stepper: &mut TimeStepper<'_, ContactProblem<'_, P>>,
+    problem: &ContactProblem<'_, P>,
+) -> StepReport {
+    let start = stepper.clone();
+    let mut iterations = 0;
+    for _ in 0..=MAX_SET_CHANGES {
+        let mut report = stepper.step();
+        iterations += report.iterations;
+        report.iterations = iterations;
+        if !report.converged {
+            *stepper = start;
+            return report;
+        }
+        let update = problem.update_friction(stepper.state(), Some(start.state()));
+        if !update.changed() {
+            return report;
+        }
+        *stepper = start.clone();
+    }
+    *stepper = start;
+    StepReport {
+        converged: false,
+        iterations,
+        residual: f64::NAN,
+        time: stepper.time(),
+        failure: Some(format!(
+            "the stick/slide set of the contacts did not settle in {MAX_SET_CHANGES} re-solves"
+        )),
+    }
+}
