@@ -72,6 +72,7 @@ fn barrier_derivatives_match_finite_differences_for_every_obstacle() {
         activation: 0.5,
         stiffness: 3.0,
         stick_stiffness: 5.0,
+        self_contact: false,
     };
     let problem = ContactProblem::new(&rod, obstacles, params, &state).unwrap();
     let active = problem.contact_forces(&state).len();
@@ -281,6 +282,7 @@ fn bad_input_names_the_field() {
         activation: 1e-4,
         stiffness: 1.0,
         stick_stiffness: 1.0,
+        self_contact: false,
     };
     for (params, field) in [
         (
@@ -357,4 +359,159 @@ fn steps_stop_short_of_every_obstacle() {
     );
     let t = drum.time_of_impact(&from, &Vector3::new(4.0, 7.0, 0.0), 0.0);
     assert!((t - 0.5).abs() < 1e-15, "{t}");
+}
+
+#[test]
+fn coil_pressed_against_itself_stops_at_its_solid_length() {
+    // A steel coil spring (wire d = 2 mm, coil diameter 40 mm, pitch 5 mm, 3 turns; spring
+    // rate G d⁴/(8 D³ n) ≈ 800 N/m) clamped at one end and pushed along its axis at the other
+    // by 10 N, which shortens the free spring by ≈ 19 mm (it also tilts): its coils close
+    // (3 mm per turn, 9 mm in all) and press on each other instead, touching without crossing.
+    // (At 20 N the continuation stalls at 57 % of the load: the conservative step cap of
+    // sliding coils, see `ContactProblem::max_step`, allows only small steps.)
+    let d = 0.002;
+    let r = 0.5 * d;
+    let section = slender_core::rod::CrossSection::Circle { diameter: d };
+    let material = slender_core::rod::Material {
+        young: 2.0e11,
+        poisson: 0.3,
+        density: 7800.0,
+    };
+    let props = section.properties(&material).unwrap();
+    let (turns, pitch, coil_radius) = (3.0, 0.005, 0.02);
+    let length = turns * (2.0 * std::f64::consts::PI * coil_radius).hypot(pitch);
+    let force = 10.0;
+    let build = |self_contact: bool| {
+        let rod = RodBuilder::new(
+            RestCurve::Helix {
+                start: [coil_radius, 0.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+                normal: [1.0, 0.0, 0.0],
+                radius: coil_radius,
+                pitch,
+                length,
+            },
+            props,
+        )
+        .elements(90)
+        .clamp_start()
+        .point_force(90, Vector3::new(0.0, 0.0, -force))
+        .build()
+        .unwrap();
+        (rod, self_contact)
+    };
+    let (rod, _) = build(true);
+    let activation = 1e-5;
+    let params = ContactParams {
+        radius: r,
+        activation,
+        stiffness: force / activation,
+        stick_stiffness: 1.0,
+        self_contact: true,
+    };
+    let rest = rod.rest_state().clone();
+    let problem = ContactProblem::new(&rod, vec![], params, &rest).unwrap();
+    let mut solver = EquilibriumSolver::new(&problem, &rest, SolverParams::default());
+    let solution = solver.solve(&problem, &rest, 0.0, 1.0);
+    assert!(solution.report.converged(), "{:?}", solution.report);
+    let state = &solution.state;
+    let gap = problem.min_self_gap(state);
+    let contacts = problem.self_contact_forces(state);
+    let end = state.positions()[90] - rest.positions()[90];
+    println!(
+        "coil: {} edge pairs in contact, min gap {gap:.3e} m, end moved {:.3} mm along the axis, largest pair force {:.3} N",
+        contacts.len(),
+        end.z * 1e3,
+        contacts.iter().map(|c| c.3).fold(0.0, f64::max)
+    );
+    assert!(
+        gap > 0.0 && gap < activation,
+        "min gap {gap:e}: crossing or no contact"
+    );
+    assert!(contacts.len() >= 10, "{} pairs in contact", contacts.len());
+    let closure = turns * (pitch - d);
+    assert!(
+        -end.z < closure + 2e-3 && -end.z > 0.5 * closure,
+        "end moved {} m along the axis; the coils close by {closure} m",
+        -end.z
+    );
+    // Without self-contact the same load pushes the coils through each other.
+    let free = ContactProblem::new(
+        &rod,
+        vec![],
+        ContactParams {
+            self_contact: false,
+            ..params
+        },
+        &rest,
+    )
+    .unwrap();
+    let mut solver = EquilibriumSolver::new(&free, &rest, SolverParams::default());
+    let through = solver.solve(&free, &rest, 0.0, 1.0);
+    let z = through.state.positions()[90].z - rest.positions()[90].z;
+    assert!(
+        -z > closure + 5e-3,
+        "without self-contact the end moved only {} m",
+        -z
+    );
+}
+
+#[test]
+fn self_contact_derivatives_match_finite_differences() {
+    // A coil whose neighbouring turns are within the activation distance: edge–edge pairs
+    // (crossing and near-parallel, mollified) and vertex–edge pairs all active.
+    let props = RodProperties {
+        stiffness: SectionStiffness::isotropic(50.0, 1.3, 0.7),
+        linear_density: 0.9,
+    };
+    let rod = RodBuilder::new(
+        RestCurve::Helix {
+            start: [0.1, 0.0, 0.0],
+            axis: [0.0, 0.0, 1.0],
+            normal: [1.0, 0.0, 0.0],
+            radius: 0.1,
+            pitch: 0.03,
+            length: 2.2 * std::f64::consts::PI * 0.1,
+        },
+        props,
+    )
+    .elements(24)
+    .clamp_start()
+    .build()
+    .unwrap();
+    let mut rng = Rng(5);
+    let n = rod.n_free();
+    let dx: Vec<f64> = (0..n)
+        .map(|i| rng.uniform() * if rod.dofs().is_angle(i) { 0.2 } else { 0.002 })
+        .collect();
+    let mut state = rod.rest_state().clone();
+    rod.displace(&rod.rest_state().clone(), &dx, 1.0, &mut state);
+    let params = ContactParams {
+        radius: 0.005,
+        activation: 0.04,
+        stiffness: 2.0,
+        stick_stiffness: 1.0,
+        self_contact: true,
+    };
+    let problem = ContactProblem::new(&rod, vec![], params, &state).unwrap();
+    let active = problem.self_contact_forces(&state).len();
+    assert!(active >= 10, "{active} active primitives");
+    let scale = |i: usize| if rod.dofs().is_angle(i) { 1.0 } else { 0.05 };
+    check_derivatives(
+        &problem,
+        &state,
+        1.0,
+        CONTACT.set(),
+        &mut rng,
+        scale,
+        "self-contact",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    // Starting with turns closer than twice the radius is refused.
+    let tight = ContactParams {
+        radius: 0.02,
+        ..params
+    };
+    let e = ContactProblem::new(&rod, vec![], tight, &state).unwrap_err();
+    assert!(e.to_string().contains("self_contact"), "{e}");
 }

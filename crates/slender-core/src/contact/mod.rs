@@ -8,12 +8,14 @@
 //! [`EquilibriumProblem`](crate::solver::EquilibriumProblem) for the unchanged solver.
 
 pub mod barrier;
+pub mod broad_phase;
 pub mod cylinder;
 pub mod friction;
 pub mod frictional_step;
 pub mod obstacle;
 pub mod plane;
 pub mod problem;
+pub mod segment_distance;
 pub mod sites;
 pub mod sphere;
 
@@ -23,7 +25,7 @@ pub use frictional_step::step_with_friction;
 pub use obstacle::{Obstacle, SurfacePoint};
 pub use plane::Plane;
 pub use problem::{ContactForce, ContactParams, ContactProblem, CONTACT, FRICTION};
-pub use sites::{ContactSite, ContactSites, SiteDof};
+pub use sites::{ContactEdge, ContactSite, ContactSites, SiteDof};
 pub use sphere::Sphere;
 
 use nalgebra::Vector3;

@@ -21,13 +21,19 @@ use nalgebra::{Matrix3, Vector3};
 
 use crate::assembly::{Assembler, TermGroup};
 use crate::error::{require_non_negative, require_positive};
+use crate::linalg::{AdaptiveMatrix, SparseSymmetricMatrix};
 use crate::solver::{EquilibriumProblem, MassMetric};
 use crate::ModelError;
 
 use super::barrier::barrier;
+use super::broad_phase::{overlapping_pairs, Aabb, SweepBuffers};
 use super::friction::{Friction, FrictionUpdate};
 use super::obstacle::Obstacle;
-use super::sites::{ContactSite, ContactSites};
+use super::segment_distance::{
+    edge_edge_mollifier, point_segment_distance_squared, segment_distance_squared,
+};
+use super::sites::{ContactSite, ContactSites, SiteDof};
+use crate::shell::dual::Dual2;
 
 /// The term group of the contact energy (the top bit, which no model uses).
 pub const CONTACT: TermGroup = TermGroup {
@@ -60,6 +66,11 @@ pub struct ContactParams {
     /// tangentially: at the friction limit μ q it deflects by μ q / k_t (a bounded elastic
     /// deflection, never a creep).
     pub stick_stiffness: f64,
+    /// Contact of the structure's centerline edges with each other (self-contact of a coil,
+    /// cable against cable): segment–segment distances against twice the radius, with the
+    /// same barrier. Edges closer along the same member than π r (which no bend of a cable of
+    /// radius r brings into contact) are not paired.
+    pub self_contact: bool,
 }
 
 impl ContactParams {
@@ -75,6 +86,7 @@ impl ContactParams {
             // The tangential deflection at the friction limit, μ q / k_t, stays below
             // μ · 10⁻⁴ ĝ: far below the normal position tolerance.
             stick_stiffness: line_load / (1e-4 * activation),
+            self_contact: false,
         }
     }
 
@@ -120,6 +132,88 @@ pub struct ContactProblem<'m, P: ContactSites> {
     /// there. Changed between solves only ([`Self::update_friction`]), through a shared
     /// reference so that a time stepper holding the problem can update it.
     friction: RefCell<Vec<Friction>>,
+    /// Centerline edges for self-contact (empty without it).
+    edges: Vec<EdgeSites>,
+    /// Edge pairs that never interact (neighbours along a member, or sharing a site), sorted.
+    excluded: Vec<(usize, usize)>,
+    /// Per site: its member and rest arc length (m) along it.
+    site_arcs: Vec<(usize, f64)>,
+    scratch: RefCell<SelfScratch>,
+}
+
+/// An edge of the structure as two sites.
+#[derive(Clone, Copy, Debug)]
+struct EdgeSites {
+    sites: [usize; 2],
+    /// Rest length (m).
+    length: f64,
+    /// Member and rest arc length (m) of its ends along it.
+    member: usize,
+    arc: [f64; 2],
+}
+
+/// One self-contact primitive with its coordinates.
+enum Primitive {
+    /// Edges `a` and `b`: a₀, a₁, b₀, b₁.
+    EdgeEdge { a: usize, b: usize, x: [f64; 12] },
+    /// Site `v` against edge `e`: p, e₀, e₁.
+    VertexEdge { v: usize, e: usize, x: [f64; 9] },
+}
+
+impl Primitive {
+    /// Surface gap (m): distance minus twice the radius `radius`.
+    fn gap(&self, radius: f64) -> f64 {
+        let d2 = match self {
+            Primitive::EdgeEdge { x, .. } => segment_distance_squared(x).v,
+            Primitive::VertexEdge { x, .. } => point_segment_distance_squared(x).v,
+        };
+        d2.sqrt() - 2.0 * radius
+    }
+
+    /// The sites of each side.
+    fn sides<P: ContactSites>(&self, problem: &ContactProblem<'_, P>) -> [Vec<usize>; 2] {
+        match *self {
+            Primitive::EdgeEdge { a, b, .. } => [
+                problem.edges[a].sites.to_vec(),
+                problem.edges[b].sites.to_vec(),
+            ],
+            Primitive::VertexEdge { v, e, .. } => [vec![v], problem.edges[e].sites.to_vec()],
+        }
+    }
+
+    /// The first site of each side.
+    fn first_sites<P: ContactSites>(&self, problem: &ContactProblem<'_, P>) -> (usize, usize) {
+        match *self {
+            Primitive::EdgeEdge { a, b, .. } => {
+                (problem.edges[a].sites[0], problem.edges[b].sites[0])
+            }
+            Primitive::VertexEdge { v, e, .. } => (v, problem.edges[e].sites[0]),
+        }
+    }
+
+    /// An edge of each side (for messages): the vertex's own first edge for a vertex.
+    fn edges<P: ContactSites>(&self, problem: &ContactProblem<'_, P>) -> (usize, usize) {
+        match *self {
+            Primitive::EdgeEdge { a, b, .. } => (a, b),
+            Primitive::VertexEdge { v, e, .. } => (
+                problem
+                    .edges
+                    .iter()
+                    .position(|edge| edge.sites.contains(&v))
+                    .unwrap_or(e),
+                e,
+            ),
+        }
+    }
+}
+
+/// Buffers of the self-contact broad phase (no allocation per assembly once grown).
+#[derive(Clone, Debug, Default)]
+struct SelfScratch {
+    boxes: Vec<Aabb>,
+    sweep: SweepBuffers,
+    pairs: Vec<(usize, usize)>,
+    vertex_edges: Vec<(usize, usize)>,
 }
 
 impl<'m, P: ContactSites> ContactProblem<'m, P> {
@@ -165,14 +259,210 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         groups.push(CONTACT);
         groups.push(FRICTION);
         let pairs = sites.len() * obstacles.len();
-        Ok(Self {
+        let (edges, excluded, site_arcs) = if params.self_contact {
+            self_contact_edges(model, &sites, &params)
+        } else {
+            (Vec::new(), Vec::new(), Vec::new())
+        };
+        let me = Self {
             model,
             obstacles,
             params,
             sites,
             groups,
             friction: RefCell::new(vec![Friction::Free; pairs]),
-        })
+            edges,
+            excluded,
+            site_arcs,
+            scratch: RefCell::new(SelfScratch::default()),
+        };
+        let mut worst: Option<(usize, usize, f64)> = None;
+        me.for_each_primitive(start, 0.0, |prim| {
+            let gap = prim.gap(me.params.radius);
+            let (a, b) = prim.edges(&me);
+            if !(gap > 0.0) && worst.is_none_or(|w| gap < w.2) {
+                worst = Some((a, b, gap));
+            }
+        });
+        if let Some((a, b, gap)) = worst {
+            let at = |e: usize| {
+                let s = &me.sites[me.edges[e].sites[0]];
+                format!("edge at vertex {} of member {}", s.vertex, s.member)
+            };
+            return Err(ModelError::structure(
+                "self_contact",
+                format!(
+                    "the cable starts intersecting itself or another cable: {} and {} are {:.3e} m apart, less than twice the radius {} m",
+                    at(a),
+                    at(b),
+                    gap + 2.0 * me.params.radius,
+                    me.params.radius
+                ),
+            ));
+        }
+        Ok(me)
+    }
+
+    /// The twelve endpoint coordinates of edges `a` and `b` in `state`.
+    fn edge_pair_coordinates(&self, state: &P::State, a: usize, b: usize) -> [f64; 12] {
+        let mut x = [0.0; 12];
+        for (k, site) in [
+            self.edges[a].sites[0],
+            self.edges[a].sites[1],
+            self.edges[b].sites[0],
+            self.edges[b].sites[1],
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let p = self.model.site_position(state, &self.sites[site]);
+            x[3 * k..3 * k + 3].copy_from_slice(p.as_slice());
+        }
+        x
+    }
+
+    /// Calls `f` with every contact primitive — edge–edge and vertex–edge pairs — that may be
+    /// within the activation distance in `state` (broad phase on edge boxes grown by `grow`
+    /// m more), each once, in a deterministic order.
+    fn for_each_primitive(&self, state: &P::State, grow: f64, mut f: impl FnMut(&Primitive)) {
+        if self.edges.is_empty() {
+            return;
+        }
+        let mut scratch = self.scratch.borrow_mut();
+        let SelfScratch {
+            boxes,
+            sweep,
+            pairs,
+            vertex_edges,
+        } = &mut *scratch;
+        let pad = Vector3::repeat(self.params.radius + 0.5 * self.params.activation + grow);
+        boxes.clear();
+        for e in &self.edges {
+            let p = self.model.site_position(state, &self.sites[e.sites[0]]);
+            let q = self.model.site_position(state, &self.sites[e.sites[1]]);
+            boxes.push((p.inf(&q) - pad, p.sup(&q) + pad));
+        }
+        overlapping_pairs(boxes, sweep, pairs);
+        vertex_edges.clear();
+        for &(a, b) in pairs.iter() {
+            for (edge, other) in [(a, b), (b, a)] {
+                for v in self.edges[other].sites {
+                    if self.vertex_edge_interacts(v, edge) {
+                        vertex_edges.push((v, edge));
+                    }
+                }
+            }
+            if self.excluded.binary_search(&(a, b)).is_ok() {
+                continue;
+            }
+            f(&Primitive::EdgeEdge {
+                a,
+                b,
+                x: self.edge_pair_coordinates(state, a, b),
+            });
+        }
+        vertex_edges.sort_unstable();
+        vertex_edges.dedup();
+        for &(v, e) in vertex_edges.iter() {
+            let mut x = [0.0; 9];
+            for (k, site) in [v, self.edges[e].sites[0], self.edges[e].sites[1]]
+                .into_iter()
+                .enumerate()
+            {
+                let p = self.model.site_position(state, &self.sites[site]);
+                x[3 * k..3 * k + 3].copy_from_slice(p.as_slice());
+            }
+            f(&Primitive::VertexEdge { v, e, x });
+        }
+    }
+
+    /// True if site `v` and edge `e` can touch: not an end of it, and not closer to it along
+    /// their member than π r + ĝ.
+    fn vertex_edge_interacts(&self, v: usize, e: usize) -> bool {
+        let edge = &self.edges[e];
+        if edge.sites.contains(&v) {
+            return false;
+        }
+        let (member, arc) = self.site_arcs[v];
+        !(member == edge.member
+            && (arc - arc.clamp(edge.arc[0], edge.arc[1])).abs()
+                < std::f64::consts::PI * self.params.radius + self.params.activation)
+    }
+
+    /// The barrier weight of a primitive: half the shorter rest length involved (m).
+    fn primitive_length(&self, prim: &Primitive) -> f64 {
+        match *prim {
+            Primitive::EdgeEdge { a, b, .. } => {
+                0.5 * self.edges[a].length.min(self.edges[b].length)
+            }
+            Primitive::VertexEdge { v, e, .. } => {
+                0.5 * self.sites[v].length.min(self.edges[e].length)
+            }
+        }
+    }
+
+    /// Energy (J) of a primitive with its derivatives in its own coordinates, if active.
+    fn primitive_energy<const N: usize>(
+        &self,
+        distance_squared: Dual2<N>,
+        mollifier: Option<Dual2<N>>,
+        length: f64,
+    ) -> Option<Dual2<N>> {
+        let d = distance_squared.v.sqrt();
+        let gap = d - 2.0 * self.params.radius;
+        if gap >= self.params.activation {
+            return None;
+        }
+        let (b, db, ddb) = barrier(gap, self.params.activation);
+        // d = √(d²): ∇d = ∇d²/(2d), ∇²d = ∇²d²/(2d) − ∇d² ∇d²ᵀ/(4d³).
+        let grad_d = distance_squared.g / (2.0 * d);
+        let hess_d = distance_squared.h / (2.0 * d)
+            - distance_squared.g * distance_squared.g.transpose() / (4.0 * d * d * d);
+        let energy = Dual2 {
+            v: b,
+            g: grad_d * db,
+            h: grad_d * grad_d.transpose() * ddb + hess_d * db,
+            affine: false,
+        };
+        let energy = match mollifier {
+            Some(m) if m.v < 1.0 => m * energy,
+            _ => energy,
+        };
+        Some(energy.scale(self.params.stiffness * length))
+    }
+
+    /// The remap of a primitive's coordinates (three per site, in order) to the free DOFs.
+    fn primitive_remap<const N: usize>(&self, sites: &[usize]) -> [SiteDof; N] {
+        let mut remap = [SiteDof {
+            dof: crate::assembly::FIXED,
+            coef: 0.0,
+        }; N];
+        for (k, &site) in sites.iter().enumerate() {
+            remap[3 * k..3 * k + 3].copy_from_slice(&self.sites[site].dofs);
+        }
+        remap
+    }
+
+    /// The edge–edge mollifier's scale ε_x (m⁴) of edges `a`, `b`: 10⁻³ l_a² l_b² (at rest).
+    fn mollifier_scale(&self, a: usize, b: usize) -> f64 {
+        1e-3 * (self.edges[a].length * self.edges[b].length).powi(2)
+    }
+
+    /// Energy (J) of one primitive at its coordinates (0 when inactive).
+    fn primitive_value(&self, prim: &Primitive) -> f64 {
+        let length = self.primitive_length(prim);
+        match prim {
+            Primitive::EdgeEdge { a, b, x } => self
+                .primitive_energy(
+                    segment_distance_squared(x),
+                    Some(edge_edge_mollifier(x, self.mollifier_scale(*a, *b))),
+                    length,
+                )
+                .map_or(0.0, |e| e.v),
+            Primitive::VertexEdge { x, .. } => self
+                .primitive_energy(point_segment_distance_squared(x), None, length)
+                .map_or(0.0, |e| e.v),
+        }
     }
 
     /// The friction state of the contact of site `site` with obstacle `obstacle`.
@@ -312,6 +602,37 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         g
     }
 
+    /// Smallest gap (m) between the surfaces of two non-neighbouring edges in `state` (∞
+    /// without self-contact or when no pair is near).
+    pub fn min_self_gap(&self, state: &P::State) -> f64 {
+        let mut g = f64::INFINITY;
+        self.for_each_primitive(state, 0.0, |prim| {
+            g = g.min(prim.gap(self.params.radius));
+        });
+        g
+    }
+
+    /// Every active self-contact of `state`: the first site of each side as (member,
+    /// vertex), the gap (m) and the barrier's force magnitude (N) pushing them apart (for an
+    /// edge–edge pair, before the parallel-edge mollifier).
+    pub fn self_contact_forces(
+        &self,
+        state: &P::State,
+    ) -> Vec<((usize, usize), (usize, usize), f64, f64)> {
+        let mut out = Vec::new();
+        self.for_each_primitive(state, 0.0, |prim| {
+            let gap = prim.gap(self.params.radius);
+            if gap < self.params.activation {
+                let slope = barrier(gap, self.params.activation).1;
+                let force = -self.params.stiffness * self.primitive_length(prim) * slope;
+                let (sa, sb) = prim.first_sites(self);
+                let at = |k: usize| (self.sites[k].member, self.sites[k].vertex);
+                out.push((at(sa), at(sb), gap, force));
+            }
+        });
+        out
+    }
+
     /// The contact and friction energy (J) of `state`.
     fn contact_energy(&self, state: &P::State) -> f64 {
         let mut e = 0.0;
@@ -333,6 +654,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                 }
             }
         }
+        self.for_each_primitive(state, 0.0, |prim| e += self.primitive_value(prim));
         e
     }
 }
@@ -349,14 +671,26 @@ impl<P: ContactSites> MassMetric for ContactProblem<'_, P> {
 
 impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
     type State = P::State;
-    type Hessian = P::Hessian;
+    type Hessian = AdaptiveMatrix;
 
     fn n_free(&self) -> usize {
         self.model.n_free()
     }
 
-    fn new_hessian(&self) -> P::Hessian {
-        self.model.new_hessian()
+    /// The model's storage; with self-contact, every pair of free DOFs (a contact may couple
+    /// any two vertices, and the pattern must hold before the contacts are known). That dense
+    /// pattern makes a factorization O(n³): fine for a few hundred vertices; a pattern grown
+    /// as contacts appear is what larger scenes need.
+    fn new_hessian(&self) -> AdaptiveMatrix {
+        if self.edges.is_empty() {
+            self.model.adaptive_hessian()
+        } else {
+            let n = self.model.n_free();
+            AdaptiveMatrix::Sparse(SparseSymmetricMatrix::from_pattern(
+                n,
+                (0..n).flat_map(|i| (0..i).map(move |j| (i, j))),
+            ))
+        }
     }
 
     fn term_groups(&self) -> &[TermGroup] {
@@ -411,6 +745,38 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
                 asm.absorb(info);
             }
         }
+        self.for_each_primitive(state, 0.0, |prim| {
+            let length = self.primitive_length(prim);
+            match prim {
+                Primitive::EdgeEdge { a, b, x } => {
+                    let m = edge_edge_mollifier(x, self.mollifier_scale(*a, *b));
+                    let Some(e) =
+                        self.primitive_energy(segment_distance_squared(x), Some(m), length)
+                    else {
+                        return;
+                    };
+                    let remap: [SiteDof; 12] = self
+                        .primitive_remap(&[self.edges[*a].sites, self.edges[*b].sites].concat());
+                    let mut part = asm.part(&remap);
+                    part.local(&std::array::from_fn(|k| k), e.v, e.v.abs(), &e.g, &e.h);
+                    let info = part.finish();
+                    asm.absorb(info);
+                }
+                Primitive::VertexEdge { v, e: edge, x } => {
+                    let Some(e) =
+                        self.primitive_energy(point_segment_distance_squared(x), None, length)
+                    else {
+                        return;
+                    };
+                    let [e0, e1] = self.edges[*edge].sites;
+                    let remap: [SiteDof; 9] = self.primitive_remap(&[*v, e0, e1]);
+                    let mut part = asm.part(&remap);
+                    part.local(&std::array::from_fn(|k| k), e.v, e.v.abs(), &e.g, &e.h);
+                    let info = part.finish();
+                    asm.absorb(info);
+                }
+            }
+        });
     }
 
     fn merit(&self, trial: &P::State, load: f64) -> f64 {
@@ -456,6 +822,32 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
                 alpha = alpha.min(obstacle.time_of_impact(&p, &(dp * alpha), clearance) * alpha);
             }
         }
+        if !self.edges.is_empty() {
+            // Conservative advancement: two segments whose end points move by at most Δ_a and
+            // Δ_b come closer by at most Δ_a + Δ_b, so a step α with α (Δ_a + Δ_b) ≤
+            // (1 − KEEP_GAP)·gap leaves a tenth of the gap open.
+            let moved = |site: usize| -> f64 {
+                let mut dp = Vector3::zeros();
+                for (c, d) in self.sites[site].dofs.iter().enumerate() {
+                    if d.dof != crate::assembly::FIXED {
+                        dp[c] = d.coef * dx[d.dof];
+                    }
+                }
+                dp.norm()
+            };
+            let largest = (0..self.sites.len()).map(moved).fold(0.0, f64::max);
+            self.for_each_primitive(state, 2.0 * alpha * largest, |prim| {
+                let gap = prim.gap(self.params.radius);
+                let approach: f64 = prim
+                    .sides(self)
+                    .iter()
+                    .map(|side| side.iter().map(|&k| moved(k)).fold(0.0, f64::max))
+                    .sum();
+                if approach * alpha > (1.0 - KEEP_GAP) * gap {
+                    alpha = (1.0 - KEEP_GAP) * gap.max(0.0) / approach;
+                }
+            });
+        }
         alpha
     }
 
@@ -474,4 +866,55 @@ impl<P: ContactSites + crate::dynamics::FlatDofs> crate::dynamics::FlatDofs
     fn has_flat_dofs(&self) -> bool {
         self.model.has_flat_dofs()
     }
+}
+
+/// The edges of `model` as site pairs, and the edge pairs that never interact: those sharing a
+/// site, and those of one member closer along it than π r + ĝ.
+fn self_contact_edges<P: ContactSites>(
+    model: &P,
+    sites: &[ContactSite],
+    params: &ContactParams,
+) -> (Vec<EdgeSites>, Vec<(usize, usize)>, Vec<(usize, f64)>) {
+    let index: std::collections::HashMap<(usize, usize), usize> = sites
+        .iter()
+        .enumerate()
+        .map(|(k, s)| ((s.member, s.vertex), k))
+        .collect();
+    let raw = model.contact_edges();
+    let site_of = |m: usize, v: usize| index[&model.canonical_vertex(m, v)];
+    let edges: Vec<EdgeSites> = raw
+        .iter()
+        .map(|e| EdgeSites {
+            sites: [
+                site_of(e.member, e.vertices[0]),
+                site_of(e.member, e.vertices[1]),
+            ],
+            length: e.arc[1] - e.arc[0],
+            member: e.member,
+            arc: e.arc,
+        })
+        .collect();
+    // Each site's arc length along its own member, from the edges that start or end there.
+    let mut site_arcs: Vec<(usize, f64)> = sites.iter().map(|s| (s.member, 0.0)).collect();
+    for e in &raw {
+        for (k, &v) in e.vertices.iter().enumerate() {
+            if let Some(&i) = index.get(&(e.member, v)) {
+                site_arcs[i] = (e.member, e.arc[k]);
+            }
+        }
+    }
+    let reach = std::f64::consts::PI * params.radius + params.activation;
+    let mut excluded = Vec::new();
+    for a in 0..raw.len() {
+        for b in a + 1..raw.len() {
+            let shares = edges[a].sites.iter().any(|s| edges[b].sites.contains(s));
+            let (ea, eb) = (&raw[a], &raw[b]);
+            let near = ea.member == eb.member
+                && ea.arc[0].max(eb.arc[0]) - ea.arc[1].min(eb.arc[1]) < reach;
+            if shares || near {
+                excluded.push((a, b));
+            }
+        }
+    }
+    (edges, excluded, site_arcs)
 }

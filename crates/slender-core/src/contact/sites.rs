@@ -4,6 +4,7 @@
 use nalgebra::Vector3;
 
 use crate::assembly::{MapSlot, FIXED};
+use crate::linalg::AdaptiveMatrix;
 use crate::rod::{Rod, RodState};
 use crate::solver::EquilibriumProblem;
 use crate::structure::{Structure, StructureState};
@@ -27,12 +28,52 @@ pub struct ContactSite {
     pub length: f64,
 }
 
+/// One centerline edge, for segment–segment (self and cable–cable) contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactEdge {
+    /// Member (0 for a single rod).
+    pub member: usize,
+    /// Its end vertices (member's own numbering).
+    pub vertices: [usize; 2],
+    /// Rest arc length (m) of its ends along the member.
+    pub arc: [f64; 2],
+}
+
 /// A model whose centerline vertices can touch obstacles.
 pub trait ContactSites: EquilibriumProblem {
     /// Every site, once (a joint's vertex is one site).
     fn contact_sites(&self) -> Vec<ContactSite>;
     /// Position (m) of `site` in `state`.
     fn site_position(&self, state: &Self::State, site: &ContactSite) -> Vector3<f64>;
+    /// Every centerline edge.
+    fn contact_edges(&self) -> Vec<ContactEdge>;
+    /// The model's own Hessian storage, as the run-time choice of storage (contacts with
+    /// obstacles touch one vertex at a time and keep the model's pattern).
+    fn adaptive_hessian(&self) -> AdaptiveMatrix;
+    /// The (member, vertex) whose site stands for `(member, vertex)`: itself, or the master
+    /// of the joint it is a copy of.
+    fn canonical_vertex(&self, member: usize, vertex: usize) -> (usize, usize) {
+        (member, vertex)
+    }
+}
+
+/// The edges of one polyline with rest edge lengths `lengths` (`closed`: the last joins the
+/// last vertex to the first).
+fn polyline_edges(member: usize, lengths: &[f64], n_vertices: usize) -> Vec<ContactEdge> {
+    let mut s = 0.0;
+    lengths
+        .iter()
+        .enumerate()
+        .map(|(j, &l)| {
+            let e = ContactEdge {
+                member,
+                vertices: [j, (j + 1) % n_vertices],
+                arc: [s, s + l],
+            };
+            s += l;
+            e
+        })
+        .collect()
 }
 
 /// Half of each rest edge next to vertex `v` of a polyline of rest edge lengths `lengths`
@@ -77,6 +118,14 @@ impl ContactSites for Rod {
     fn site_position(&self, state: &RodState, site: &ContactSite) -> Vector3<f64> {
         state.positions()[site.vertex]
     }
+
+    fn contact_edges(&self) -> Vec<ContactEdge> {
+        polyline_edges(0, self.rest_lengths(), self.rest_state().positions().len())
+    }
+
+    fn adaptive_hessian(&self) -> AdaptiveMatrix {
+        AdaptiveMatrix::Band(self.new_hessian())
+    }
 }
 
 impl ContactSites for Structure {
@@ -115,5 +164,25 @@ impl ContactSites for Structure {
 
     fn site_position(&self, state: &StructureState, site: &ContactSite) -> Vector3<f64> {
         state.members[site.member].positions()[site.vertex]
+    }
+
+    fn contact_edges(&self) -> Vec<ContactEdge> {
+        let rest = self.rest_state();
+        rest.members
+            .iter()
+            .enumerate()
+            .flat_map(|(m, s)| polyline_edges(m, &edge_lengths(s.positions()), s.positions().len()))
+            .collect()
+    }
+
+    fn adaptive_hessian(&self) -> AdaptiveMatrix {
+        self.new_hessian()
+    }
+
+    fn canonical_vertex(&self, member: usize, vertex: usize) -> (usize, usize) {
+        self.joints()
+            .iter()
+            .find(|g| g.contains(&(member, vertex)))
+            .map_or((member, vertex), |g| g[0])
     }
 }
