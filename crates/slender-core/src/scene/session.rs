@@ -194,6 +194,7 @@ impl Session {
             shells: self.shells.clone(),
             converged,
             stable,
+            time: None,
         }
     }
 
