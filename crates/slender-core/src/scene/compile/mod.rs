@@ -115,7 +115,7 @@ impl Scene {
             names.push(draft.rod.name.clone());
             drafts.push(draft);
         }
-        let structures = structures::build_structures(&mut drafts, &self.joints)?;
+        let structures = structures::build_structures(&mut drafts, &self.joints, time.is_some())?;
         let shortest: Vec<f64> = drafts
             .iter()
             .map(|d| {
