@@ -1032,3 +1032,62 @@ fn a_swinging_cable_conserves_energy_and_writes_its_frames() {
     let rows = std::fs::read_to_string(out.join("frames.csv")).unwrap();
     assert_eq!(rows.lines().count(), frames + 1);
 }
+
+#[test]
+fn a_time_step_that_fails_stops_the_run_and_every_output_says_so() {
+    // The swinging cable on 100 elements with steps of 50 ms: the energy-conserving scheme's
+    // Newton solve fails once edges turn too far per step (ARCHITECTURE.md, "Dynamics").
+    let text = std::fs::read_to_string(repo().join("examples/swinging_cable.toml"))
+        .unwrap()
+        .replace("elements = 30", "elements = 100")
+        .replace("dt = 0.002", "dt = 0.05")
+        .replace("duration = 1.0", "duration = 3.0")
+        .replace("output_every = 5", "output_every = 1");
+    let d = fresh_dir("failing_swing");
+    std::fs::create_dir_all(&d).unwrap();
+    let scene = d.join("s.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = d.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_slender"))
+        .args([
+            "solve",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .arg("--no-preview")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("did not converge"), "{stderr}");
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["converged"], Value::Bool(false));
+    let time = &report["time"];
+    let taken = time["steps_taken"].as_u64().unwrap() as usize;
+    assert!(taken < 60, "{time}");
+    assert!(time["failure"]
+        .as_str()
+        .unwrap()
+        .contains("did not converge"));
+    // One frame per step taken (and frame 0); none for the failed step.
+    let frames = time["frames"].as_u64().unwrap() as usize;
+    assert_eq!(frames, taken + 1);
+    assert!(out.join(format!("step_{:03}", frames - 1)).exists());
+    assert!(!out.join(format!("step_{frames:03}")).exists());
+    let pvd = std::fs::read_to_string(out.join("frames.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet ").count(), frames);
+    assert!(pvd.contains("stopped early"));
+    let csv = std::fs::read_to_string(out.join("frames.csv")).unwrap();
+    let last = csv.lines().last().unwrap();
+    assert!(
+        last.contains(",false,") && last.contains("did not converge"),
+        "{last}"
+    );
+    assert_eq!(
+        csv.lines().count(),
+        frames + 2,
+        "header, frames, the failed step"
+    );
+}
