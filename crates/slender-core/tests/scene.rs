@@ -69,6 +69,7 @@ fn scene(rods: Vec<RodSpec>, gravity: [f64; 3]) -> Scene {
         joints: Vec::new(),
         motion: Vec::new(),
         unstable: Default::default(),
+        time: None,
     }
 }
 

@@ -1,6 +1,7 @@
 //! Scenes: rods and shell strips described in a file (TOML or JSON, parsed by the binary),
 //! validated with errors that name the place in the file, compiled into structures and solved,
-//! edited and re-solved warm through a [`Session`] (prescribed motion, interactive editing).
+//! edited and re-solved warm through a [`Session`] (prescribed motion, interactive editing),
+//! or stepped in time through a [`TimeRun`] (a `[time]` table).
 //!
 //! No file I/O here: the binary reads files and writes outputs.
 
@@ -13,10 +14,14 @@ pub mod session;
 pub mod shells;
 pub mod solve;
 pub mod spec;
+pub mod time_run;
 
 pub use compile::{CompiledRod, CompiledScene, CompiledSupport, RodPart};
 pub use error::SceneError;
-pub use result::{RodResult, SceneStep, StabilityResult, StructureResult, SupportResult};
+pub use result::{
+    FrameEnergy, RodResult, SceneStep, StabilityResult, StructureResult, SupportResult, TimeFrame,
+};
 pub use session::{EditReport, Session, SupportPose};
 pub use shells::{CompiledShell, ShellResult, StripModel};
 pub use spec::Scene;
+pub use time_run::{TimeRun, TimeStepOutcome};

@@ -150,6 +150,50 @@ pub struct SceneStep {
     pub converged: bool,
     /// True if every equilibrium is stable.
     pub stable: bool,
+    /// In a time-stepped scene (`[time]`): the time, energy and step of this frame. Absent
+    /// from the output of equilibrium solves.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time: Option<TimeFrame>,
+}
+
+/// One frame of a time-stepped scene: the state after `time_step` steps.
+///
+/// The frame's rods and structures are reported as for an equilibrium, with these
+/// differences: the moving state is not an equilibrium, so a structure's force and moment
+/// imbalance is the resultant of the inertial forces (Σ m a), not an error; no stability is
+/// analysed (`stable` is true, no modes); the solver report is that of the frame's last time
+/// step (frame 0: no solve, 0 iterations), with `relative_residual`, `force_scale`,
+/// `residual_floor` and `energy_decrement` not computed (null).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TimeFrame {
+    /// Time (s).
+    pub t: f64,
+    /// Frame number (0 = the start).
+    pub frame: usize,
+    /// Time steps taken to reach it.
+    pub time_step: usize,
+    /// Energies of the whole scene (J).
+    pub energy: FrameEnergy,
+    /// Newton iterations of the last time step over all structures (0 for frame 0).
+    pub iterations: usize,
+    /// True: every time step up to this frame converged (frames are written only then).
+    pub converged: bool,
+}
+
+/// The mechanical energy (J) of a moving scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct FrameEnergy {
+    /// ½ vᵀ M v, lumped mass.
+    pub kinetic: f64,
+    /// Elastic (strain) energy.
+    pub elastic: f64,
+    /// Potential of gravity and of the dead point and line loads: minus their work from the
+    /// rest state (0 at t = 0).
+    pub gravity_and_loads: f64,
+    /// Elastic + gravity and loads.
+    pub potential: f64,
+    /// Kinetic + potential: constant in an undamped motion with the energy-conserving scheme.
+    pub total: f64,
 }
 
 fn arr(v: Vec3) -> [f64; 3] {

@@ -90,8 +90,15 @@ pub struct Session {
 
 impl Session {
     /// Compiles `spec` and solves the loaded scene (loads ramped from the rest state).
+    ///
+    /// A `[time]` table is ignored here (kept in the spec): a session solves equilibria, with
+    /// the supports an equilibrium needs; [`TimeRun`](super::TimeRun) steps a scene in time.
     pub fn new(spec: Scene) -> Result<Self, SceneError> {
-        let scene = spec.compile()?;
+        let scene = Scene {
+            time: None,
+            ..spec.clone()
+        }
+        .compile()?;
         Ok(Self::from_compiled(spec, scene))
     }
 
@@ -194,6 +201,7 @@ impl Session {
             shells: self.shells.clone(),
             converged,
             stable,
+            time: None,
         }
     }
 

@@ -39,6 +39,75 @@ pub struct Scene {
     /// keeps the unstable one (and says so).
     #[serde(default)]
     pub unstable: UnstablePolicy,
+    /// Time stepping: with this table `slender solve` integrates the motion of the rods in
+    /// time from rest instead of solving for equilibria (see [`TimeSpec`]). Default: none
+    /// (equilibria only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time: Option<TimeSpec>,
+}
+
+/// The `[time]` table: implicit time stepping of the scene's rods (discrete elastic rods
+/// only), starting from the rest state at rest (velocity 0) with gravity and the loads acting
+/// from t = 0 — a cable released from its rest shape.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct TimeSpec {
+    /// Time step h (s), finite and > 0.
+    pub dt: f64,
+    /// Duration (s), finite and ≥ `dt`: the run takes ⌈duration/dt⌉ steps (within 1e-9) and
+    /// ends at that many times `dt`.
+    pub duration: f64,
+    /// `"energy_conserving"` (average-vector-field, second order, conserves energy; the
+    /// default), `"midpoint"` (implicit midpoint rule, second order, symplectic) or
+    /// `"backward_euler"` (first order, dissipative, robust).
+    #[serde(default)]
+    pub scheme: TimeSchemeSpec,
+    /// Mass-proportional Rayleigh damping α (1/s), finite and ≥ 0: force α M v. Default 0.
+    #[serde(default)]
+    pub rayleigh_mass: f64,
+    /// Stiffness-proportional Rayleigh damping β (s), finite and ≥ 0: force β K v. Default 0.
+    #[serde(default)]
+    pub rayleigh_stiffness: f64,
+    /// Time steps between written frames (≥ 1). Default: ⌈steps/200⌉ (at most ~200 frames).
+    /// Frame 0 (t = 0) and the last step are always written.
+    #[serde(default)]
+    pub output_every: Option<usize>,
+}
+
+/// The time-integration scheme of a scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum TimeSchemeSpec {
+    /// The energy-conserving average-vector-field scheme (3 Gauss nodes).
+    #[default]
+    EnergyConserving,
+    /// The implicit midpoint rule (also `"implicit_midpoint"`).
+    #[serde(alias = "implicit_midpoint")]
+    Midpoint,
+    /// Backward Euler.
+    BackwardEuler,
+}
+
+impl TimeSchemeSpec {
+    /// The dynamics scheme.
+    pub fn scheme(self) -> crate::dynamics::Scheme {
+        match self {
+            Self::EnergyConserving => crate::dynamics::Scheme::EnergyConserving,
+            Self::Midpoint => crate::dynamics::Scheme::ImplicitMidpoint,
+            Self::BackwardEuler => crate::dynamics::Scheme::BackwardEuler,
+        }
+    }
+
+    /// The name in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::EnergyConserving => "energy_conserving",
+            Self::Midpoint => "midpoint",
+            Self::BackwardEuler => "backward_euler",
+        }
+    }
 }
 
 /// What a scene solve does with an unstable equilibrium.

@@ -54,6 +54,7 @@ pub struct StructureBuilder {
     joints: Vec<Vec<JointEnd>>,
     sliders: Vec<SliderSupport>,
     holds: Vec<TwistHold>,
+    free_motion: bool,
 }
 
 impl StructureBuilder {
@@ -87,8 +88,17 @@ impl StructureBuilder {
         self
     }
 
+    /// Accepts a structure that can move rigidly (not held against every rigid-body motion):
+    /// for time stepping, where the mass makes every step well posed (a pendulum, a cable in
+    /// free fall). Its equilibria cannot be solved.
+    pub fn allow_free_motion(mut self) -> Self {
+        self.free_motion = true;
+        self
+    }
+
     /// Validates and builds; errors name the joint, slider or hold and what is wrong. A
-    /// structure that can still move rigidly (a singular stiffness at rest) is an error.
+    /// structure that can still move rigidly (a singular stiffness at rest) is an error
+    /// unless [`Self::allow_free_motion`].
     pub fn build(mut self) -> Result<Structure, ModelError> {
         if self.members.is_empty() {
             return Err(ModelError::structure(
@@ -333,7 +343,9 @@ impl StructureBuilder {
             j.bending.rest_kappa = material_curvature(&HingeFrame::new(&hs));
             j.twisting.rest_twist = hs.twist();
         }
-        check_no_free_motion(&structure)?;
+        if !self.free_motion {
+            check_no_free_motion(&structure)?;
+        }
         Ok(structure)
     }
 

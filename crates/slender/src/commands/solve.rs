@@ -11,7 +11,18 @@ pub fn run(a: &SolveArgs) -> Result<bool> {
     let outcome = crate::solve::run(a)?;
     crate::solve::print_summary(&a.out)?;
     println!("wrote {}", a.out.display());
+    let timed = a.out.join("frames.csv").exists();
     match outcome {
+        Outcome::Ok if timed => {
+            println!("verdict: every time step converged (frames.csv, frames.pvd, step_*/)");
+            Ok(true)
+        }
+        Outcome::NotConverged if timed => {
+            eprintln!(
+                "error: a time step did not converge; the run stopped there (see frames.csv and report.json)"
+            );
+            Ok(false)
+        }
         Outcome::Ok => {
             println!("verdict: every step converged to a stable equilibrium");
             Ok(true)

@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 15] = [
+pub const EXAMPLES: [(&str, &str); 16] = [
     (
         "rod_models_cantilever",
         include_str!("../../../../examples/rod_models_cantilever.toml"),
@@ -72,6 +72,10 @@ pub const EXAMPLES: [(&str, &str); 15] = [
         "branched_harness",
         include_str!("../../../../examples/branched_harness.toml"),
     ),
+    (
+        "swinging_cable",
+        include_str!("../../../../examples/swinging_cable.toml"),
+    ),
 ];
 
 fn check(description: String, measured: f64, target: &str, passed: bool) -> Check {
@@ -85,7 +89,8 @@ fn check(description: String, measured: f64, target: &str, passed: bool) -> Chec
 }
 
 /// Solves every example: one balance check per example with rods (worst relative force or
-/// moment imbalance over its steps, target ≤ 1e-9; NaN if a step did not converge), the
+/// moment imbalance over its steps, target ≤ 1e-9; NaN if a step did not converge; for a
+/// time-stepped example instead its energy conservation, see [`time_check`]), the
 /// cantilever-benchmark check (relative difference of Δy/Δx, target ≤ 1e-10) and the two
 /// shell-strip checks of [`shell_example_checks`].
 pub fn scene_checks() -> Result<Vec<Check>> {
@@ -96,6 +101,10 @@ pub fn scene_checks() -> Result<Vec<Check>> {
             Ok(c) => c,
             Err(e) => bail!("{name}: {e}"),
         };
+        if compiled.time.is_some() {
+            checks.push(time_check(name, &compiled)?);
+            continue;
+        }
         let (mut solver, first) = SceneSolver::new(&spec, &compiled);
         let mut steps = vec![first];
         for k in 1..=solver.motion_steps() {
@@ -155,6 +164,41 @@ pub fn scene_checks() -> Result<Vec<Check>> {
     }
     checks.extend(shell_example_checks()?);
     Ok(checks)
+}
+
+/// A time-stepped example (undamped, energy-conserving scheme): the largest change of the
+/// total energy over every step, relative to the largest kinetic energy, target ≤ 1e-5
+/// (NaN if a step did not converge).
+fn time_check(name: &str, compiled: &slender_core::scene::CompiledScene) -> Result<Check> {
+    use slender_core::scene::TimeRun;
+    let mut run = TimeRun::new(compiled).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+    let e0 = run.energy().total;
+    let mut change: f64 = 0.0;
+    let mut kinetic: f64 = 0.0;
+    let mut converged = true;
+    while !run.finished() {
+        if !run.step().converged {
+            converged = false;
+            break;
+        }
+        let e = run.energy();
+        change = change.max((e.total - e0).abs());
+        kinetic = kinetic.max(e.kinetic);
+    }
+    let measured = if converged && kinetic > 0.0 {
+        change / kinetic
+    } else {
+        f64::NAN
+    };
+    Ok(check(
+        format!(
+            "{name}: time stepping ({} steps), max |E(t) − E(0)| / max kinetic energy",
+            run.steps_taken()
+        ),
+        measured,
+        "≤ 1e-5",
+        measured <= 1e-5,
+    ))
 }
 
 /// The shell-strip example against the heavy-elastica master curve: relative error of the
@@ -253,7 +297,8 @@ mod tests {
     #[test]
     fn every_scene_check_passes() {
         let checks = scene_checks().unwrap();
-        // One balance check per rod example, the benchmark check, three shell checks.
+        // One balance (or, time-stepped, energy) check per rod example, the benchmark check,
+        // three shell checks.
         assert_eq!(checks.len(), EXAMPLES.len() - 1 + 4);
         for c in &checks {
             eprintln!("{:e}  {}", c.measured, c.description);

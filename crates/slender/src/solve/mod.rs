@@ -7,6 +7,7 @@ pub mod checks;
 pub mod gltf;
 pub mod preview;
 pub mod scene_io;
+pub mod time;
 pub mod vtk;
 
 use std::fs;
@@ -56,7 +57,11 @@ pub fn run(args: &SolveArgs) -> Result<Outcome> {
         .map_err(|e| anyhow::anyhow!("{}: {e}", args.scene.display()))?;
     check_out_dir(&args.out)?;
     let tmp = temp_dir_for(&args.out)?;
-    let result = solve_into(&scene, &compiled, &tmp, !args.no_preview);
+    let result = if compiled.time.is_some() {
+        time::solve_time_into(&compiled, &tmp, !args.no_preview)
+    } else {
+        solve_into(&scene, &compiled, &tmp, !args.no_preview)
+    };
     match result {
         Ok(ok) => {
             if args.out.exists() {
@@ -223,6 +228,9 @@ struct Report<'a> {
     total_seconds: f64,
     /// Per step: everything but the per-vertex arrays.
     summary: Vec<StepSummary<'a>>,
+    /// Time stepping (`[time]` scenes only): the run and how it ended.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    time: Option<time::TimeSummary>,
 }
 
 #[derive(Serialize)]
@@ -426,6 +434,16 @@ fn solver_row(
 }
 
 fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64) -> Result<()> {
+    write_summaries_with(dir, steps, converged, total, None)
+}
+
+fn write_summaries_with(
+    dir: &Path,
+    steps: &[SceneStep],
+    converged: bool,
+    total: f64,
+    time: Option<time::TimeSummary>,
+) -> Result<()> {
     let mut step_rows = Vec::new();
     let mut solver_rows = Vec::new();
     let mut reaction_rows = Vec::new();
@@ -500,6 +518,7 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
         stable: steps.iter().all(|s| s.stable),
         steps: steps.len(),
         total_seconds: total,
+        time,
         summary: steps
             .iter()
             .map(|s| StepSummary {
@@ -545,8 +564,26 @@ fn write_summaries(dir: &Path, steps: &[SceneStep], converged: bool, total: f64)
     Ok(())
 }
 
-/// One line per step for the terminal.
+/// One line per step for the terminal (per frame, at most about 20 lines, for a time-stepped
+/// scene).
 pub fn print_summary(out: &Path) -> Result<()> {
+    let frames = out.join("frames.csv");
+    if frames.exists() {
+        let text = fs::read_to_string(frames)?;
+        let mut r = csv::Reader::from_reader(text.as_bytes());
+        let rows: Vec<csv::StringRecord> = r.records().collect::<Result<_, _>>()?;
+        println!("frame  time step  t (s)       kinetic (J)  total energy (J)  converged");
+        let every = rows.len().div_ceil(20).max(1);
+        for (k, row) in rows.iter().enumerate() {
+            if k % every == 0 || k + 1 == rows.len() {
+                println!(
+                    "{:>5}  {:>9}  {:<10}  {:<11}  {:<16}  {}",
+                    &row[0], &row[1], &row[2], &row[3], &row[7], &row[8]
+                );
+            }
+        }
+        return Ok(());
+    }
     let text = fs::read_to_string(out.join("steps.csv"))?;
     let mut r = csv::Reader::from_reader(text.as_bytes());
     println!(

@@ -52,7 +52,12 @@ pub fn write_preview(scene: &CompiledScene, steps: &[SceneStep], stem: &Path) ->
             });
         }
     }
-    let title = if last == 0 {
+    let title = if let Some(t) = steps[last].time.as_ref().filter(|_| last > 0) {
+        format!(
+            "slender solve: rest state and frame {last} (t = {:.4} s)",
+            t.t
+        )
+    } else if last == 0 {
         "slender solve: equilibrium".to_string()
     } else {
         format!("slender solve: equilibrium and step {last} of the motion")

@@ -86,3 +86,56 @@ pub fn rods_to_vtk(
     scalar("rod", &|k, _, _| k as f64);
     s
 }
+
+/// The rods of one step as VTK XML PolyData (`.vtp`, ASCII): the same polylines and point
+/// data as [`rods_to_vtk`], in the format a ParaView collection (`.pvd`) lists.
+pub fn rods_to_vtp(rods: &[CompiledRod], results: &[RodResult]) -> String {
+    let n_points: usize = results.iter().map(|r| r.positions.len()).sum();
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <PolyData>\n",
+    );
+    let _ = writeln!(
+        s,
+        "    <Piece NumberOfPoints=\"{n_points}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">",
+        results.len()
+    );
+    s.push_str("      <PointData Scalars=\"radius\">\n");
+    let mut array = |name: &str, value: &dyn Fn(usize, &RodResult, usize) -> f64| {
+        let _ = write!(
+            s,
+            "        <DataArray type=\"Float64\" Name=\"{name}\" format=\"ascii\">"
+        );
+        for (k, r) in results.iter().enumerate() {
+            for i in 0..r.positions.len() {
+                let _ = write!(s, " {:e}", value(k, r, i));
+            }
+        }
+        s.push_str(" </DataArray>\n");
+    };
+    array("radius", &|k, _, _| rods[k].display_radius);
+    array("curvature", &|_, r, i| {
+        (r.curvature[i][0].powi(2) + r.curvature[i][1].powi(2)).sqrt()
+    });
+    array("twist", &|_, r, i| r.twist[i]);
+    array("rod", &|k, _, _| k as f64);
+    s.push_str("      </PointData>\n      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">");
+    for r in results {
+        for p in &r.positions {
+            let _ = write!(s, " {:e} {:e} {:e}", p[0], p[1], p[2]);
+        }
+    }
+    s.push_str(" </DataArray>\n      </Points>\n      <Lines>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">");
+    for i in 0..n_points {
+        let _ = write!(s, " {i}");
+    }
+    s.push_str(
+        " </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">",
+    );
+    let mut offset = 0;
+    for r in results {
+        offset += r.positions.len();
+        let _ = write!(s, " {offset}");
+    }
+    s.push_str(" </DataArray>\n      </Lines>\n    </Piece>\n  </PolyData>\n</VTKFile>\n");
+    s
+}

@@ -1,14 +1,15 @@
 //! Turning a parsed scene into structures ready to solve, checking everything a file can get
 //! wrong and naming the place when it does. One stage per file: a rod's section and material
 //! (`section.rs`), its nodes, supports, loads and parts (`rod.rs`, `line_loads.rs`), the
-//! grouping of parts into structures by joints and closures (`structures.rs`), and the
-//! prescribed motion (`motion.rs`).
+//! grouping of parts into structures by joints and closures (`structures.rs`), the
+//! prescribed motion (`motion.rs`) and the time stepping (`time.rs`).
 
 pub mod line_loads;
 pub mod motion;
 pub mod rod;
 pub mod section;
 pub mod structures;
+pub mod time;
 
 use crate::geometry::Vec3;
 use crate::solver::SolverParams;
@@ -21,6 +22,7 @@ use super::spec::{MotionStage, Scene, UnstablePolicy};
 pub use motion::{MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
 pub use rod::{CompiledRod, CompiledSupport, RodPart, DEFAULT_ELEMENTS};
 pub(crate) use section::check_name;
+pub use time::CompiledTime;
 
 /// Newton steps past convergence that bring the residual of a scene down to round-off, so
 /// that the reactions balance the loads (the default of `solver.polish_iterations` in scenes).
@@ -43,6 +45,8 @@ pub struct CompiledScene {
     pub gravity: [f64; 3],
     /// What to do with unstable equilibria.
     pub unstable: UnstablePolicy,
+    /// Time stepping (`[time]`), validated; `None` for equilibria only.
+    pub time: Option<CompiledTime>,
 }
 
 impl CompiledScene {
@@ -91,6 +95,10 @@ impl Scene {
         self.solver
             .validate()
             .map_err(|e| SceneError::model("solver", e))?;
+        let time = match &self.time {
+            Some(t) => Some(time::check_time(self, t)?),
+            None => None,
+        };
         let mut drafts = Vec::with_capacity(self.rods.len());
         let mut names: Vec<String> = Vec::new();
         for (i, spec) in self.rods.iter().enumerate() {
@@ -107,7 +115,7 @@ impl Scene {
             names.push(draft.rod.name.clone());
             drafts.push(draft);
         }
-        let structures = structures::build_structures(&mut drafts, &self.joints)?;
+        let structures = structures::build_structures(&mut drafts, &self.joints, time.is_some())?;
         let shortest: Vec<f64> = drafts
             .iter()
             .map(|d| {
@@ -151,6 +159,7 @@ impl Scene {
             solver,
             gravity: self.gravity,
             unstable: self.unstable,
+            time,
         })
     }
 }

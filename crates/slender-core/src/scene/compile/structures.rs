@@ -17,6 +17,7 @@ type PartJoint = Vec<(usize, usize, usize)>;
 pub(super) fn build_structures(
     drafts: &mut [RodDraft],
     joints: &[JointSpec],
+    allow_free_motion: bool,
 ) -> Result<Vec<Structure>, SceneError> {
     // Parts numbered globally.
     let mut part_ids: Vec<Vec<usize>> = Vec::new();
@@ -128,6 +129,9 @@ pub(super) fn build_structures(
         let member_of =
             |r: usize, p: usize| members.iter().position(|&m| m == (r, p)).expect("member");
         let mut b = StructureBuilder::new();
+        if allow_free_motion {
+            b = b.allow_free_motion();
+        }
         for &(r, p) in members {
             b = b.member(drafts[r].members[p].clone());
         }
