@@ -9,9 +9,11 @@
 
 pub mod barrier;
 pub mod broad_phase;
+pub mod cuboid;
 pub mod cylinder;
 pub mod friction;
 pub mod frictional_step;
+pub mod mesh;
 pub mod obstacle;
 pub mod plane;
 pub mod problem;
@@ -19,9 +21,11 @@ pub mod segment_distance;
 pub mod sites;
 pub mod sphere;
 
+pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use friction::{Friction, FrictionUpdate};
 pub use frictional_step::step_with_friction;
+pub use mesh::TriangleMesh;
 pub use obstacle::{Obstacle, SurfacePoint};
 pub use plane::Plane;
 pub use problem::{ContactForce, ContactParams, ContactProblem, CONTACT, FRICTION};
