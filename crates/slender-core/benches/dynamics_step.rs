@@ -74,5 +74,61 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+/// The same cable lying on a rough plane (μ = 0.3) tilted past its friction angle (tan α =
+/// 0.4): every vertex in contact, sliding. One step with friction (`step_with_friction`, the
+/// stick/slide set settled), backward Euler, from snapshots of the slide.
+fn bench_contact(c: &mut Criterion) {
+    use slender_core::contact::{step_with_friction, ContactParams, ContactProblem, Plane};
+    let (radius, g, alpha) = (0.006, 9.81, 0.4f64.atan());
+    let activation = 1e-6;
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0, 0.0, radius + 0.5 * activation],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        RodProperties {
+            stiffness: SectionStiffness::isotropic(9.21e5, 4.5e-2, 3.75e-2),
+            linear_density: 0.281,
+        },
+    )
+    .elements(100)
+    .allow_rigid_motion()
+    .gravity(Vec3::new(alpha.sin(), 0.0, -alpha.cos()) * g)
+    .build()
+    .expect("valid rod");
+    let plane = Plane::new(Vec3::zeros(), Vec3::z(), 0.3).expect("plane");
+    let params = ContactParams::for_line_load(radius, activation, 0.281 * g * alpha.cos());
+    let start = rod.rest_state().clone();
+    let problem =
+        ContactProblem::new(&rod, vec![Box::new(plane)], params, &start).expect("contact");
+    problem.update_friction(&start, None);
+    let dynamics = DynamicsParams::new(1e-3).with_scheme(Scheme::BackwardEuler);
+    let mut stepper = TimeStepper::at_rest(&problem, start, dynamics).expect("stepper");
+    let mut snapshots = Vec::new();
+    for k in 0..200 {
+        let r = step_with_friction(&mut stepper, &problem);
+        assert!(r.converged, "{r:?}");
+        if k % 20 == 10 {
+            snapshots.push(stepper.clone());
+        }
+    }
+    let mut next = 0;
+    c.bench_function("dynamics_step_n100_on_rough_plane/BackwardEuler", |b| {
+        b.iter_batched(
+            || {
+                next = (next + 1) % snapshots.len();
+                snapshots[next].clone()
+            },
+            |mut s| {
+                let r = step_with_friction(&mut s, &problem);
+                assert!(r.converged, "{r:?}");
+                black_box(r.iterations)
+            },
+            BatchSize::SmallInput,
+        )
+    });
+}
+
+criterion_group!(benches, bench, bench_contact);
 criterion_main!(benches);
