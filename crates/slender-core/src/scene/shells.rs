@@ -58,6 +58,14 @@ pub enum StripModel {
 }
 
 impl CompiledShell {
+    /// Width w of the strip (m).
+    pub fn width(&self) -> f64 {
+        match &self.model {
+            StripModel::Midedge(s) => s.properties().width,
+            StripModel::Bspline(s) => s.properties().width,
+        }
+    }
+
     /// Rest length L of the strip (m).
     pub fn length(&self) -> f64 {
         match &self.model {

@@ -195,7 +195,7 @@ fn hostile_messages_are_refused_by_name_and_keep_the_equilibrium() {
         (
             r#"{"op": "move_by", "shell": 0, "support": 1, "rotation": [1e300, 0, 0]}"#,
             "shells[0].clamps[1]",
-            "too large",
+            "must be finite",
         ),
     ];
     for (message, field, words) in cases {
@@ -392,4 +392,33 @@ fn fuzz_arbitrary_text() {
 #[test]
 fn fuzz_requests_with_hostile_values() {
     fuzz(request(), 300);
+}
+
+#[test]
+fn a_strip_clamp_is_dragged_through_the_move_message() {
+    let mut s = session();
+    let (v, _) = exchange(&mut s, r#"{"op": "state"}"#);
+    let clamp = &v["view"]["shells"][0]["clamps"][1];
+    assert_eq!(clamp["edge"], json!("end"));
+    let p: Vec<f64> = serde_json::from_value(clamp["position"].clone()).unwrap();
+    assert!((p[0] - 0.19).abs() < 1e-15 && p[1].abs() < 1e-15, "{p:?}");
+    let before = equilibrium(&s);
+    let message = format!(
+        r#"{{"op": "move", "shell": 0, "support": 1, "position": [{}, 0.01, 0.0], "rotation": [0.0, 0.0, 0.2]}}"#,
+        p[0]
+    );
+    let (v, kept) = exchange(&mut s, &message);
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept, "the strip moved");
+    let moved = &v["view"]["shells"][0]["clamps"][1];
+    let q: Vec<f64> = serde_json::from_value(moved["position"].clone()).unwrap();
+    assert!(
+        (q[0] - p[0]).abs() + (q[1] - 0.01).abs() + q[2].abs() < 1e-15,
+        "{q:?}"
+    );
+    let r: Vec<f64> = serde_json::from_value(moved["rotation"].clone()).unwrap();
+    assert!((r[2] - 0.2).abs() < 1e-12, "{r:?}");
+    // The rods did not move.
+    assert_eq!(equilibrium(&s).0[0], before.0[0]);
 }

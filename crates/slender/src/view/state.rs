@@ -149,6 +149,8 @@ pub struct ShellClampView {
     pub position: [f64; 3],
     /// Orientation relative to rest, as a rotation vector (rad).
     pub rotation: [f64; 3],
+    /// Length of the clamped edge: the strip's width (m).
+    pub edge_length: f64,
     /// The edge's direction now (unit): the handle is drawn along it.
     pub edge_direction: [f64; 3],
     /// The clamp's normal now (unit).
@@ -265,6 +267,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                             StripEnd::End => "end",
                         },
                         position: arr(pose.position),
+                        edge_length: scene.shells[i].width(),
                         rotation: arr(rv),
                         edge_direction: arr(pose.rotation * Vec3::z()),
                         normal: arr(pose.rotation * Vec3::y()),
