@@ -179,7 +179,7 @@ pub fn compile_shell(
             return Err(SceneError::new(
                 format!("{path}.support"),
                 format!(
-                    "{s:?}: not supported; valid: \"{SHELL_CLAMP}\" (or give `clamps`, at the start and/or the end edge)"
+                    "{s:?}: not supported; valid: \"{SHELL_CLAMP}\" (the edge x = 0 clamped), or give `clamps` (edge = \"start\", x = 0, and/or \"end\", x = L, each at any pose)"
                 ),
             ));
         }
