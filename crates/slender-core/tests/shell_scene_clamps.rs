@@ -340,3 +340,39 @@ forces = [{{ station = {n_length}, column = 0, force = [0.0, {half}, 0.0] }},
         );
     }
 }
+
+/// Gravity edits re-solve the strips too, and the saved scene reloads to the same shape.
+#[test]
+fn a_gravity_edit_re_solves_the_strips_and_the_saved_scene_reloads() {
+    for model in ["midedge", "bspline"] {
+        let mut s = Session::new(sagging(model)).expect("session");
+        let before = positions(&s);
+        let r = s.set_gravity([0.0, -5.0, 2.0]).expect("edit");
+        assert!(r.converged, "{model}: {r:?}");
+        let after = positions(&s);
+        assert!(
+            max_distance(&after, &before) > 1e-4,
+            "{model}: the strip moved"
+        );
+        let text = toml::to_string(&s.saved()).expect("toml");
+        let reloaded = Session::new(toml::from_str(&text).expect("parse")).expect("reload");
+        let d = max_distance(&positions(&reloaded), &after);
+        assert!(d < 1e-9 * 0.3, "{model}: {d:e}");
+    }
+}
+
+#[test]
+fn clamp_poses_beyond_the_strip_are_refused() {
+    let e = error_of(&format!(
+        "{HEAD}clamps = [{{ edge = \"end\", offset = [0.5, 0.0, 0.0] }}]\n"
+    ));
+    assert!(
+        e.starts_with("shells[0].clamps[0].offset: [0.5, 0.0, 0.0]"),
+        "{e}"
+    );
+    assert!(e.contains("magnitude at most 0.4"), "{e}");
+    let e = error_of(&format!(
+        "{HEAD}clamps = [{{ edge = \"start\", rotate = [7.0, 0.0, 0.0] }}]\n"
+    ));
+    assert!(e.starts_with("shells[0].clamps[0].rotate"), "{e}");
+}

@@ -528,7 +528,28 @@ impl Session {
         for s in self.scene.structures.iter_mut() {
             s.clear_paths();
         }
+        // The strips, warm at the new gravity (one Newton solve each).
+        let mut changed_shells = Vec::new();
+        if reason.is_none() {
+            for (i, (run, c)) in self
+                .shells
+                .iter_mut()
+                .zip(self.scene.shells.iter_mut())
+                .enumerate()
+            {
+                let report = run.set_gravity(c, old, g);
+                if report.converged() {
+                    changed_shells.push(i);
+                } else {
+                    reason = Some(format!("shells[{i}]: {:?}", report.status));
+                    break;
+                }
+            }
+        }
         if reason.is_some() {
+            for &i in &changed_shells {
+                self.shells[i].undo_gravity(&mut self.scene.shells[i], old);
+            }
             for s in self.scene.structures.iter_mut() {
                 for m in 0..s.members().len() {
                     s.member_mut(m).set_gravity(old);

@@ -24,6 +24,8 @@ pub(crate) trait StripProblem: EquilibriumProblem {
     fn set_motions(&mut self, motions: &[ClampMotion]);
     /// Back to the default load path (the loads ramped, the clamps where the state has them).
     fn clear_motions(&mut self);
+    /// Gravity (m/s²) at load factor 1.
+    fn set_gravity_to(&mut self, g: Vec3);
 }
 
 impl StripProblem for Shell {
@@ -38,6 +40,10 @@ impl StripProblem for Shell {
     fn clear_motions(&mut self) {
         self.set_load_path(LoadPath::Gravity);
     }
+
+    fn set_gravity_to(&mut self, g: Vec3) {
+        self.set_gravity(g);
+    }
 }
 
 impl StripProblem for BsplineShell {
@@ -50,6 +56,10 @@ impl StripProblem for BsplineShell {
     fn clear_motions(&mut self) {
         self.set_load_path(BsplineLoadPath::default())
             .expect("the default path is valid");
+    }
+
+    fn set_gravity_to(&mut self, g: Vec3) {
+        self.set_gravity(g);
     }
 }
 
@@ -78,6 +88,26 @@ impl<P: StripProblem> StripRun<P> {
             self.state.clone_from(&self.backup);
         }
         report
+    }
+
+    /// Gravity changed from `old` to `g` (m/s²): one Newton solve warm from the current state
+    /// (the strip's loads are at full scale); if it does not converge, gravity and the state
+    /// go back.
+    fn change_gravity(&mut self, model: &mut P, old: Vec3, g: Vec3) -> SolveReport {
+        self.backup.clone_from(&self.state);
+        model.set_gravity_to(g);
+        let report = self.solver.solve_in_place(model, &mut self.state, 1.0, 1.0);
+        if !report.converged() {
+            model.set_gravity_to(old);
+            self.state.clone_from(&self.backup);
+        }
+        report
+    }
+
+    /// Undoes the last [`Self::change_gravity`] that converged.
+    fn undo_gravity(&mut self, model: &mut P, old: Vec3) {
+        model.set_gravity_to(old);
+        self.state.clone_from(&self.backup);
     }
 }
 
@@ -189,6 +219,32 @@ impl ShellRun {
             Runs::Bspline(r) => r.report = report.clone(),
         }
         report
+    }
+
+    /// Changes the strip's gravity from `old` to `g` (m/s²) and re-solves warm; a change that
+    /// does not converge is undone (the report says so).
+    pub(crate) fn set_gravity(&mut self, c: &mut CompiledShell, old: Vec3, g: Vec3) -> SolveReport {
+        let report = match (&mut self.runs, &mut c.model) {
+            (Runs::Midedge(r), StripModel::Midedge(m)) => r.change_gravity(m, old, g),
+            (Runs::Bspline(r), StripModel::Bspline(m)) => r.change_gravity(m, old, g),
+            _ => unreachable!("a run is built from its own model"),
+        };
+        if report.converged() {
+            match &mut self.runs {
+                Runs::Midedge(r) => r.report = report.clone(),
+                Runs::Bspline(r) => r.report = report.clone(),
+            }
+        }
+        report
+    }
+
+    /// Undoes a converged [`Self::set_gravity`] (another structure of the edit failed).
+    pub(crate) fn undo_gravity(&mut self, c: &mut CompiledShell, old: Vec3) {
+        match (&mut self.runs, &mut c.model) {
+            (Runs::Midedge(r), StripModel::Midedge(m)) => r.undo_gravity(m, old),
+            (Runs::Bspline(r), StripModel::Bspline(m)) => r.undo_gravity(m, old),
+            _ => unreachable!("a run is built from its own model"),
+        }
     }
 
     /// The pose of clamp `k` (in the order of the spec's `clamps`): the position of its

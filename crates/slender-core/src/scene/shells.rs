@@ -24,6 +24,11 @@ pub const DEFAULT_SHELL_ELEMENTS: usize = 15;
 /// The support of the older files (`support = "clamp_start"`): the edge x = 0 clamped at rest.
 pub const SHELL_CLAMP: &str = "clamp_start";
 
+/// Largest offset of a strip's clamp from its rest pose, in strip lengths.
+pub const MAX_OFFSET_LENGTHS: f64 = 2.0;
+/// Largest rotation of a strip's clamp from its rest pose (rad).
+pub const MAX_CLAMP_TURN: f64 = 2.0 * std::f64::consts::PI;
+
 /// A clamp of a compiled strip: which end, and its pose as a rigid motion of the end's rest
 /// points (the spec's offset and rotation about the edge's rest centre).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -119,7 +124,7 @@ fn finite_vector(path: &str, v: [f64; 3], limit: f64) -> Result<Vec3, SceneError
     } else {
         Err(SceneError::new(
             path,
-            format!("{v:?}: every component must be finite, magnitude at most {limit:e}"),
+            format!("{v:?}: every component must be finite, magnitude at most {limit}"),
         ))
     }
 }
@@ -220,8 +225,14 @@ pub fn compile_shell(
                 ),
             ));
         }
-        let offset = finite_vector(&format!("{place}.offset"), c.offset, spec.length * 1e3)?;
-        let rotate = finite_vector(&format!("{place}.rotate"), c.rotate, 1e3)?;
+        // A strip reaches no further than its length, and the initial solve moves the clamp
+        // there in load steps (see `shell_run::move_steps`): bound both.
+        let offset = finite_vector(
+            &format!("{place}.offset"),
+            c.offset,
+            MAX_OFFSET_LENGTHS * spec.length,
+        )?;
+        let rotate = finite_vector(&format!("{place}.rotate"), c.rotate, MAX_CLAMP_TURN)?;
         let centre = match end {
             StripEnd::Start => Vec3::zeros(),
             StripEnd::End => Vec3::new(spec.length, 0.0, 0.0),

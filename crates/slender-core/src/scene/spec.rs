@@ -490,10 +490,11 @@ pub enum ShellModelSpec {
 pub struct ShellClampSpec {
     /// The clamped edge: `"start"` (x = 0) or `"end"` (x = L).
     pub edge: RodEnd,
-    /// Translation (m) of the edge's centre from its rest position. Default 0.
+    /// Translation (m) of the edge's centre from its rest position, |offset| ≤ 2 L. Default 0.
     #[serde(default)]
     pub offset: [f64; 3],
-    /// Rotation vector (axis × angle, rad) of the edge about its centre. Default 0.
+    /// Rotation vector (axis × angle, rad) of the edge about its centre, angle ≤ 2π. Default
+    /// 0.
     #[serde(default)]
     pub rotate: [f64; 3],
 }
