@@ -138,7 +138,7 @@ impl ShellRun {
         let (runs, rod_predictor_used) = match &c.model {
             StripModel::Midedge(shell) => {
                 let flat = shell.rest_state();
-                let mut solver = EquilibriumSolver::new(shell, &flat, params.clone());
+                let mut solver = EquilibriumSolver::new(shell, &flat, *params);
                 let (solution, rod) = solve_midedge_loaded(shell, &mut solver, params);
                 (
                     Runs::Midedge(StripRun {
@@ -152,7 +152,7 @@ impl ShellRun {
             }
             StripModel::Bspline(shell) => {
                 let flat = shell.rest_state();
-                let mut solver = EquilibriumSolver::new(shell, &flat, params.clone());
+                let mut solver = EquilibriumSolver::new(shell, &flat, *params);
                 let solution = solver.solve(shell, &flat, 0.0, 1.0);
                 (
                     Runs::Bspline(StripRun {
