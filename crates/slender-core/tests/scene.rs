@@ -183,7 +183,8 @@ fn moving_all_supports_rigidly_moves_the_equilibrium_rigidly() {
     let rot = [0.3, -0.5, 0.8];
     let tr = [0.2, 0.1, -0.3];
     s.motion.push(MotionStage {
-        rod: 0,
+        rod: Some(0),
+        shell: None,
         support: 0,
         translate: tr,
         rotate: rot,
@@ -304,14 +305,16 @@ fn moving_an_interior_clamp_moves_both_sides_rigidly_and_a_moved_clip_keeps_bala
     let mut s = scene(vec![a, b], [0.0; 3]);
     let (rot, tr) = ([0.4, 0.0, 0.3], [0.0, 0.05, 0.1]);
     s.motion.push(MotionStage {
-        rod: 0,
+        rod: Some(0),
+        shell: None,
         support: 0,
         translate: tr,
         rotate: rot,
         steps: 2,
     });
     s.motion.push(MotionStage {
-        rod: 1,
+        rod: Some(1),
+        shell: None,
         support: 1,
         translate: [-0.1, 0.1, 0.0],
         rotate: [0.0, 0.0, 0.5],
@@ -459,6 +462,8 @@ fn a_shell_strip_is_solved_on_its_own_and_does_not_change_the_rods() {
         width_elements: None,
         grading: None,
         support: None,
+        clamps: None,
+        forces: Vec::new(),
         model: None,
     };
     let alone = scene(vec![rod.clone()], g);

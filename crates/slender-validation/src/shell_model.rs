@@ -185,7 +185,7 @@ impl StripModel for Shell {
             *p = rotation * *p;
         }
         state.membrane_remainder.clear();
-        let turned = state.clamp.moved(&rotation, &Vec3::zeros());
+        let turned = state.clamps[0].moved(&rotation, &Vec3::zeros());
         self.set_clamp(turned, state);
     }
 

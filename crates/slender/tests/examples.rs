@@ -1091,3 +1091,96 @@ fn a_time_step_that_fails_stops_the_run_and_every_output_says_so() {
         "header, frames, the failed step"
     );
 }
+
+/// The flat cable between two connectors (examples/flat_cable_two_connectors.toml): a shell
+/// strip clamped at both ends at poses, then one clamp moved by a motion stage. Its centre
+/// line against the equivalent rod (ν = 0: E I = D w; the same clamps, moved to the same
+/// poses by motion stages), the clamped edges at the connectors' poses, the balance with the
+/// weight, the kept length.
+#[test]
+fn flat_cable_between_two_connectors_matches_its_rod_limit() {
+    use slender_core::scene::{Scene, Session};
+    let out = solve("flat_cable_two_connectors");
+    assert_eq!(n_steps(&out), 3);
+    let (l, w, h, rho, g) = (0.3, 0.02, 0.3e-3, 2000.0, 9.81);
+    let [nl, nw] = [30, 2];
+    // The equivalent rod: m₁ along the width (z), bending in the xy-plane about the weak axis.
+    let rod: Scene = toml::from_str(
+        r#"
+gravity = [0.0, -9.81, 0.0]
+[[rods]]
+elements = 30
+centerline = { kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 0.3 }
+first_director = [0.0, 0.0, 1.0]
+section = { shape = "rectangle", width = 0.02, height = 0.3e-3 }
+material = { young = 5.0e9, poisson = 0.0, density = 2000.0 }
+supports = [{ kind = "clamp", vertex = "start" }, { kind = "clamp", vertex = "end" }]
+[[motion]]
+rod = 0
+support = 1
+translate = [-0.08, 0.04, 0.0]
+rotate = [0.0, 0.0, 0.6]
+steps = 6
+[[motion]]
+rod = 0
+support = 1
+translate = [0.0, -0.02, 0.0]
+steps = 2
+"#,
+    )
+    .unwrap();
+    let mut session = Session::new(rod).unwrap();
+    for k in 1..=6 {
+        assert!(session.run_motion_step(k).converged);
+    }
+    let weight = rho * h * w * l * g;
+    for k in 0..3 {
+        if k > 0 {
+            assert!(session.run_motion_step(6 + k).converged);
+        }
+        let rod = session.results(0, None, 1.0, 1);
+        let rp: Vec<V3> = rod.rods[0].positions.clone();
+        let r = step(&out, k);
+        let sh = &r["shells"][0];
+        assert_eq!(sh["converged"], Value::Bool(true), "step {k}");
+        let p = positions(sh);
+        assert_eq!(p.len(), (nl + 1) * (nw + 1));
+        // Centre line: the middle column; the rod's vertices sit at the same rest stations.
+        let worst = (0..=nl)
+            .map(|i| norm(sub(p[i * (nw + 1) + nw / 2], rp[i])))
+            .fold(0.0, f64::max);
+        eprintln!(
+            "step {k}: strip vs rod, largest distance {:.3e} L",
+            worst / l
+        );
+        assert!(worst < 1e-3 * l, "step {k}: {worst:e} m");
+        // The clamped edges: x = 0 at rest, x = L at the connector's pose
+        // c + offset + R(x − c), offset (−0.08, 0.04 − 0.01 k, 0): R turns about z, the
+        // edge's own line through c, so the edge's points only translate.
+        for j in 0..=nw {
+            let z = -0.5 * w + w * j as f64 / nw as f64;
+            let q0 = p[j];
+            assert!(norm(sub(q0, [0.0, 0.0, z])) < 1e-15, "{q0:?}");
+            let q1 = p[nl * (nw + 1) + j];
+            let want = [l - 0.08, 0.04 - 0.01 * k as f64, z];
+            assert!(norm(sub(q1, want)) < 1e-14, "step {k}: {q1:?} vs {want:?}");
+        }
+        // The centre line keeps its length (the membrane is stiff).
+        let arc: f64 = (0..nl)
+            .map(|i| norm(sub(p[(i + 1) * (nw + 1) + 1], p[i * (nw + 1) + 1])))
+            .sum();
+        assert!(
+            (arc - l).abs() < 1e-4 * l,
+            "step {k}: centre-line length {arc}"
+        );
+        // The clamps carry the weight, computed here from the scene's data.
+        let f = v3(&sh["applied_force"]);
+        assert!((f[1] + weight).abs() < 1e-12 * weight, "{f:?}");
+        let cf = v3(&sh["clamp_force"]);
+        let off = norm(add(cf, [0.0, -weight, 0.0])) / weight;
+        assert!(
+            off < 1e-6,
+            "step {k}: clamp force {cf:?} vs weight {weight}"
+        );
+    }
+}

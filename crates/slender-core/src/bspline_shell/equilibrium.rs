@@ -10,6 +10,7 @@ use super::clamp::StripEnd;
 use super::groups::ALL_GROUPS;
 use super::model::{with_elements, BsplineShell, Elements};
 use super::state::BsplineState;
+use crate::shell::strip_guess::both_ends_guess;
 
 /// Largest relative change of a control-net edge in one Newton step (keeps the surface from
 /// folding over within a step, as the mid-edge shell's edge cap does).
@@ -80,22 +81,41 @@ impl EquilibriumProblem for BsplineShell {
             return;
         }
         if guess {
-            let n_u = self.patch.n_u();
-            let greville = self.patch.knots_u.greville();
+            let (n_u, n_v) = (self.patch.n_u(), self.patch.n_v());
             let length = self.properties.length;
+            let stations: Vec<f64> = self
+                .patch
+                .knots_u
+                .greville()
+                .iter()
+                .take(n_u)
+                .map(|g| g / length)
+                .collect();
+            let mut held = vec![false; n_u];
+            for end in StripEnd::BOTH {
+                if self.is_clamped(end) {
+                    for r in end.held_rows(n_u) {
+                        held[r] = true;
+                    }
+                }
+            }
             for m in motions {
-                let other_clamped = self.is_clamped(m.end.other());
-                for (k, p) in state.control_points.iter_mut().enumerate() {
-                    let i = self.patch.row(k);
-                    let s = greville[i.min(n_u - 1)] / length;
-                    let w = if !other_clamped {
-                        1.0
-                    } else if m.end == StripEnd::Start {
-                        1.0 - s
-                    } else {
-                        s
-                    };
-                    *p = m.carry(p, from, to, w);
+                if self.is_clamped(m.end.other()) {
+                    // Held at both ends: the length-preserving guess (`shell::strip_guess`).
+                    both_ends_guess(
+                        &mut state.control_points,
+                        n_v,
+                        &stations,
+                        &held,
+                        m,
+                        from,
+                        to,
+                    );
+                } else {
+                    // Held at one end only, the strip turns rigidly with its clamp.
+                    for p in state.control_points.iter_mut() {
+                        *p = m.carry(p, from, to, 1.0);
+                    }
                 }
             }
             state.membrane_remainder.clear();

@@ -4,10 +4,10 @@
 //! A clamp moving with λ is a change of the state that the solver asks for before each step
 //! ([`EquilibriumProblem::impose_load`](crate::solver::EquilibriumProblem::impose_load)): its
 //! two control rows move exactly and, as a first guess when no secant predictor exists yet,
-//! the free control points move by a blend of the same rigid motion (weight 1 everywhere when
-//! the other end is free — the strip turns rigidly with its clamp —, else falling linearly
-//! along the length to 0 at the other clamp). A linearized guess would stretch the membrane
-//! at second order (see `shell::mixed_update`).
+//! the free control points move with the same rigid motion when the other end is free (the
+//! strip turns rigidly with its clamp) and by the length-preserving guess of
+//! `shell::strip_guess` when it is clamped. A linearized guess would stretch the membrane at
+//! second order (see `shell::mixed_update`).
 
 use nalgebra::Rotation3;
 use serde::{Deserialize, Serialize};

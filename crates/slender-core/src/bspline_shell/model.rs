@@ -102,6 +102,11 @@ impl BsplineShell {
         self.gravity = g;
     }
 
+    /// Sum of the point loads (N at load factor 1).
+    pub fn point_load_total(&self) -> Vec3 {
+        self.point_loads.iter().map(|l| l.force).sum()
+    }
+
     /// Whether `end` is clamped.
     pub fn is_clamped(&self, end: StripEnd) -> bool {
         self.clamped[end.index()]

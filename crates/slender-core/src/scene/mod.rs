@@ -11,6 +11,7 @@ pub mod error;
 pub mod magnitudes;
 pub mod result;
 pub mod session;
+pub mod shell_run;
 pub mod shells;
 pub mod solve;
 pub mod spec;
@@ -22,6 +23,7 @@ pub use result::{
     FrameEnergy, RodResult, SceneStep, StabilityResult, StructureResult, SupportResult, TimeFrame,
 };
 pub use session::{EditReport, Session, SupportPose};
-pub use shells::{CompiledShell, ShellResult, StripModel};
+pub use shell_run::ShellRun;
+pub use shells::{CompiledShell, CompiledShellClamp, ShellResult, StripModel};
 pub use spec::Scene;
 pub use time_run::{TimeRun, TimeStepOutcome};

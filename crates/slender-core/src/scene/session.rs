@@ -23,8 +23,12 @@ use super::carry::FramedSnapshot;
 use super::compile::{CompiledScene, MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
 use super::error::SceneError;
 use super::result::{scene_results, SceneStep, StabilityResult};
-use super::shells::{solve_shell, ShellResult};
-use super::spec::{MotionStage, Scene, SupportKind, SupportSpec, UnstablePolicy};
+use super::shell_run::{move_steps, pose_change, ShellRun, MAX_MOVE_STEPS};
+use super::shells::ShellResult;
+use super::spec::{
+    MotionStage, RodEnd, Scene, ShellClampSpec, SupportKind, SupportSpec, UnstablePolicy,
+};
+use crate::bspline_shell::StripEnd;
 
 /// Kick of a branch switch: the largest coordinate change, as a fraction of the structure's
 /// length.
@@ -78,7 +82,8 @@ pub struct Session {
     spec: Scene,
     scene: CompiledScene,
     runs: Vec<Run>,
-    shells: Vec<ShellResult>,
+    /// The shell strips (the models are in `scene.shells`).
+    shells: Vec<ShellRun>,
     /// Per rod, per support: where it is now.
     poses: Vec<Vec<SupportPose>>,
     /// Per rod, per support: where it was at rest (the saved scene moves it from there).
@@ -119,10 +124,12 @@ impl Session {
                 report,
             });
         }
+        let mut scene = scene;
+        let params = scene.solver;
         let shells = scene
             .shells
-            .iter()
-            .map(|s| solve_shell(s, &scene.solver))
+            .iter_mut()
+            .map(|s| ShellRun::new(s, &params))
             .collect();
         let poses = rest_poses(&scene, &runs);
         let mut me = Self {
@@ -188,7 +195,13 @@ impl Session {
         let stability: Vec<StabilityResult> =
             self.runs.iter().map(|r| r.stability.clone()).collect();
         let (rods, structures) = scene_results(&self.scene, &states, &reports, &stability);
-        let converged = rods.iter().all(|r| r.converged) && self.shells.iter().all(|s| s.converged);
+        let shells: Vec<ShellResult> = self
+            .shells
+            .iter()
+            .zip(&self.scene.shells)
+            .map(|(run, c)| run.result(c))
+            .collect();
+        let converged = rods.iter().all(|r| r.converged) && shells.iter().all(|s| s.converged);
         let stable = structures.iter().all(|s| s.stability.stable);
         SceneStep {
             step,
@@ -198,7 +211,7 @@ impl Session {
             pieces,
             rods,
             structures,
-            shells: self.shells.clone(),
+            shells,
             converged,
             stable,
             time: None,
@@ -523,7 +536,28 @@ impl Session {
         for s in self.scene.structures.iter_mut() {
             s.clear_paths();
         }
+        // The strips, warm at the new gravity (one Newton solve each).
+        let mut changed_shells = Vec::new();
+        if reason.is_none() {
+            for (i, (run, c)) in self
+                .shells
+                .iter_mut()
+                .zip(self.scene.shells.iter_mut())
+                .enumerate()
+            {
+                let report = run.set_gravity(c, old, g);
+                if report.converged() {
+                    changed_shells.push(i);
+                } else {
+                    reason = Some(format!("shells[{i}]: {:?}", report.status));
+                    break;
+                }
+            }
+        }
         if reason.is_some() {
+            for &i in &changed_shells {
+                self.shells[i].undo_gravity(&mut self.scene.shells[i], old);
+            }
             for s in self.scene.structures.iter_mut() {
                 for m in 0..s.members().len() {
                     s.member_mut(m).set_gravity(old);
@@ -581,9 +615,9 @@ impl Session {
         // Motion stages of that rod's supports are renumbered (the saved scene re-derives
         // them from the poses).
         spec.motion
-            .retain(|m| !(m.rod == rod && m.support == support));
+            .retain(|m| !(m.rod == Some(rod) && m.support == support));
         for m in spec.motion.iter_mut() {
-            if m.rod == rod && m.support > support {
+            if m.rod == Some(rod) && m.support > support {
                 m.support -= 1;
             }
         }
@@ -852,7 +886,11 @@ impl Session {
         let (stage_index, k) = self.locate(step);
         let stage: MotionStage = self.scene.motion[stage_index].clone();
         if k == 0 {
-            self.stage_start = self.pose(stage.rod, stage.support);
+            self.stage_start = match (stage.rod, stage.shell) {
+                (Some(r), _) => self.pose(r, stage.support),
+                (None, Some(s)) => self.shell_pose(s, stage.support),
+                (None, None) => None,
+            };
         }
         let start = self.stage_start.expect("stage start");
         let f = (k + 1) as f64 / stage.steps as f64;
@@ -860,7 +898,12 @@ impl Session {
             position: start.position + Vec3::from(stage.translate) * f,
             rotation: Rotation3::new(Vec3::from(stage.rotate) * f) * start.rotation,
         };
-        let pieces = match self.move_support(stage.rod, stage.support, target) {
+        let edit = match (stage.rod, stage.shell) {
+            (Some(r), _) => self.move_support(r, stage.support, target),
+            (None, Some(s)) => self.move_shell_clamp(s, stage.support, target),
+            (None, None) => unreachable!("compiled stages name a rod or a shell"),
+        };
+        let pieces = match edit {
             Ok(r) => r.load_steps,
             Err(_) => 0,
         };
@@ -903,7 +946,8 @@ impl Session {
                     .ceil()
                     .max(1.0) as usize;
                 spec.motion.push(MotionStage {
-                    rod: r,
+                    rod: Some(r),
+                    shell: None,
                     support: s,
                     translate: [translation.x, translation.y, translation.z],
                     rotate: [rotation.x, rotation.y, rotation.z],
@@ -911,7 +955,146 @@ impl Session {
                 });
             }
         }
+        // A strip's clamps are saved at their poses (the file's `clamps`), which the initial
+        // solve reaches from rest.
+        for (i, (run, c)) in self.shells.iter().zip(&self.scene.shells).enumerate() {
+            let moved = c.clamps.iter().enumerate().any(|(k, clamp)| {
+                run.pose(c, k).is_some_and(|p| {
+                    p.position != clamp.pose.position(&clamp.centre)
+                        || p.rotation != clamp.pose.rotation
+                })
+            });
+            if !moved {
+                continue;
+            }
+            let clamps = c
+                .clamps
+                .iter()
+                .enumerate()
+                .map(|(k, clamp)| {
+                    let p = run.pose(c, k).expect("a clamp of this strip");
+                    let offset = p.position - clamp.centre;
+                    let rotate = rotation_vector(&p.rotation);
+                    ShellClampSpec {
+                        edge: match clamp.end {
+                            StripEnd::Start => RodEnd::Start,
+                            StripEnd::End => RodEnd::End,
+                        },
+                        offset: offset.into(),
+                        rotate: rotate.into(),
+                    }
+                })
+                .collect();
+            spec.shells[i].support = None;
+            spec.shells[i].clamps = Some(clamps);
+        }
         spec
+    }
+
+    /// Where clamp `clamp` (index into the strip's `clamps`; 0 for a strip without them: its
+    /// start clamp) of strip `shell` is now: the centre of its clamped edge (m) and its
+    /// rotation from rest.
+    pub fn shell_pose(&self, shell: usize, clamp: usize) -> Option<SupportPose> {
+        self.shells
+            .get(shell)?
+            .pose(&self.scene.shells[shell], clamp)
+    }
+
+    /// The strips being solved (in the order of the scene's `shells`).
+    pub fn shell_runs(&self) -> &[ShellRun] {
+        &self.shells
+    }
+
+    /// Moves clamp `clamp` of strip `shell` to `target` (the centre of its edge and its
+    /// rotation from rest) and re-solves the strip warm from its last equilibrium: only the
+    /// clamped DOFs are moved before Newton (see the strips' `impose_load`), and a move too
+    /// large for one Newton solve is split by the continuation. A move that does not converge
+    /// leaves the clamp and the equilibrium where they were and says so. Errors (nothing
+    /// changed): an unknown strip or clamp, a non-finite pose, a move too large.
+    pub fn move_shell_clamp(
+        &mut self,
+        shell: usize,
+        clamp: usize,
+        target: SupportPose,
+    ) -> Result<EditReport, SceneError> {
+        let path = format!("shells[{shell}].clamps[{clamp}]");
+        let Some(cur) = self.shell_pose(shell, clamp) else {
+            return Err(SceneError::new(
+                path,
+                format!(
+                    "no such clamp (shells: {}, clamps of this strip: {})",
+                    self.scene.shells.len(),
+                    self.scene.shells.get(shell).map_or(0, |s| s.clamps.len())
+                ),
+            ));
+        };
+        if target.position.iter().any(|c| !c.is_finite())
+            || target.rotation.matrix().iter().any(|c| !c.is_finite())
+        {
+            return Err(SceneError::new(path, "the target pose must be finite"));
+        }
+        let (rotation, translation) = pose_change(&cur, &target);
+        let c = &mut self.scene.shells[shell];
+        let length = c.length();
+        let steps = move_steps(&rotation, &translation, length);
+        if !(steps <= MAX_MOVE_STEPS) {
+            return Err(SceneError::new(
+                path,
+                format!(
+                    "the move ({:.3e} m, {:.3e} rad) is too large for one edit (at most {} m and {} rad)",
+                    translation.norm(),
+                    rotation.norm(),
+                    MAX_MOVE_STEPS * MAX_STEP_TRANSLATION * length,
+                    MAX_MOVE_STEPS * MAX_STEP_ROTATION
+                ),
+            ));
+        }
+        let report = self.shells[shell].move_clamp(c, clamp, rotation, translation, steps);
+        let reason = match &report.status {
+            SolveStatus::Converged => None,
+            SolveStatus::NotConverged { reason } => Some(format!(
+                "the move did not converge ({reason}); the last equilibrium is kept"
+            )),
+        };
+        Ok(EditReport {
+            converged: reason.is_none(),
+            reason,
+            structures: Vec::new(),
+            iterations: report.iterations,
+            load_steps: report.load_steps,
+            relative_residual: report.relative_residual,
+            stable: self.runs.iter().all(|r| r.stability.stable),
+            followed_unstable_mode: false,
+        })
+    }
+
+    /// Moves clamp `clamp` of strip `shell` by a rotation vector (rad, about the centre of
+    /// its edge) and a translation (m).
+    pub fn move_shell_clamp_by(
+        &mut self,
+        shell: usize,
+        clamp: usize,
+        rotation: Vec3,
+        translation: Vec3,
+    ) -> Result<EditReport, SceneError> {
+        let Some(cur) = self.shell_pose(shell, clamp) else {
+            return self.move_shell_clamp(
+                shell,
+                clamp,
+                SupportPose {
+                    position: Vec3::zeros(),
+                    rotation: Rotation3::identity(),
+                },
+            );
+        };
+        self.move_shell_clamp(
+            shell,
+            clamp,
+            SupportPose {
+                position: cur.position + translation,
+                rotation: Rotation3::new(rotation) * cur.rotation,
+            },
+        )
     }
 }
 

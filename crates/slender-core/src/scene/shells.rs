@@ -7,27 +7,50 @@
 use serde::Serialize;
 
 use crate::assembly::TermSet;
-use crate::bspline_shell::{BsplineShell, BsplineShellBuilder, BsplineState};
+use nalgebra::Rotation3;
+
+use crate::bspline_shell::{BsplineShell, BsplineShellBuilder, BsplineState, PointLoad, StripEnd};
 use crate::geometry::Vec3;
-use crate::shell::{rod_predictor, Shell, ShellBuilder, ShellProperties, ShellState};
+use crate::linalg::SparseSymmetricMatrix;
+use crate::shell::{rod_predictor, Clamp, Shell, ShellBuilder, ShellProperties, ShellState};
 use crate::solver::{EquilibriumSolver, SolveReport, SolverParams};
 
 use super::error::SceneError;
-use super::spec::{ShellModelSpec, ShellSpec};
+use super::spec::{RodEnd, ShellClampSpec, ShellModelSpec, ShellSpec};
 
 /// Default number of elements along a strip's length.
 pub const DEFAULT_SHELL_ELEMENTS: usize = 15;
 
-/// The only support a strip may have: its edge x = 0 clamped.
+/// The support of the older files (`support = "clamp_start"`): the edge x = 0 clamped at rest.
 pub const SHELL_CLAMP: &str = "clamp_start";
+
+/// Largest offset of a strip's clamp from its rest pose, in strip lengths.
+pub const MAX_OFFSET_LENGTHS: f64 = 2.0;
+/// Largest rotation of a strip's clamp from its rest pose (rad).
+pub const MAX_CLAMP_TURN: f64 = 2.0 * std::f64::consts::PI;
+
+/// A clamp of a compiled strip: which end, and its pose as a rigid motion of the end's rest
+/// points (the spec's offset and rotation about the edge's rest centre).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CompiledShellClamp {
+    /// The clamped end.
+    pub end: StripEnd,
+    /// Rest centre of the clamped edge (m): (0, 0, 0) or (L, 0, 0).
+    pub centre: Vec3,
+    /// The pose of the file (reached from rest by the initial solve).
+    pub pose: Clamp,
+}
 
 /// A strip of the scene, ready to solve.
 #[derive(Clone, Debug)]
 pub struct CompiledShell {
     /// Output name.
     pub name: String,
-    /// The shell model (clamped at x = 0, with the scene's gravity at load factor 1).
+    /// The shell model: its clamps at rest, the scene's gravity and the point forces at load
+    /// factor 1.
     pub model: StripModel,
+    /// The clamps, in the order of the spec's `clamps`.
+    pub clamps: Vec<CompiledShellClamp>,
 }
 
 /// The model of a strip.
@@ -40,6 +63,22 @@ pub enum StripModel {
 }
 
 impl CompiledShell {
+    /// Width w of the strip (m).
+    pub fn width(&self) -> f64 {
+        match &self.model {
+            StripModel::Midedge(s) => s.properties().width,
+            StripModel::Bspline(s) => s.properties().width,
+        }
+    }
+
+    /// Rest length L of the strip (m).
+    pub fn length(&self) -> f64 {
+        match &self.model {
+            StripModel::Midedge(s) => s.properties().length,
+            StripModel::Bspline(s) => s.properties().length,
+        }
+    }
+
     /// The flat strip's points at the stations and columns of the result grid: vertex (i, j)
     /// is i·(n_W + 1) + j (m).
     pub fn rest_positions(&self) -> Vec<Vec3> {
@@ -61,11 +100,11 @@ pub struct ShellResult {
     pub faces: Vec<[usize; 3]>,
     /// Elements along the length and across the width.
     pub elements: [usize; 2],
-    /// Total applied load (N): the weight of the whole strip, Σ mᵥ g.
+    /// Total applied load (N): the weight of the whole strip, Σ mᵥ g, and the point forces.
     pub applied_force: [f64; 3],
-    /// Force the clamp applies to the strip (N): Σ over the clamp edge's vertices of ∂E/∂x
-    /// (the generalized force the held DOFs need), by central differences of the total
-    /// energy. The clamp moment is not reported.
+    /// Force the clamps apply to the strip (N, both clamps together): Σ over the held
+    /// vertices (control points) of ∂E/∂x (the generalized force the held DOFs need), by
+    /// central differences of the total energy. The clamp moment is not reported.
     pub clamp_force: [f64; 3],
     /// |clamp_force + applied_force| / |applied_force| (0 without load).
     pub relative_force_imbalance: f64,
@@ -76,6 +115,18 @@ pub struct ShellResult {
     pub report: SolveReport,
     /// True if the solve converged.
     pub converged: bool,
+}
+
+/// A finite vector of magnitude at most `limit`.
+fn finite_vector(path: &str, v: [f64; 3], limit: f64) -> Result<Vec3, SceneError> {
+    if v.iter().all(|c| c.is_finite()) && Vec3::from(v).norm() <= limit {
+        Ok(Vec3::from(v))
+    } else {
+        Err(SceneError::new(
+            path,
+            format!("{v:?}: every component must be finite, magnitude at most {limit}"),
+        ))
+    }
 }
 
 fn positive(path: String, v: f64) -> Result<(), SceneError> {
@@ -133,10 +184,68 @@ pub fn compile_shell(
             return Err(SceneError::new(
                 format!("{path}.support"),
                 format!(
-                    "{s:?}: not supported; a shell strip can only be clamped along its edge x = 0 (\"{SHELL_CLAMP}\")"
+                    "{s:?}: not supported; valid: \"{SHELL_CLAMP}\" (the edge x = 0 clamped), or give `clamps` (edge = \"start\", x = 0, and/or \"end\", x = L, each at any pose)"
                 ),
             ));
         }
+        if spec.clamps.is_some() {
+            return Err(SceneError::new(
+                format!("{path}.support"),
+                "give either `support` (older files) or `clamps`, not both",
+            ));
+        }
+    }
+    let clamp_specs = match &spec.clamps {
+        Some(c) => c.clone(),
+        None => vec![ShellClampSpec {
+            edge: RodEnd::Start,
+            offset: [0.0; 3],
+            rotate: [0.0; 3],
+        }],
+    };
+    if clamp_specs.is_empty() {
+        return Err(SceneError::new(
+            format!("{path}.clamps"),
+            "empty: a strip needs at least one clamp (edge = \"start\" and/or \"end\")",
+        ));
+    }
+    let mut clamps = Vec::with_capacity(clamp_specs.len());
+    for (k, c) in clamp_specs.iter().enumerate() {
+        let place = format!("{path}.clamps[{k}]");
+        let end = match c.edge {
+            RodEnd::Start => StripEnd::Start,
+            RodEnd::End => StripEnd::End,
+        };
+        if clamps.iter().any(|o: &CompiledShellClamp| o.end == end) {
+            return Err(SceneError::new(
+                format!("{place}.edge"),
+                format!(
+                    "{:?}: that edge is already clamped; at most one clamp per end",
+                    c.edge
+                ),
+            ));
+        }
+        // A strip reaches no further than its length, and the initial solve moves the clamp
+        // there in load steps (see `shell_run::move_steps`): bound both.
+        let offset = finite_vector(
+            &format!("{place}.offset"),
+            c.offset,
+            MAX_OFFSET_LENGTHS * spec.length,
+        )?;
+        let rotate = finite_vector(&format!("{place}.rotate"), c.rotate, MAX_CLAMP_TURN)?;
+        let centre = match end {
+            StripEnd::Start => Vec3::zeros(),
+            StripEnd::End => Vec3::new(spec.length, 0.0, 0.0),
+        };
+        let rotation = Rotation3::new(rotate);
+        clamps.push(CompiledShellClamp {
+            end,
+            centre,
+            pose: Clamp {
+                rotation,
+                translation: centre + offset - rotation * centre,
+            },
+        });
     }
     let n_length = spec.elements.unwrap_or(DEFAULT_SHELL_ELEMENTS);
     if n_length < 1 {
@@ -180,58 +289,143 @@ pub fn compile_shell(
         };
         SceneError::model(place, e)
     };
+    if spec.clamps.is_some() && clamps.len() == 2 && n_length < 2 {
+        return Err(SceneError::new(
+            format!("{path}.elements"),
+            format!("{n_length}: with both edges clamped a strip needs at least 2 elements along its length"),
+        ));
+    }
+    for (k, f) in spec.forces.iter().enumerate() {
+        let place = format!("{path}.forces[{k}]");
+        if f.station > n_length {
+            return Err(SceneError::new(
+                format!("{place}.station"),
+                format!(
+                    "{}: off the strip; valid: 0..={n_length} (elements)",
+                    f.station
+                ),
+            ));
+        }
+        if f.column > n_width {
+            return Err(SceneError::new(
+                format!("{place}.column"),
+                format!(
+                    "{}: off the strip; valid: 0..={n_width} (width_elements)",
+                    f.column
+                ),
+            ));
+        }
+        finite_vector(
+            &format!("{place}.force"),
+            f.force,
+            super::magnitudes::MAGNITUDE_LIMIT,
+        )?;
+    }
+    let clamped = |end: StripEnd| clamps.iter().any(|c| c.end == end);
+    let grading = spec.grading.unwrap_or_default();
     let model = match spec.model.unwrap_or_default() {
-        ShellModelSpec::Midedge => StripModel::Midedge(
-            ShellBuilder::new(properties)
+        ShellModelSpec::Midedge => {
+            let mut b = ShellBuilder::new(properties)
                 .elements(n_length, n_width)
-                .grading(spec.grading.unwrap_or_default())
-                .gravity(gravity)
-                .build()
-                .map_err(place)?,
-        ),
-        ShellModelSpec::Bspline => StripModel::Bspline(
-            BsplineShellBuilder::new(properties)
+                .grading(grading)
+                .gravity(gravity);
+            for end in StripEnd::BOTH {
+                b = if clamped(end) {
+                    b.clamp(end)
+                } else {
+                    b.free(end)
+                };
+            }
+            for f in &spec.forces {
+                b = b.point_force(f.station, f.column, Vec3::from(f.force));
+            }
+            StripModel::Midedge(b.build().map_err(place)?)
+        }
+        ShellModelSpec::Bspline => {
+            let mut b = BsplineShellBuilder::new(properties)
                 .elements(n_length, n_width)
-                .grading(spec.grading.unwrap_or_default())
-                .gravity(gravity)
-                .build()
-                .map_err(place)?,
-        ),
+                .grading(grading)
+                .gravity(gravity);
+            for end in StripEnd::BOTH {
+                b = if clamped(end) {
+                    b.clamp(end, Clamp::default())
+                } else {
+                    b.free(end)
+                };
+            }
+            if !spec.forces.is_empty() {
+                let stations = grading
+                    .node_arclengths(n_length, spec.length)
+                    .map_err(place)?;
+                for f in &spec.forces {
+                    b = b.point_load(PointLoad {
+                        u: stations[f.station],
+                        v: -0.5 * spec.width + spec.width * f.column as f64 / n_width as f64,
+                        force: f.force,
+                    });
+                }
+            }
+            StripModel::Bspline(b.build().map_err(place)?)
+        }
     };
-    Ok(CompiledShell { name, model })
+    Ok(CompiledShell {
+        name,
+        model,
+        clamps,
+    })
 }
 
 fn arr(v: Vec3) -> [f64; 3] {
     [v.x, v.y, v.z]
 }
 
-/// Solves a strip under the full gravity: Newton from the equivalent rod's equilibrium
-/// mapped onto the strip (as the shell cantilever does); if the rod does not converge or
-/// Newton fails from there, load stepping from the flat strip.
+/// Solves a strip: its loads at its clamps' rest poses, then the clamps moved to the poses
+/// of the file (see [`ShellRun::new`](super::shell_run::ShellRun::new)).
 pub fn solve_shell(c: &CompiledShell, params: &SolverParams) -> ShellResult {
-    let shell = match &c.model {
-        StripModel::Midedge(s) => s,
-        StripModel::Bspline(s) => return solve_bspline(&c.name, s, params),
-    };
+    let mut c = c.clone();
+    let run = super::shell_run::ShellRun::new(&mut c, params);
+    run.result(&c)
+}
+
+/// The loaded strip at its clamps' rest poses: Newton from the equivalent rod's equilibrium
+/// mapped onto the strip (as the shell cantilever does) when only the start is clamped; if
+/// that is not possible, the rod does not converge or Newton fails from there, load stepping
+/// from the flat strip. Returns the solution and whether the rod predictor gave it.
+pub(crate) fn solve_midedge_loaded(
+    shell: &Shell,
+    solver: &mut EquilibriumSolver<ShellState, SparseSymmetricMatrix>,
+    params: &SolverParams,
+) -> (crate::solver::Solution<ShellState>, bool) {
     let flat = shell.rest_state();
-    let mut solver = EquilibriumSolver::new(shell, &flat, params.clone());
-    let mut solution = None;
-    if let Ok(Some(guess)) = rod_predictor(shell, 1.0, params) {
-        let s = solver.solve(shell, &guess, 1.0, 1.0);
-        if s.report.converged() {
-            solution = Some(s);
+    let cantilever = !shell.is_clamped(StripEnd::End);
+    if cantilever && shell.point_forces().is_empty() {
+        if let Ok(Some(guess)) = rod_predictor(shell, 1.0, params) {
+            let s = solver.solve(shell, &guess, 1.0, 1.0);
+            if s.report.converged() {
+                return (s, true);
+            }
         }
     }
-    let rod_predictor_used = solution.is_some();
-    let solution = solution.unwrap_or_else(|| solver.solve(shell, &flat, 0.0, 1.0));
+    (solver.solve(shell, &flat, 0.0, 1.0), false)
+}
+
+/// The result of a mid-edge strip at `state`.
+pub(crate) fn midedge_result(
+    name: &str,
+    shell: &Shell,
+    state: &ShellState,
+    report: &SolveReport,
+    rod_predictor_used: bool,
+) -> ShellResult {
     let weight: f64 = shell.vertex_masses().iter().sum();
-    let applied = shell.gravity() * weight;
-    let clamp = clamp_force(shell, &solution.state);
+    let applied =
+        shell.gravity() * weight + shell.point_forces().iter().map(|(_, f)| *f).sum::<Vec3>();
+    let clamp = clamp_force(shell, state);
     let imbalance = (clamp + applied).norm();
     let mesh = shell.mesh();
     ShellResult {
-        name: c.name.clone(),
-        positions: solution.state.positions.iter().map(|p| arr(*p)).collect(),
+        name: name.to_string(),
+        positions: state.positions.iter().map(|p| arr(*p)).collect(),
         faces: mesh.faces.clone(),
         elements: [mesh.n_length, mesh.n_width],
         applied_force: arr(applied),
@@ -242,22 +436,23 @@ pub fn solve_shell(c: &CompiledShell, params: &SolverParams) -> ShellResult {
             imbalance
         },
         rod_predictor_used,
-        converged: solution.report.converged(),
-        report: solution.report,
+        converged: report.converged(),
+        report: report.clone(),
     }
 }
 
-/// A B-spline strip under the full gravity, by load stepping from the flat strip (its Newton
-/// steps are not limited to a thickness: the mixed-integration-point membrane update).
-fn solve_bspline(name: &str, shell: &BsplineShell, params: &SolverParams) -> ShellResult {
-    let flat = shell.rest_state();
-    let mut solver = EquilibriumSolver::new(shell, &flat, params.clone());
-    let solution = solver.solve(shell, &flat, 0.0, 1.0);
+/// The result of a B-spline strip at `state`.
+pub(crate) fn bspline_result(
+    name: &str,
+    shell: &BsplineShell,
+    state: &BsplineState,
+    report: &SolveReport,
+) -> ShellResult {
     let weight: f64 = shell.masses().iter().sum();
-    let applied = shell.gravity() * weight;
-    let clamp = bspline_clamp_force(shell, &solution.state);
+    let applied = shell.gravity() * weight + shell.point_load_total();
+    let clamp = bspline_clamp_force(shell, state);
     let imbalance = (clamp + applied).norm();
-    let (positions, faces) = shell.tessellate(&solution.state, 1);
+    let (positions, faces) = shell.tessellate(state, 1);
     let (n_length, n_width) = shell.elements();
     ShellResult {
         name: name.to_string(),
@@ -272,8 +467,8 @@ fn solve_bspline(name: &str, shell: &BsplineShell, params: &SolverParams) -> She
             imbalance
         },
         rod_predictor_used: false,
-        converged: solution.report.converged(),
-        report: solution.report,
+        converged: report.converged(),
+        report: report.clone(),
     }
 }
 

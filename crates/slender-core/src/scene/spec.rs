@@ -460,21 +460,27 @@ pub struct PointMomentSpec {
     pub follower: bool,
 }
 
-/// One stage of prescribed motion: a support moved rigidly, in equal steps, each solved
-/// from the previous equilibrium.
+/// One stage of prescribed motion: a support of a rod (`rod`) or a clamp of a shell strip
+/// (`shell`) moved rigidly, in equal steps, each solved from the previous equilibrium.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct MotionStage {
-    /// Index of the rod in `rods`.
-    pub rod: usize,
-    /// Index of the support in that rod's `supports`.
+    /// Index of the rod in `rods` (give exactly one of `rod` and `shell`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rod: Option<usize>,
+    /// Index of the strip in `shells` (give exactly one of `rod` and `shell`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shell: Option<usize>,
+    /// Index of the support in that rod's `supports`, or of the clamp in that strip's
+    /// `clamps` (0 for a strip without `clamps`: its start clamp).
     pub support: usize,
     /// Translation of the support over the whole stage (m). Default 0.
     #[serde(default)]
     pub translate: [f64; 3],
-    /// Rotation vector (axis × angle, rad) of the support about its vertex over the whole
-    /// stage. Clamps and clips only. Default 0.
+    /// Rotation vector (axis × angle, rad) of the support about its vertex (a strip's clamp:
+    /// about the centre of its clamped edge) over the whole stage. Clamps and clips only.
+    /// Default 0.
     #[serde(default)]
     pub rotate: [f64; 3],
     /// Number of equilibrium steps (≥ 1), each with a shape file. Default 1.
@@ -488,7 +494,7 @@ fn one() -> usize {
 
 /// A rectangular shell strip (Kirchhoff–Love shell, `slender_core::shell`): length along x,
 /// width along z centred on z = 0, mid-surface in the plane y = 0 (rest normal +y), clamped
-/// along its edge x = 0 (exact director clamp). That is the only support the shell model has.
+/// along its edge x = 0 (the default), its edge x = L, or both, each clamp at any pose.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
@@ -513,9 +519,18 @@ pub struct ShellSpec {
     /// Stations along the length (default: power grading s = L(i/n)² toward the clamp).
     #[serde(default)]
     pub grading: Option<Grading>,
-    /// Support: only `"clamp_start"` (the edge x = 0 clamped), the default.
+    /// Support of the older files: only `"clamp_start"` (the edge x = 0 clamped at rest, the
+    /// default without `clamps`). Not together with `clamps`.
     #[serde(default)]
     pub support: Option<String>,
+    /// Clamps (at least one; at most one per end): each holds the positions and the tangent
+    /// plane of its end edge at a pose. Default: the start edge clamped at rest.
+    #[serde(default)]
+    pub clamps: Option<Vec<ShellClampSpec>>,
+    /// Dead point forces at vertices of the strip's grid (scaled with gravity in the load
+    /// ramp).
+    #[serde(default)]
+    pub forces: Vec<ShellForceSpec>,
     /// Shell model: `"midedge"` (triangles, mid-edge directors; the default) or `"bspline"`
     /// (a C¹ cubic B-spline patch).
     #[serde(default)]
@@ -532,4 +547,37 @@ pub enum ShellModelSpec {
     Midedge,
     /// C¹ Kirchhoff–Love shell on one cubic B-spline patch.
     Bspline,
+}
+
+/// A clamp of a strip's end edge at a pose: the edge's rest points x are held at
+/// c + offset + R(x − c), c the edge's rest centre ((0, 0, 0) at the start, (L, 0, 0) at the
+/// end), R = exp(rotate): the positions and the tangent plane of the edge (mid-edge: the edge
+/// vertices and the exact director clamp; B-spline: the two control rows at that end).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct ShellClampSpec {
+    /// The clamped edge: `"start"` (x = 0) or `"end"` (x = L).
+    pub edge: RodEnd,
+    /// Translation (m) of the edge's centre from its rest position, |offset| ≤ 2 L. Default 0.
+    #[serde(default)]
+    pub offset: [f64; 3],
+    /// Rotation vector (axis × angle, rad) of the edge about its centre, angle ≤ 2π. Default
+    /// 0.
+    #[serde(default)]
+    pub rotate: [f64; 3],
+}
+
+/// A dead point force at a vertex of a strip's grid (the points of the result grid: station
+/// i along the length, column j across the width).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct ShellForceSpec {
+    /// Station along the length, 0 (x = 0) … elements (x = L).
+    pub station: usize,
+    /// Column across the width, 0 (z = −w/2) … width_elements (z = w/2).
+    pub column: usize,
+    /// Force (N), fixed in space.
+    pub force: [f64; 3],
 }

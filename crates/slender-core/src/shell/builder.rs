@@ -13,12 +13,13 @@ use super::gravity::lumped_vertex_masses;
 use super::membrane::FaceRest;
 use super::mesh::StripMesh;
 use crate::assembly::FIXED;
+use crate::bspline_shell::StripEnd;
 
 use super::model::FaceTerm;
 use super::model::{Shell, ShellProperties};
 
 /// Builds a [`Shell`]: a flat rectangular strip (length along x, width along z, rest normal
-/// +y) clamped along its edge x = 0.
+/// +y) clamped along its edge x = 0 (by default), its edge x = L, or both.
 #[derive(Clone, Debug)]
 pub struct ShellBuilder {
     properties: ShellProperties,
@@ -26,6 +27,9 @@ pub struct ShellBuilder {
     n_width: usize,
     grading: Grading,
     gravity: Vec3,
+    clamped: [bool; 2],
+    /// (station, column, force at load factor 1 in N).
+    point_forces: Vec<(usize, usize, Vec3)>,
 }
 
 impl ShellBuilder {
@@ -38,7 +42,30 @@ impl ShellBuilder {
             n_width: 2,
             grading: Grading::default(),
             gravity: Vec3::zeros(),
+            clamped: [true, false],
+            point_forces: Vec::new(),
         }
+    }
+
+    /// Clamps `end` (at its rest pose: a state's clamp poses move it, see
+    /// [`Shell::set_clamp_at`]).
+    pub fn clamp(mut self, end: StripEnd) -> Self {
+        self.clamped[end.index()] = true;
+        self
+    }
+
+    /// Leaves `end` free.
+    pub fn free(mut self, end: StripEnd) -> Self {
+        self.clamped[end.index()] = false;
+        self
+    }
+
+    /// Adds a dead force (N at load factor 1, scaled with gravity) at vertex (`station`,
+    /// `column`) of the structured mesh (station 0 … n_L along x, column 0 … n_W along z).
+    pub fn point_force(mut self, station: usize, column: usize, force: Vec3) -> Self {
+        // Checked in `build`, where the mesh is known.
+        self.point_forces.push((station, column, force));
+        self
     }
 
     /// Elements along the length (≥ 1) and across the width (≥ 1).
@@ -89,8 +116,60 @@ impl ShellBuilder {
                 format!("got {}; need at least 1 element", self.n_width),
             ));
         }
+        if !self.clamped[0] && !self.clamped[1] {
+            return Err(ModelError::structure(
+                "clamps",
+                "neither end is clamped; a free strip has rigid-body modes and no equilibrium",
+            ));
+        }
+        if self.clamped[0] && self.clamped[1] && self.n_length < 2 {
+            return Err(ModelError::structure(
+                "n_length",
+                format!(
+                    "got {}; with both ends clamped the strip needs at least 2 elements along its length",
+                    self.n_length
+                ),
+            ));
+        }
+        let mut point_forces = Vec::with_capacity(self.point_forces.len());
+        for &(i, j, f) in &self.point_forces {
+            if i > self.n_length || j > self.n_width {
+                return Err(ModelError::structure(
+                    "point_force",
+                    format!(
+                        "vertex (station {i}, column {j}) is off the strip; valid: station 0..={}, column 0..={}",
+                        self.n_length, self.n_width
+                    ),
+                ));
+            }
+            for (c, x) in ["point_force.x", "point_force.y", "point_force.z"]
+                .iter()
+                .zip(f.iter())
+            {
+                require_finite(c, *x)?;
+            }
+            point_forces.push((i * (self.n_width + 1) + j, f));
+        }
         let stations = self.grading.node_arclengths(self.n_length, p.length)?;
-        let mesh = StripMesh::new(&stations, p.width, self.n_width);
+        let mut mesh = StripMesh::new(&stations, p.width, self.n_width);
+        mesh.clamp_vertices = StripEnd::BOTH
+            .iter()
+            .filter(|e| self.clamped[e.index()])
+            .flat_map(|e| mesh.end_vertices[e.index()].clone())
+            .collect();
+        mesh.clamp_edges = StripEnd::BOTH
+            .iter()
+            .filter(|e| self.clamped[e.index()])
+            .flat_map(|e| mesh.end_edges[e.index()].clone())
+            .collect();
+        let mut edge_clamp = vec![None; mesh.edges.len()];
+        for end in StripEnd::BOTH {
+            if self.clamped[end.index()] {
+                for &e in &mesh.end_edges[end.index()] {
+                    edge_clamp[e] = Some(end.index());
+                }
+            }
+        }
         let rest: Vec<FaceRest> = mesh
             .faces
             .iter()
@@ -116,7 +195,7 @@ impl ShellBuilder {
                 ];
                 let ii = Vector3::from_fn(|i, _| {
                     let fe = mesh.face_edges[f][i];
-                    let d = if mesh.clamp_edges.contains(&fe.edge) {
+                    let d = if edge_clamp[fe.edge].is_some() {
                         EdgeDirector::Clamped {
                             normal: clamp.normal(),
                         }
@@ -176,6 +255,9 @@ impl ShellBuilder {
             gravity: self.gravity,
             load_path: Default::default(),
             grading: self.grading,
+            clamped: self.clamped,
+            edge_clamp,
+            point_forces,
         };
         shell.faces = (0..shell.mesh.faces.len())
             .map(|f| FaceTerm {

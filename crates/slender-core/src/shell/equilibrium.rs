@@ -6,9 +6,11 @@ use crate::solver::problem::{EquilibriumProblem, MassMetric};
 
 use super::dofs::DofKind;
 use super::groups::ALL_GROUPS;
+use super::load_path::LoadPath;
 use super::mixed_update::{membrane_remainders, remainder_energy};
 use super::model::Shell;
 use super::state::ShellState;
+use super::strip_guess::both_ends_guess;
 
 /// Largest change of an edge angle φ (rad) in one Newton step: keeps α = θ/2 ± φ away from
 /// the tan barrier at π/2.
@@ -79,6 +81,43 @@ impl EquilibriumProblem for Shell {
     }
 
     fn impose_load(&self, state: &mut ShellState, from: f64, to: f64, guess: bool) {
+        if let LoadPath::ClampMotion(motions) = &self.load_path {
+            for m in motions.iter().flatten() {
+                if guess {
+                    if self.is_clamped(m.end.other()) {
+                        // Held at both ends: the length-preserving guess (`strip_guess`).
+                        let columns = self.mesh.n_width + 1;
+                        let length = self.properties.length;
+                        let stations: Vec<f64> = (0..=self.mesh.n_length)
+                            .map(|i| self.mesh.rest_positions[i * columns].x / length)
+                            .collect();
+                        let mut held = vec![false; stations.len()];
+                        held[0] = true;
+                        held[self.mesh.n_length] = true;
+                        both_ends_guess(
+                            &mut state.positions,
+                            columns,
+                            &stations,
+                            &held,
+                            m,
+                            from,
+                            to,
+                        );
+                    } else {
+                        // Held at one end only, the strip turns rigidly with its clamp: exact
+                        // for the unloaded strip, and no membrane stretch for a loaded one.
+                        for p in state.positions.iter_mut() {
+                            *p = m.carry(p, from, to, 1.0);
+                        }
+                    }
+                    state.membrane_remainder.clear();
+                }
+                let e = m.end.index();
+                state.clamps[e] = m.move_clamp(&state.clamps[e], from, to);
+            }
+            self.apply_clamp(state);
+            return;
+        }
         let (Some(old), Some(new)) = (self.load_path.clamp_at(from), self.load_path.clamp_at(to))
         else {
             return;
@@ -168,7 +207,10 @@ impl crate::testing::RigidMotion for Shell {
                 .map(|x| rotation * x + offset)
                 .collect(),
             angles: state.angles.clone(),
-            clamp: state.clamp.moved(rotation, offset),
+            clamps: [
+                state.clamps[0].moved(rotation, offset),
+                state.clamps[1].moved(rotation, offset),
+            ],
             membrane_remainder: Vec::new(),
         }
     }

@@ -9,6 +9,7 @@
 //! predictor, like the gravity ramp.
 
 use super::clamp::Clamp;
+use crate::bspline_shell::ClampMotion;
 
 /// The meaning of the load factor λ ∈ [0, 1] of a [`Shell`](super::Shell).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -24,6 +25,10 @@ pub enum LoadPath {
         /// σ at λ = 1 (rad).
         to: f64,
     },
+    /// Full gravity; the clamps of the start and the end (indexed by
+    /// [`StripEnd::index`](crate::bspline_shell::StripEnd::index)) moved rigidly as λ goes
+    /// from 0 to 1 (a support drag or a prescribed motion stage).
+    ClampMotion([Option<ClampMotion>; 2]),
 }
 
 impl LoadPath {
@@ -31,14 +36,15 @@ impl LoadPath {
     pub fn gravity_factor(&self, load: f64) -> f64 {
         match *self {
             LoadPath::Gravity => load,
-            LoadPath::ClampRotation { .. } => 1.0,
+            LoadPath::ClampRotation { .. } | LoadPath::ClampMotion(_) => 1.0,
         }
     }
 
-    /// The clamp at load factor `load`, or `None` if the path does not move it.
+    /// The start clamp at load factor `load` on the lateral-buckling protocol's path, or
+    /// `None` if the path does not turn it about x.
     pub fn clamp_at(&self, load: f64) -> Option<Clamp> {
         match *self {
-            LoadPath::Gravity => None,
+            LoadPath::Gravity | LoadPath::ClampMotion(_) => None,
             LoadPath::ClampRotation { from, to } => Some(Clamp::about_x(from + load * (to - from))),
         }
     }

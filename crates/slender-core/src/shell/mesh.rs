@@ -30,10 +30,16 @@ pub struct StripMesh {
     pub edges: Vec<[usize; 2]>,
     /// For each face and local vertex i, the edge opposite vertex i.
     pub face_edges: Vec<[FaceEdge; 3]>,
-    /// Vertices at x = 0 (the clamp line), by increasing z.
+    /// Vertices held by the strip's clamps (the clamp lines x = 0 and/or x = L), by end and
+    /// increasing z. A new mesh has its start clamped; the builder sets the clamped ends.
     pub clamp_vertices: Vec<usize>,
-    /// Edges on the clamp line.
+    /// Edges on the clamp lines.
     pub clamp_edges: Vec<usize>,
+    /// Vertices of the end edges x = 0 and x = L at rest (indexed by
+    /// [`StripEnd::index`](crate::bspline_shell::StripEnd::index)), by increasing z.
+    pub end_vertices: [Vec<usize>; 2],
+    /// Mesh edges on the end edges x = 0 and x = L.
+    pub end_edges: [Vec<usize>; 2],
     /// Elements along the length.
     pub n_length: usize,
     /// Elements across the width.
@@ -101,11 +107,18 @@ impl StripMesh {
                 face_edges[g][l].opposite_vertex = Some(faces[f][k]);
             }
         }
-        let clamp_vertices: Vec<usize> = (0..=nw).map(|j| vid(0, j)).collect();
-        let clamp_edges = edges
+        let start_vertices: Vec<usize> = (0..=nw).map(|j| vid(0, j)).collect();
+        let end_vertices: Vec<usize> = (0..=nw).map(|j| vid(n_length, j)).collect();
+        let start_edges: Vec<usize> = edges
             .iter()
             .enumerate()
             .filter(|(_, e)| e[1] <= nw)
+            .map(|(i, _)| i)
+            .collect();
+        let end_edges: Vec<usize> = edges
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e[0] >= vid(n_length, 0))
             .map(|(i, _)| i)
             .collect();
         Self {
@@ -113,8 +126,10 @@ impl StripMesh {
             faces,
             edges,
             face_edges,
-            clamp_vertices,
-            clamp_edges,
+            clamp_vertices: start_vertices.clone(),
+            clamp_edges: start_edges.clone(),
+            end_vertices: [start_vertices, end_vertices],
+            end_edges: [start_edges, end_edges],
             n_length,
             n_width: nw,
         }

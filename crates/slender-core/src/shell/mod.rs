@@ -18,6 +18,7 @@ pub mod mixed_update;
 pub mod model;
 pub mod rod_predictor;
 pub mod state;
+pub mod strip_guess;
 
 pub use builder::ShellBuilder;
 pub use clamp::Clamp;

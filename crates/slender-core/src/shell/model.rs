@@ -19,6 +19,7 @@ use super::load_path::LoadPath;
 use super::membrane::{membrane_energy, FaceRest};
 use super::mesh::StripMesh;
 use super::state::ShellState;
+use crate::bspline_shell::StripEnd;
 
 /// Material and geometry of a built shell (SI units).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,7 +62,8 @@ impl ShellProperties {
     }
 }
 
-/// A Kirchhoff–Love shell strip clamped at x = 0 (see the module docs of `shell`).
+/// A Kirchhoff–Love shell strip clamped at x = 0, at x = L or both (see the module docs of
+/// `shell`).
 #[derive(Clone, Debug)]
 pub struct Shell {
     pub(crate) mesh: StripMesh,
@@ -76,6 +78,12 @@ pub struct Shell {
     pub(crate) gravity: Vec3,
     pub(crate) load_path: LoadPath,
     pub(crate) grading: Grading,
+    /// Which ends are clamped (indexed by [`StripEnd::index`]).
+    pub(crate) clamped: [bool; 2],
+    /// Per mesh edge: the end whose clamp sets its director (None: not a clamp edge).
+    pub(crate) edge_clamp: Vec<Option<usize>>,
+    /// Dead point forces (vertex, force in N at load factor 1), scaled with gravity.
+    pub(crate) point_forces: Vec<(usize, Vec3)>,
 }
 
 impl Shell {
@@ -104,15 +112,32 @@ impl Shell {
         self.grading
     }
 
-    /// Turns the clamp of `state` about x to `sigma` (rad) and moves its clamped vertices with it.
+    /// Turns the start clamp of `state` about x to `sigma` (rad) and moves its clamped
+    /// vertices with it.
     pub fn set_clamp_rotation(&self, sigma: f64, state: &mut ShellState) {
         self.set_clamp(Clamp::about_x(sigma), state);
     }
 
-    /// Puts the clamp of `state` at pose `clamp` and moves its clamped vertices with it.
+    /// Puts the start clamp of `state` at pose `clamp` and moves its clamped vertices with it.
     pub fn set_clamp(&self, clamp: Clamp, state: &mut ShellState) {
-        state.clamp = clamp;
+        self.set_clamp_at(StripEnd::Start, clamp, state);
+    }
+
+    /// Puts the clamp of `end` in `state` at pose `clamp` and moves its clamped vertices with
+    /// it (an end that is not clamped only records the pose).
+    pub fn set_clamp_at(&self, end: StripEnd, clamp: Clamp, state: &mut ShellState) {
+        state.clamps[end.index()] = clamp;
         self.apply_clamp(state);
+    }
+
+    /// Whether `end` is clamped.
+    pub fn is_clamped(&self, end: StripEnd) -> bool {
+        self.clamped[end.index()]
+    }
+
+    /// Dead point forces (vertex, N at load factor 1).
+    pub fn point_forces(&self) -> &[(usize, Vec3)] {
+        &self.point_forces
     }
 
     /// What the load factor drives (gravity by default).
@@ -127,8 +152,14 @@ impl Shell {
 
     /// Puts the clamped vertices of `state` where its clamp holds them.
     pub fn apply_clamp(&self, state: &mut ShellState) {
-        for &v in &self.mesh.clamp_vertices {
-            state.positions[v] = state.clamp.position(&self.mesh.rest_positions[v]);
+        for end in StripEnd::BOTH {
+            if !self.is_clamped(end) {
+                continue;
+            }
+            let clamp = state.clamps[end.index()];
+            for &v in &self.mesh.end_vertices[end.index()] {
+                state.positions[v] = clamp.position(&self.mesh.rest_positions[v]);
+            }
         }
     }
 
@@ -137,7 +168,7 @@ impl Shell {
         let mut s = ShellState {
             positions: self.mesh.rest_positions.clone(),
             angles: vec![0.0; self.mesh.edges.len()],
-            clamp: Clamp::default(),
+            clamps: [Clamp::default(); 2],
             membrane_remainder: Vec::new(),
         };
         self.apply_clamp(&mut s);
@@ -199,13 +230,13 @@ impl Shell {
         f: usize,
         positions: &[Vec3],
         s: &ShellState,
-        clamp: Clamp,
+        clamps: &[Clamp; 2],
     ) -> [EdgeDirector; 3] {
         std::array::from_fn(|k| {
             let fe = self.mesh.face_edges[f][k];
-            if self.mesh.clamp_edges.contains(&fe.edge) {
+            if let Some(end) = self.edge_clamp[fe.edge] {
                 EdgeDirector::Clamped {
-                    normal: clamp.normal(),
+                    normal: clamps[end].normal(),
                 }
             } else if let Some(p) = fe.opposite_vertex {
                 EdgeDirector::Interior {
@@ -247,7 +278,8 @@ impl Shell {
     }
 
     /// Runs the shell's term groups through `asm`: membrane and bending per face, then the
-    /// self-weight.
+    /// self-weight and the point forces (both in the gravity group: the dead loads the load
+    /// factor scales).
     pub fn assemble_into<M: SymmetricMatrix>(
         &self,
         s: &ShellState,
@@ -260,7 +292,7 @@ impl Shell {
             shell: self,
             positions,
             state: s,
-            clamp: s.clamp,
+            clamps: s.clamps,
         };
         asm.terms(&ctx, &self.faces);
         if asm.selects(groups::GRAVITY) {
@@ -269,6 +301,20 @@ impl Shell {
                 // One potential per vertex, so that the round-off scale of the energy is
                 // Σ|m g·x| (the terms of a strip hanging about z = 0 cancel in the sum).
                 let force = g * *m;
+                asm.external_energy(
+                    -force.dot(&positions[v]),
+                    force.dot(&(positions[v] - self.mesh.rest_positions[v])),
+                );
+                for c in 0..3 {
+                    let Some(i) = self.dofs.vertex(v, c) else {
+                        continue;
+                    };
+                    asm.external_force(force[c].abs());
+                    asm.generalized_force(i, force[c]);
+                }
+            }
+            for &(v, f) in &self.point_forces {
+                let force = f * gravity_factor;
                 asm.external_energy(
                     -force.dot(&positions[v]),
                     force.dot(&(positions[v] - self.mesh.rest_positions[v])),
@@ -293,8 +339,8 @@ pub struct ShellContext<'a> {
     pub positions: &'a [Vec3],
     /// The state (edge angles).
     pub state: &'a ShellState,
-    /// The clamp (the state's).
-    pub clamp: Clamp,
+    /// The clamps (the state's), by end.
+    pub clamps: [Clamp; 2],
 }
 
 /// One face of the shell, a term of the membrane and bending groups on the 21-slot stencil
@@ -354,7 +400,7 @@ impl<'a> StencilTerm<ShellContext<'a>, FACE_VARS> for FaceTerm {
         if selected.contains(groups::BENDING) {
             let e = bending_energy(
                 q,
-                &shell.directors(f, p, ctx.state, ctx.clamp),
+                &shell.directors(f, p, ctx.state, &ctx.clamps),
                 &shell.rest[f],
                 &shell.bbar[f],
                 h,

@@ -15,8 +15,11 @@ pub struct ShellState {
     pub positions: Vec<Vec3>,
     /// Edge director angles φ (rad).
     pub angles: Vec<f64>,
-    /// Pose of the clamp (its prescribed DOFs: the clamped vertices and the clamp normal).
-    pub clamp: Clamp,
+    /// Poses of the clamps at the start (x = 0) and the end (x = L), indexed by
+    /// [`StripEnd::index`](crate::bspline_shell::StripEnd::index) (their prescribed DOFs: the
+    /// clamped vertices and the clamp normal); the pose of an end that is not clamped is
+    /// unused.
+    pub clamps: [Clamp; 2],
     /// Second-order part (m²) of each face's change of first fundamental form over the
     /// Newton step that produced this state (see [`mixed_update`](super::mixed_update));
     /// empty when the state was not produced by a step (then r = 0 on every face).

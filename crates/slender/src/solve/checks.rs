@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 16] = [
+pub const EXAMPLES: [(&str, &str); 17] = [
     (
         "rod_models_cantilever",
         include_str!("../../../../examples/rod_models_cantilever.toml"),
@@ -47,6 +47,10 @@ pub const EXAMPLES: [(&str, &str); 16] = [
     (
         "flat_cable_shell_cantilever",
         include_str!("../../../../examples/flat_cable_shell_cantilever.toml"),
+    ),
+    (
+        "flat_cable_two_connectors",
+        include_str!("../../../../examples/flat_cable_two_connectors.toml"),
     ),
     (
         "pinned_pinned_column",
@@ -90,7 +94,9 @@ fn check(description: String, measured: f64, target: &str, passed: bool) -> Chec
 
 /// Solves every example: one balance check per example with rods (worst relative force or
 /// moment imbalance over its steps, target ≤ 1e-9; NaN if a step did not converge; for a
-/// time-stepped example instead its energy conservation, see [`time_check`]), the
+/// time-stepped example instead its energy conservation, see [`time_check`]) or with
+/// strips only (their clamps' force against the loads, ≤ 1e-6: the clamp force is a
+/// Richardson-extrapolated energy difference), the
 /// cantilever-benchmark check (relative difference of Δy/Δx, target ≤ 1e-10) and the two
 /// shell-strip checks of [`shell_example_checks`].
 pub fn scene_checks() -> Result<Vec<Check>> {
@@ -127,6 +133,25 @@ pub fn scene_checks() -> Result<Vec<Check>> {
                 measured,
                 "≤ 1e-9",
                 measured <= 1e-9,
+            ));
+        }
+        // Strips clamped at both ends: their clamps carry the loads (the cantilever strip has
+        // its own checks in shell_example_checks).
+        if compiled.rods.is_empty() && name != "flat_cable_shell_cantilever" {
+            let worst = steps
+                .iter()
+                .flat_map(|s| &s.shells)
+                .map(|s| s.relative_force_imbalance)
+                .fold(0.0, f64::max);
+            let measured = if converged { worst } else { f64::NAN };
+            checks.push(check(
+                format!(
+                    "{name}: the strips' clamp forces balance the loads (worst relative imbalance, {} steps)",
+                    steps.len()
+                ),
+                measured,
+                "≤ 1e-6",
+                measured <= 1e-6,
             ));
         }
         if name == "cantilever_benchmark" {

@@ -14,7 +14,8 @@ use slender_core::scene::{Scene, Session};
 use super::protocol::handle;
 
 /// A short cable (12 elements, 0.6 m) clamped at its start, clipped at vertex 6, pinned at
-/// its end, under gravity: every kind of edit applies to it and re-solves quickly.
+/// its end, under gravity, and a coarse flat strip clamped at both ends: every kind of edit
+/// applies to them and re-solves quickly.
 const SCENE: &str = r#"
 gravity = [0.0, 0.0, -9.81]
 [[rods]]
@@ -28,6 +29,16 @@ supports = [
     { kind = "clip", vertex = 6 },
     { kind = "pin", vertex = "end" },
 ]
+[[shells]]
+name = "strip"
+length = 0.2
+width = 0.02
+thickness = 5.0e-4
+material = { young = 5.0e9, poisson = 0.3, density = 2000.0 }
+elements = 4
+width_elements = 1
+grading = { kind = "uniform" }
+clamps = [{ edge = "start" }, { edge = "end", offset = [-0.01, 0.0, 0.0] }]
 "#;
 
 fn session() -> Session {
@@ -35,14 +46,24 @@ fn session() -> Session {
     Session::new(scene).expect("the test scene compiles")
 }
 
-/// Every vertex position of every rod, and the supports' poses, bit for bit.
+/// Every vertex position of every rod and strip, and the supports' and clamps' poses, bit
+/// for bit.
 fn equilibrium(s: &Session) -> (Vec<Vec<[f64; 3]>>, Vec<String>) {
     let step = s.results(0, None, 1.0, 1);
-    let poses = (0..s.compiled().rods.len())
+    let mut poses: Vec<String> = (0..s.compiled().rods.len())
         .flat_map(|r| (0..s.compiled().rods[r].supports.len()).map(move |k| (r, k)))
         .map(|(r, k)| format!("{:?}", s.pose(r, k)))
         .collect();
-    (step.rods.into_iter().map(|r| r.positions).collect(), poses)
+    for (i, c) in s.compiled().shells.iter().enumerate() {
+        poses.extend((0..c.clamps.len()).map(|k| format!("{:?}", s.shell_pose(i, k))));
+    }
+    let shapes = step
+        .rods
+        .into_iter()
+        .map(|r| r.positions)
+        .chain(step.shells.into_iter().map(|s| s.positions))
+        .collect();
+    (shapes, poses)
 }
 
 /// Sends `message`; checks the reply's shape; returns it and whether the equilibrium was
@@ -145,6 +166,36 @@ fn hostile_messages_are_refused_by_name_and_keep_the_equilibrium() {
             r#"{"op": "unstable_policy", "policy": "maybe"}"#,
             "request",
             "unknown variant",
+        ),
+        (
+            r#"{"op": "move", "shell": 0, "support": 2, "position": [0, 0, 0]}"#,
+            "shells[0].clamps[2]",
+            "no such clamp",
+        ),
+        (
+            r#"{"op": "move_by", "shell": 4, "support": 0, "translation": [0, 0.01, 0]}"#,
+            "shells[4]",
+            "no such shell strip",
+        ),
+        (
+            r#"{"op": "move", "rod": 0, "shell": 0, "support": 0, "position": [0, 0, 0]}"#,
+            "shell",
+            "not both",
+        ),
+        (
+            r#"{"op": "move", "support": 0, "position": [0, 0, 0]}"#,
+            "rod",
+            "missing",
+        ),
+        (
+            r#"{"op": "move_by", "shell": 0, "support": 1, "translation": [1e6, 0, 0]}"#,
+            "shells[0].clamps[1]",
+            "too large",
+        ),
+        (
+            r#"{"op": "move_by", "shell": 0, "support": 1, "rotation": [1e300, 0, 0]}"#,
+            "shells[0].clamps[1]",
+            "must be finite",
         ),
     ];
     for (message, field, words) in cases {
@@ -284,6 +335,13 @@ fn request() -> impl Strategy<Value = String> {
         (index(), index(), vec3(), vec3()).prop_map(|(r, s, t, q)| format!(
             r#"{{"op": "move_by", "rod": {r}, "support": {s}, "translation": {t}, "rotation": {q}}}"#
         )),
+        (index(), index(), vec3(), proptest::option::of(vec3())).prop_map(|(r, s, p, q)| match q {
+            Some(q) => format!(r#"{{"op": "move", "shell": {r}, "support": {s}, "position": {p}, "rotation": {q}}}"#),
+            None => format!(r#"{{"op": "move", "shell": {r}, "support": {s}, "position": {p}}}"#),
+        }),
+        (index(), index(), vec3(), vec3()).prop_map(|(r, s, t, q)| format!(
+            r#"{{"op": "move_by", "shell": {r}, "support": {s}, "translation": {t}, "rotation": {q}}}"#
+        )),
         (index(), kind, hostile_number()).prop_map(|(r, k, a)| format!(
             r#"{{"op": "add_support", "rod": {r}, "kind": "{k}", "at": {a}}}"#
         )),
@@ -334,4 +392,33 @@ fn fuzz_arbitrary_text() {
 #[test]
 fn fuzz_requests_with_hostile_values() {
     fuzz(request(), 300);
+}
+
+#[test]
+fn a_strip_clamp_is_dragged_through_the_move_message() {
+    let mut s = session();
+    let (v, _) = exchange(&mut s, r#"{"op": "state"}"#);
+    let clamp = &v["view"]["shells"][0]["clamps"][1];
+    assert_eq!(clamp["edge"], json!("end"));
+    let p: Vec<f64> = serde_json::from_value(clamp["position"].clone()).unwrap();
+    assert!((p[0] - 0.19).abs() < 1e-15 && p[1].abs() < 1e-15, "{p:?}");
+    let before = equilibrium(&s);
+    let message = format!(
+        r#"{{"op": "move", "shell": 0, "support": 1, "position": [{}, 0.01, 0.0], "rotation": [0.0, 0.0, 0.2]}}"#,
+        p[0]
+    );
+    let (v, kept) = exchange(&mut s, &message);
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept, "the strip moved");
+    let moved = &v["view"]["shells"][0]["clamps"][1];
+    let q: Vec<f64> = serde_json::from_value(moved["position"].clone()).unwrap();
+    assert!(
+        (q[0] - p[0]).abs() + (q[1] - 0.01).abs() + q[2].abs() < 1e-15,
+        "{q:?}"
+    );
+    let r: Vec<f64> = serde_json::from_value(moved["rotation"].clone()).unwrap();
+    assert!((r[2] - 0.2).abs() < 1e-12, "{r:?}");
+    // The rods did not move.
+    assert_eq!(equilibrium(&s).0[0], before.0[0]);
 }

@@ -22,7 +22,9 @@ use crate::solve::gltf;
 pub const MAX_REQUEST_BYTES: usize = 1 << 20;
 
 /// A request from the page. Indices are 0-based: `rod` in the scene's `rods`, `support` in
-/// that rod's supports as the last [`ViewState`] lists them.
+/// that rod's supports as the last [`ViewState`] lists them; a move addresses a strip's clamp
+/// with `shell` (index in `shells`) instead of `rod`, and `support` is then the clamp's index
+/// in that strip's `clamps`.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 // Field-less operations are empty struct variants (`State {}`), not unit variants: serde's
 // internally tagged unit variants ignore unknown keys even with `deny_unknown_fields`.
@@ -32,11 +34,16 @@ pub enum Request {
     State {},
     /// Move a support to an absolute pose (what a drag sends).
     Move {
-        /// Rod index.
-        rod: usize,
-        /// Support index.
+        /// Rod index (or give `shell`).
+        #[serde(default)]
+        rod: Option<usize>,
+        /// Shell strip index (or give `rod`).
+        #[serde(default)]
+        shell: Option<usize>,
+        /// Support index (a strip's clamp index with `shell`).
         support: usize,
-        /// Target position of the support's vertex (m).
+        /// Target position of the support's vertex (m; a strip's clamp: the centre of its
+        /// edge).
         position: [f64; 3],
         /// Target orientation relative to rest, as a rotation vector (rad); absent: keep the
         /// current orientation.
@@ -45,9 +52,13 @@ pub enum Request {
     },
     /// Move a support by a translation (m) and a rotation vector (rad, about its vertex).
     MoveBy {
-        /// Rod index.
-        rod: usize,
-        /// Support index.
+        /// Rod index (or give `shell`).
+        #[serde(default)]
+        rod: Option<usize>,
+        /// Shell strip index (or give `rod`).
+        #[serde(default)]
+        shell: Option<usize>,
+        /// Support index (a strip's clamp index with `shell`).
         support: usize,
         /// Translation (m).
         #[serde(default)]
@@ -239,6 +250,7 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
         Request::State {} => None,
         Request::Move {
             rod,
+            shell,
             support,
             position,
             rotation,
@@ -247,32 +259,58 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             if let Some(r) = rotation {
                 finite("rotation", r)?;
             }
-            let current = session
-                .pose(*rod, *support)
-                .ok_or_else(|| no_support(session, *rod, *support))?;
-            let target = SupportPose {
+            let target = |current: SupportPose| SupportPose {
                 position: Vec3::from(*position),
                 rotation: rotation.map_or(current.rotation, |r| Rotation3::new(Vec3::from(r))),
             };
-            Some(session.move_support(*rod, *support, target)?)
+            match target_of(*rod, *shell)? {
+                Target::Rod(rod) => {
+                    let current = session
+                        .pose(rod, *support)
+                        .ok_or_else(|| no_support(session, rod, *support))?;
+                    Some(session.move_support(rod, *support, target(current))?)
+                }
+                Target::Shell(shell) => {
+                    let current = session
+                        .shell_pose(shell, *support)
+                        .ok_or_else(|| no_clamp(session, shell, *support))?;
+                    Some(session.move_shell_clamp(shell, *support, target(current))?)
+                }
+            }
         }
         Request::MoveBy {
             rod,
+            shell,
             support,
             translation,
             rotation,
         } => {
             finite("translation", translation)?;
             finite("rotation", rotation)?;
-            if session.pose(*rod, *support).is_none() {
-                return Err(no_support(session, *rod, *support));
+            match target_of(*rod, *shell)? {
+                Target::Rod(rod) => {
+                    if session.pose(rod, *support).is_none() {
+                        return Err(no_support(session, rod, *support));
+                    }
+                    Some(session.move_support_by(
+                        rod,
+                        *support,
+                        Vec3::from(*rotation),
+                        Vec3::from(*translation),
+                    )?)
+                }
+                Target::Shell(shell) => {
+                    if session.shell_pose(shell, *support).is_none() {
+                        return Err(no_clamp(session, shell, *support));
+                    }
+                    Some(session.move_shell_clamp_by(
+                        shell,
+                        *support,
+                        Vec3::from(*rotation),
+                        Vec3::from(*translation),
+                    )?)
+                }
             }
-            Some(session.move_support_by(
-                *rod,
-                *support,
-                Vec3::from(*rotation),
-                Vec3::from(*translation),
-            )?)
         }
         Request::AddSupport { rod, kind, at } => {
             finite("at", &[*at])?;
@@ -346,6 +384,44 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
         toml: toml_text,
         gltf: gltf_value,
     })
+}
+
+/// What a move addresses.
+enum Target {
+    Rod(usize),
+    Shell(usize),
+}
+
+fn target_of(rod: Option<usize>, shell: Option<usize>) -> Result<Target, ErrorReply> {
+    match (rod, shell) {
+        (Some(r), None) => Ok(Target::Rod(r)),
+        (None, Some(s)) => Ok(Target::Shell(s)),
+        (Some(_), Some(_)) => Err(ErrorReply {
+            field: "shell".into(),
+            message: "give either `rod` (a rod's support) or `shell` (a strip's clamp), not both"
+                .into(),
+        }),
+        (None, None) => Err(ErrorReply {
+            field: "rod".into(),
+            message: "missing: give `rod` (a rod's support) or `shell` (a strip's clamp)".into(),
+        }),
+    }
+}
+
+fn no_clamp(session: &Session, shell: usize, clamp: usize) -> ErrorReply {
+    match session.compiled().shells.get(shell) {
+        None => ErrorReply {
+            field: format!("shells[{shell}]"),
+            message: format!(
+                "no such shell strip (the scene has {})",
+                session.compiled().shells.len()
+            ),
+        },
+        Some(s) => ErrorReply {
+            field: format!("shells[{shell}].clamps[{clamp}]"),
+            message: format!("no such clamp (the strip has {})", s.clamps.len()),
+        },
+    }
 }
 
 fn no_rod(session: &Session, rod: usize) -> ErrorReply {

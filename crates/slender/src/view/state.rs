@@ -1,9 +1,10 @@
 //! What the page draws after every update ([`ViewState`]): per rod its centerline, material
 //! directors and colour fields (twist rate, curvature, bending stress), its bend radius
 //! against the allowed one, its supports with their poses and reactions; per structure its
-//! solve and stability; the shell strips as static surfaces.
+//! solve and stability; the shell strips as surfaces with their clamps as handles.
 
 use serde::Serialize;
+use slender_core::bspline_shell::StripEnd;
 use slender_core::geometry::Vec3;
 use slender_core::scene::spec::{SectionSpec, SupportKind, UnstablePolicy};
 use slender_core::scene::{CompiledRod, SceneStep, Session};
@@ -24,7 +25,7 @@ pub struct ViewState {
     pub rods: Vec<RodView>,
     /// Every structure (rod parts solved together).
     pub structures: Vec<StructureView>,
-    /// Every shell strip (static: shells cannot be edited in a session yet).
+    /// Every shell strip (its clamps can be dragged).
     pub shells: Vec<ShellView>,
 }
 
@@ -133,6 +134,27 @@ pub struct ShellView {
     pub faces: Vec<[usize; 3]>,
     /// True if its solve converged.
     pub converged: bool,
+    /// Its clamps, as handles (in the order of the scene's `clamps`).
+    pub clamps: Vec<ShellClampView>,
+}
+
+/// A clamp of a strip as a handle: the centre of its clamped edge and its orientation.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShellClampView {
+    /// Index in the strip's `clamps` (what a `move` with `shell` addresses as `support`).
+    pub index: usize,
+    /// `"start"` (x = 0 at rest) or `"end"` (x = L).
+    pub edge: &'static str,
+    /// Centre of the clamped edge now (m).
+    pub position: [f64; 3],
+    /// Orientation relative to rest, as a rotation vector (rad).
+    pub rotation: [f64; 3],
+    /// Length of the clamped edge: the strip's width (m).
+    pub edge_length: f64,
+    /// The edge's direction now (unit): the handle is drawn along it.
+    pub edge_direction: [f64; 3],
+    /// The clamp's normal now (unit).
+    pub normal: [f64; 3],
 }
 
 fn arr(v: Vec3) -> [f64; 3] {
@@ -224,11 +246,34 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
     let shells = step
         .shells
         .iter()
-        .map(|s| ShellView {
+        .enumerate()
+        .map(|(i, s)| ShellView {
             name: s.name.clone(),
             positions: s.positions.clone(),
             faces: s.faces.clone(),
             converged: s.converged,
+            clamps: scene.shells[i]
+                .clamps
+                .iter()
+                .enumerate()
+                .filter_map(|(k, c)| {
+                    let pose = session.shell_pose(i, k)?;
+                    let rv = nalgebra::UnitQuaternion::from_rotation_matrix(&pose.rotation)
+                        .scaled_axis();
+                    Some(ShellClampView {
+                        index: k,
+                        edge: match c.end {
+                            StripEnd::Start => "start",
+                            StripEnd::End => "end",
+                        },
+                        position: arr(pose.position),
+                        edge_length: scene.shells[i].width(),
+                        rotation: arr(rv),
+                        edge_direction: arr(pose.rotation * Vec3::z()),
+                        normal: arr(pose.rotation * Vec3::y()),
+                    })
+                })
+                .collect(),
         })
         .collect();
     ViewState {

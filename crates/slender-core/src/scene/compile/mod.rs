@@ -126,9 +126,6 @@ impl Scene {
             })
             .collect();
         let rods: Vec<CompiledRod> = drafts.into_iter().map(|d| d.rod).collect();
-        for (k, stage) in self.motion.iter().enumerate() {
-            motion::check_stage(k, stage, &rods, &shortest)?;
-        }
         let mut shells = Vec::with_capacity(self.shells.len());
         for (i, spec) in self.shells.iter().enumerate() {
             let path = format!("shells[{i}]");
@@ -144,6 +141,9 @@ impl Scene {
             }
             names.push(shell.name.clone());
             shells.push(shell);
+        }
+        for (k, stage) in self.motion.iter().enumerate() {
+            motion::check_stage(k, stage, &rods, &shortest, &shells)?;
         }
         let mut solver = self.solver;
         solver

@@ -5,6 +5,7 @@ use crate::geometry::Vec3;
 use super::super::error::SceneError;
 use super::super::spec::{MotionStage, SupportKind};
 use super::rod::CompiledRod;
+use crate::scene::shells::CompiledShell;
 
 /// Largest rotation (rad) of a support per load step of a motion step.
 pub const MAX_STEP_ROTATION: f64 = 0.2;
@@ -31,12 +32,29 @@ pub(super) fn check_stage(
     stage: &MotionStage,
     rods: &[CompiledRod],
     shortest: &[f64],
+    shells: &[CompiledShell],
 ) -> Result<(), SceneError> {
     let path = format!("motion[{k}]");
-    let Some(rod) = rods.get(stage.rod) else {
+    let rod_index = match (stage.rod, stage.shell) {
+        (Some(r), None) => r,
+        (None, Some(s)) => return check_shell_stage(&path, stage, s, shells),
+        (Some(_), Some(_)) => {
+            return Err(SceneError::new(
+                format!("{path}.shell"),
+                "give either `rod` (a rod's support) or `shell` (a strip's clamp), not both",
+            ))
+        }
+        (None, None) => {
+            return Err(SceneError::new(
+                format!("{path}.rod"),
+                "missing: give `rod` (a rod's support) or `shell` (a strip's clamp)",
+            ))
+        }
+    };
+    let Some(rod) = rods.get(rod_index) else {
         return Err(SceneError::new(
             format!("{path}.rod"),
-            format!("{}: must be < {} (number of rods)", stage.rod, rods.len()),
+            format!("{rod_index}: must be < {} (number of rods)", rods.len()),
         ));
     };
     let Some(support) = rod.supports.get(stage.support) else {
@@ -46,7 +64,7 @@ pub(super) fn check_stage(
                 "{}: must be < {} (supports of rod {})",
                 stage.support,
                 rod.supports.len(),
-                stage.rod
+                rod_index
             ),
         ));
     };
@@ -67,17 +85,63 @@ pub(super) fn check_stage(
         }
         _ => {}
     }
+    check_steps(&path, stage)?;
+    check_pieces(&path, stage, t, rot, shortest[rod_index])
+}
+
+fn check_steps(path: &str, stage: &MotionStage) -> Result<(), SceneError> {
     if stage.steps == 0 || stage.steps > 10_000 {
         return Err(SceneError::new(
             format!("{path}.steps"),
             format!("{}: must be in 1..=10000", stage.steps),
         ));
     }
+    Ok(())
+}
+
+/// A stage moving clamp `stage.support` of strip `shell`.
+fn check_shell_stage(
+    path: &str,
+    stage: &MotionStage,
+    shell: usize,
+    shells: &[CompiledShell],
+) -> Result<(), SceneError> {
+    let Some(c) = shells.get(shell) else {
+        return Err(SceneError::new(
+            format!("{path}.shell"),
+            format!("{shell}: must be < {} (number of shells)", shells.len()),
+        ));
+    };
+    if stage.support >= c.clamps.len() {
+        return Err(SceneError::new(
+            format!("{path}.support"),
+            format!(
+                "{}: must be < {} (clamps of shell {shell})",
+                stage.support,
+                c.clamps.len()
+            ),
+        ));
+    }
+    let t = finite3(&format!("{path}.translate"), stage.translate)?;
+    let rot = finite3(&format!("{path}.rotate"), stage.rotate)?;
+    check_steps(path, stage)?;
+    check_pieces(path, stage, t, rot, c.length())
+}
+
+/// Each step is solved in load steps small enough for Newton; bound their number so that an
+/// absurd motion is an error, not an endless run (`length`: of the moving part, m).
+fn check_pieces(
+    path: &str,
+    stage: &MotionStage,
+    t: Vec3,
+    rot: Vec3,
+    length: f64,
+) -> Result<(), SceneError> {
     // Each step is solved in load steps small enough for Newton; bound their number so that
     // an absurd motion is an error, not an endless run.
     let per_step = |v: Vec3| v.norm() / stage.steps as f64;
-    let pieces = (per_step(rot) / MAX_STEP_ROTATION)
-        .max(per_step(t) / (MAX_STEP_TRANSLATION * shortest[stage.rod]));
+    let pieces =
+        (per_step(rot) / MAX_STEP_ROTATION).max(per_step(t) / (MAX_STEP_TRANSLATION * length));
     if !(pieces <= MAX_PIECES_PER_STEP) {
         return Err(SceneError::new(
             path,
@@ -86,7 +150,7 @@ pub(super) fn check_stage(
                 per_step(rot),
                 per_step(t),
                 MAX_PIECES_PER_STEP * MAX_STEP_ROTATION,
-                MAX_PIECES_PER_STEP * MAX_STEP_TRANSLATION * shortest[stage.rod]
+                MAX_PIECES_PER_STEP * MAX_STEP_TRANSLATION * length
             ),
         ));
     }

@@ -66,7 +66,7 @@ let view = null; // the last ViewState
 let sceneSize = 1; // diagonal of the first equilibrium's bounding box (m)
 const rods = []; // per rod: { mesh, outline, tight, colours }
 const shells = [];
-let handles = []; // per support: Object3D with userData { rod, support, kind }
+let handles = []; // per support: Object3D with userData { rod, support, kind } (a strip's clamp: { shell, support, kind: "shell_clamp" })
 let arrows = [];
 let labels = [];
 let labelSpecs = []; // reaction values: { at, text, cls }
@@ -263,7 +263,7 @@ function updateShells() {
     shells.push(m);
   }
   $("shells").textContent = view.shells.length
-    ? `${view.shells.length} shell strip(s) drawn as static surfaces: shells cannot be dragged in a session yet.`
+    ? `${view.shells.length} shell strip(s): drag their clamps (the flat boxes at their clamped edges).`
     : "";
 }
 
@@ -276,10 +276,12 @@ function handleSize() {
 }
 
 function handleMesh(kind, size, sup) {
-  const colours = { clamp: 0x37474f, clip: 0x00897b, pin: 0x5e35b1, slider: 0xef6c00, twist_hold: 0x6d4c41 };
+  const colours = { clamp: 0x37474f, clip: 0x00897b, pin: 0x5e35b1, slider: 0xef6c00, twist_hold: 0x6d4c41, shell_clamp: 0x37474f };
   const mat = new THREE.MeshStandardMaterial({ color: colours[kind] ?? 0x333333, roughness: 0.4, transparent: true, opacity: 0.85 });
   let g;
   if (kind === "clamp") g = new THREE.BoxGeometry(size, size, size);
+  // A strip's clamp: a flat box along its edge (z at rest), the handle turning with the clamp.
+  else if (kind === "shell_clamp") g = new THREE.BoxGeometry(size * 0.6, size * 0.6, Math.max(size, sup.edge_length * 1.1));
   else if (kind === "clip") g = new THREE.TorusGeometry(size * 0.55, size * 0.18, 8, 20);
   else if (kind === "pin") g = new THREE.SphereGeometry(size * 0.55, 16, 12);
   else if (kind === "slider") g = new THREE.CylinderGeometry(size * 0.3, size * 0.3, size * 2, 12);
@@ -312,7 +314,13 @@ function quaternionToRotation(q) {
 }
 
 function supportKey() {
-  return view.rods.map((r) => r.supports.map((s) => `${s.kind}@${s.vertex}`).join(",")).join(";");
+  return view.rods.map((r) => r.supports.map((s) => `${s.kind}@${s.vertex}`).join(",")).join(";")
+    + "|" + view.shells.map((sh) => sh.clamps.map((c) => c.edge).join(",")).join(";");
+}
+
+/** The server's pose of the support (or strip clamp) a handle stands for. */
+function handleTarget(u) {
+  return u.shell !== undefined ? view.shells[u.shell].clamps[u.support] : view.rods[u.rod].supports[u.support];
 }
 let handlesKey = "";
 
@@ -330,10 +338,17 @@ function buildHandles() {
     world.add(h);
     handles.push(h);
   }));
+  view.shells.forEach((sh, shi) => sh.clamps.forEach((c) => {
+    const h = new THREE.Group();
+    h.add(handleMesh("shell_clamp", size, c));
+    h.userData = { shell: shi, support: c.index, kind: "shell_clamp", handle: true };
+    world.add(h);
+    handles.push(h);
+  }));
   handlesKey = supportKey();
   syncHandles();
   if (sel) {
-    const h = handles.find((x) => x.userData.rod === sel.rod && x.userData.support === sel.support && x.userData.kind === sel.kind);
+    const h = handles.find((x) => x.userData.rod === sel.rod && x.userData.shell === sel.shell && x.userData.support === sel.support && x.userData.kind === sel.kind);
     if (h) select(h);
   }
   updateSelectionPanel();
@@ -343,7 +358,7 @@ function buildHandles() {
 function syncHandles() {
   for (const h of handles) {
     if (dragging && h === selected) continue;
-    const sup = view.rods[h.userData.rod].supports[h.userData.support];
+    const sup = handleTarget(h.userData);
     h.position.copy(v3(sup.position));
     h.quaternion.copy(rotationToQuaternion(sup.rotation));
   }
@@ -473,7 +488,13 @@ function updateSelectionPanel() {
     $("delete-support").disabled = true;
     return;
   }
-  const { rod, support, kind } = selected.userData;
+  const { rod, shell, support, kind } = selected.userData;
+  if (shell !== undefined) {
+    const c = view.shells[shell].clamps[support];
+    $("selection").textContent = `selected: ${view.shells[shell].name}, clamp ${support} (${c.edge} edge); clamps are removed in the scene file`;
+    $("delete-support").disabled = true;
+    return;
+  }
   $("selection").textContent = `selected: ${view.rods[rod].name}, support ${support} (${kind.replace("_", " ")})`;
   $("delete-support").disabled = false;
 }
@@ -541,8 +562,11 @@ function setGizmoMode(mode) {
 function onHandleChange() {
   if (!selected) return;
   dragging = true;
-  const { rod, support } = selected.userData;
-  const req = { op: "move", rod, support, position: selected.position.toArray() };
+  const { rod, shell, support } = selected.userData;
+  // The same `move` for a rod's support and a strip's clamp (addressed by `shell`).
+  const req = shell !== undefined
+    ? { op: "move", shell, support, position: selected.position.toArray() }
+    : { op: "move", rod, support, position: selected.position.toArray() };
   if (gizmo.getMode() === "rotate") req.rotation = quaternionToRotation(selected.quaternion);
   pendingMove = { req, queued: performance.now() };
   pump();
@@ -699,7 +723,7 @@ window.addEventListener("keydown", (ev) => {
   if (ev.key === "Delete" && selected && document.activeElement?.tagName !== "INPUT") deleteSelected();
 });
 async function deleteSelected() {
-  if (!selected) return;
+  if (!selected || selected.userData.shell !== undefined) return;
   const { rod, support } = selected.userData;
   select(null);
   await edit({ op: "remove_support", rod, support });
