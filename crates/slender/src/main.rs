@@ -23,7 +23,7 @@ use clap::{Parser, Subcommand};
 
 use commands::{
     bend_twist, cantilever, lateral_buckling, master_curve, merge, models, scene_schema,
-    sensitivity, solve as solve_cmd, validate, view as view_cmd,
+    sensitivity, solve as solve_cmd, stick_slip, validate, view as view_cmd,
 };
 
 /// Large deformations of cables, hoses and flat cables, with the validation to prove them.
@@ -67,6 +67,10 @@ enum Command {
     /// percentage of correct 2-D/3-D decisions against the plate master curve, for every
     /// combination of Ω, n_L, m_ls and σ, as box plots.
     Sensitivity(sensitivity::SensitivityArgs),
+    /// Stick–slip (Romero's fourth benchmark): a rod released on a rough inclined plane, over
+    /// rods of several decades of stiffness and Γ, μ and tan α/μ around 1; stick/slide
+    /// decisions, displacements and accelerations against Coulomb's law.
+    StickSlip(stick_slip::StickSlipArgs),
     /// The interactive cable-editing page: starts a local server and prints its URL; drag
     /// supports, add clips, change gravity, see reactions, bend radius and stability live.
     View(view_cmd::ViewArgs),
@@ -85,6 +89,7 @@ fn run(cli: Cli) -> Result<bool> {
         Command::SceneSchema(a) => scene_schema::run(a),
         Command::LateralBuckling(a) => lateral_buckling::run(a),
         Command::Sensitivity(a) => sensitivity::run(a),
+        Command::StickSlip(a) => stick_slip::run(a),
         Command::View(a) => view_cmd::run(a),
     }
 }

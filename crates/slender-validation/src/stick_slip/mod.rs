@@ -8,10 +8,12 @@
 //! must not move by more than its anchors' elastic deflection.
 //!
 //! [`case`] holds one run (a rod released at rest on the inclined plane and stepped in time,
-//! friction updated every step); [`fit`] the measured acceleration.
+//! friction updated every step); [`fit`] the measured acceleration; [`sweep`] the sweep over
+//! rods, μ and tan α / μ, its scored rows and acceptance checks.
 
 pub mod case;
 pub mod fit;
+pub mod sweep;
 
 pub use case::{StickSlipCase, StickSlipError, StickSlipResult};
 

@@ -3,7 +3,7 @@
 //!
 //! A benchmark is a value implementing [`Benchmark`] (one module per benchmark). `slender
 //! validate` runs the list of [`suite`] in turn; the single-benchmark commands (`slender
-//! cantilever`, `bend-twist`, `lateral-buckling`, `sensitivity`) build the same objects from
+//! cantilever`, `bend-twist`, `lateral-buckling`, `sensitivity`, `stick-slip`) build the same objects from
 //! their flags and run them without the checks.
 //!
 //! - Adding a benchmark: a module here implementing [`Benchmark`] (its cases and store keys,
@@ -23,6 +23,7 @@ pub mod lateral_buckling;
 pub mod rod_models;
 pub mod scenes;
 pub mod sensitivity;
+pub mod stick_slip;
 
 use anyhow::Result;
 use clap::ValueEnum;
@@ -127,6 +128,7 @@ pub fn suite(preset: Preset) -> Vec<Box<dyn AnyBenchmark>> {
             slender_validation::shell_model::ShellModel::Bspline,
         )),
         Box::new(sensitivity::Sensitivity::for_preset(preset)),
+        Box::new(stick_slip::StickSlip::for_preset(preset)),
         Box::new(scenes::Scenes),
     ]
 }

@@ -11,6 +11,7 @@ pub mod models;
 pub mod scene_schema;
 pub mod sensitivity;
 pub mod solve;
+pub mod stick_slip;
 pub mod validate;
 pub mod view;
 

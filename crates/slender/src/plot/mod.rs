@@ -24,7 +24,9 @@ pub use boxplot::{plot_boxplots, BoxPanel, BoxSample};
 pub use cantilever_ratio::{plot_cantilever_ratio, Curve};
 pub use height_map::{plot_height_map, Overlay};
 pub use line_chart::{plot_lines, LineAxes};
-pub use phase_diagram::{plot_phase_diagram, Phase, PhasePoint};
+pub use phase_diagram::{
+    plot_phase_diagram, plot_phase_diagram_labeled, Phase, PhaseLabels, PhasePoint,
+};
 pub use relative_error::plot_relative_error;
 pub use shape_2d::plot_shapes_2d;
 pub use shape_3d::{plot_shape_views, Polyline3};

@@ -80,6 +80,50 @@ pub fn plot_phase_diagram(
     points: &[PhasePoint],
     overlays: &[Overlay],
 ) -> Result<()> {
+    plot_phase_diagram_labeled(
+        stem,
+        title,
+        (x_label, y_label),
+        (x_range, y_range),
+        truth_3d,
+        points,
+        overlays,
+        &PhaseLabels::BEND_TWIST,
+    )
+}
+
+/// What the two phases and a ringed point mean, in the key.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhaseLabels {
+    /// The phase drawn green ([`Phase::ThreeD`], `true` in the ground truth).
+    pub yes: &'static str,
+    /// The phase drawn orange ([`Phase::TwoD`], `false` in the ground truth).
+    pub no: &'static str,
+    /// A ringed point (`disagrees`).
+    pub ring: &'static str,
+}
+
+impl PhaseLabels {
+    /// 3-D / 2-D, rings where the protocol disagrees with stability.
+    pub const BEND_TWIST: PhaseLabels = PhaseLabels {
+        yes: "3-D",
+        no: "2-D",
+        ring: "protocol disagrees with stability",
+    };
+}
+
+/// [`plot_phase_diagram`] with the phases named by `labels` (e.g. slide / stick).
+#[allow(clippy::too_many_arguments)]
+pub fn plot_phase_diagram_labeled(
+    stem: &Path,
+    title: &str,
+    (x_label, y_label): (&str, &str),
+    (x_range, y_range): ((f64, f64), (f64, f64)),
+    truth_3d: &dyn Fn(f64, f64) -> Option<bool>,
+    points: &[PhasePoint],
+    overlays: &[Overlay],
+    labels: &PhaseLabels,
+) -> Result<()> {
     let x_range = log_range(x_range, "x", title)?;
     let y_range = log_range(y_range, "y", title)?;
     // Sampled once here, not per backend: the ground truth may be costly.
@@ -105,6 +149,7 @@ pub fn plot_phase_diagram(
             truth,
             points,
             overlays,
+            labels: *labels,
         },
     )
 }
@@ -136,6 +181,7 @@ struct PhaseFigure<'a> {
     truth: Vec<Vec<Option<bool>>>,
     points: &'a [PhasePoint],
     overlays: &'a [Overlay],
+    labels: PhaseLabels,
 }
 
 /// Just the ring that marks a disagreeing point.
@@ -167,8 +213,14 @@ impl PhaseFigure<'_> {
     fn key_entries(&self) -> Vec<KeyEntry> {
         let cells = || self.truth.iter().flatten();
         let mut e = vec![
-            KeyEntry::new("3-D (ground truth)", KeyGlyph::Swatch(BG_3D)),
-            KeyEntry::new("2-D (ground truth)", KeyGlyph::Swatch(BG_2D)),
+            KeyEntry::new(
+                &format!("{} (ground truth)", self.labels.yes),
+                KeyGlyph::Swatch(BG_3D),
+            ),
+            KeyEntry::new(
+                &format!("{} (ground truth)", self.labels.no),
+                KeyGlyph::Swatch(BG_2D),
+            ),
         ];
         if cells().any(Option::is_none) {
             e.push(KeyEntry::new(
@@ -185,11 +237,11 @@ impl PhaseFigure<'_> {
             }))
         };
         e.push(KeyEntry::new(
-            "3-D (simulation)",
+            &format!("{} (simulation)", self.labels.yes),
             marker(Phase::ThreeD, false),
         ));
         e.push(KeyEntry::new(
-            "2-D (simulation)",
+            &format!("{} (simulation)", self.labels.no),
             marker(Phase::TwoD, false),
         ));
         if self.points.iter().any(|p| p.phase == Phase::NotConverged) {
@@ -200,7 +252,7 @@ impl PhaseFigure<'_> {
         }
         if self.points.iter().any(|p| p.disagrees) {
             e.push(KeyEntry::new(
-                "protocol disagrees with stability",
+                self.labels.ring,
                 KeyGlyph::Diamond(RING_ONLY),
             ));
         }
