@@ -256,3 +256,23 @@ fn axial_torque_twists_the_rod_uniformly() {
         "θ = {theta}, expected {expected}"
     );
 }
+
+#[test]
+fn a_non_finite_load_range_is_refused_not_stepped_forever() {
+    let rod = straight(1.0, 1.0)
+        .clamp_start()
+        .gravity(Vec3::new(0.0, -1.0, 0.0))
+        .build()
+        .unwrap();
+    let rest = rod.rest_state().clone();
+    let mut solver = EquilibriumSolver::new(&rod, &rest, SolverParams::default());
+    for to in [f64::NAN, f64::INFINITY] {
+        let r = solver.solve(&rod, &rest, 0.0, to);
+        assert!(!r.report.converged(), "{to}: {:?}", r.report);
+        assert!(
+            format!("{:?}", r.report.status).contains("not finite"),
+            "{:?}",
+            r.report.status
+        );
+    }
+}

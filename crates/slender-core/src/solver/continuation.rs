@@ -172,7 +172,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         let mut iterations = 0;
         let mut load_steps = 0;
         let mut rejected = 0;
-        let mut last: IterateMeasures;
+        let mut last = IterateMeasures::default();
         let mut failure: Option<String> = None;
         let mut snapped_at: Option<f64> = None;
         let mut snaps = 0;
@@ -197,6 +197,14 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             }
         } else {
             loop {
+                if !(step.is_finite() && span.is_finite()) {
+                    // A NaN or infinite load factor would never shrink below the smallest
+                    // step: refuse it instead of halving forever.
+                    failure = Some(format!(
+                        "the load factor range [{from}, {to}] or its step {step} is not finite"
+                    ));
+                    break;
+                }
                 let remaining = to - load;
                 if step.abs() > remaining.abs() {
                     step = remaining;
