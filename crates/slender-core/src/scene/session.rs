@@ -221,6 +221,15 @@ fn solve_structure(
             load_steps: report.load_steps,
             ..again
         };
+        if let SolveStatus::NotConverged { reason } = &report.status {
+            // Keep the equilibrium of the previous stick/slide set, and say why.
+            report.status = SolveStatus::NotConverged {
+                reason: format!(
+                    "no equilibrium with the contacts' friction: re-solve {resolves} after contacts began to slip did not converge ({reason}); the friction may not hold the structure"
+                ),
+            };
+            run.state.clone_from(&previous);
+        }
     }
     if report.converged() {
         run.friction = problem.friction_state();
@@ -407,6 +416,10 @@ impl Session {
             }
             for f in p.contact_forces(&run.state) {
                 let site = p.sites()[f.site];
+                if site.dofs.iter().all(|d| d.dof == crate::assembly::FIXED) {
+                    // A held vertex: its support takes the contact force.
+                    continue;
+                }
                 let x = p.model().site_position(&run.state, &site);
                 let total = f.force + f.friction;
                 external[k].push((x, total));
