@@ -98,6 +98,27 @@ impl Run {
     }
 }
 
+/// Pieces of a load path solved with friction (the stick/slide set updated after each).
+pub const FRICTION_PIECES: usize = 10;
+
+/// Relative change of the sliding forces below which their refresh needs no re-solve.
+const SLIDE_DRIFT: f64 = 1e-12;
+/// Re-solves allowed for refreshed sliding forces.
+const MAX_REFRESHES: usize = 5;
+
+/// Largest change of a sliding force between two friction states, relative to it.
+fn slide_drift(a: &[Friction], b: &[Friction]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| match (x, y) {
+            (Friction::Slide { force: f }, Friction::Slide { force: g }) => {
+                (f - g).norm() / g.norm().max(f64::MIN_POSITIVE)
+            }
+            _ => 0.0,
+        })
+        .fold(0.0, f64::max)
+}
+
 /// A report of a solve that did not start (`reason`).
 fn unsolved(reason: String) -> SolveReport {
     SolveReport {
@@ -189,30 +210,81 @@ fn solve_structure(
         Some(Err(e)) => return unsolved(e),
         Some(Ok(p)) => p,
     };
+    // With friction, the load path is taken in pieces with the stick/slide set updated after
+    // each: a sticking contact's anchor is unlimited within a solve, so one solve over a long
+    // path would drag (or lift) what should slide.
+    let rough = scene
+        .contact
+        .as_ref()
+        .is_some_and(|c| c.obstacles.iter().any(|o| o.friction() > 0.0));
+    let pieces = if rough && from != to {
+        FRICTION_PIECES
+    } else {
+        1
+    };
+    let mut report = unsolved(String::new());
+    let (mut iterations, mut load_steps) = (0, 0);
+    for piece in 0..pieces {
+        let a = from + (to - from) * piece as f64 / pieces as f64;
+        let b = if piece + 1 == pieces {
+            to
+        } else {
+            from + (to - from) * (piece + 1) as f64 / pieces as f64
+        };
+        report = settle_friction(&problem, run, a, b);
+        iterations += report.iterations;
+        load_steps += report.load_steps;
+        if !report.converged() {
+            break;
+        }
+    }
+    report.iterations = iterations;
+    report.load_steps = load_steps;
+    if report.converged() {
+        run.friction = problem.friction_state();
+    }
+    report
+}
+
+/// Solves `problem` in `run` from load `from` to `to`, then updates the stick/slide set and
+/// re-solves warm at `to` until it settles (see [`solve_structure`]).
+fn settle_friction(
+    problem: &ContactProblem<'_, Structure>,
+    run: &mut Run,
+    from: f64,
+    to: f64,
+) -> SolveReport {
     let mut previous = run.state.clone();
-    let mut report = run
-        .solver
-        .solve_in_place(&problem, &mut run.state, from, to);
-    let mut resolves = 0;
+    let mut report = run.solver.solve_in_place(problem, &mut run.state, from, to);
+    let (mut resolves, mut refreshes) = (0, 0);
     while report.converged() {
+        let before = problem.friction_state();
         let update = problem.update_friction(&run.state, Some(&previous));
         // A released contact's anchor acted in the solve: solve again without it.
         if !update.changed() && update.released == 0 {
-            break;
-        }
-        if resolves == MAX_FRICTION_SOLVES {
+            // The update refreshed the sliding forces to μ f_n of this state: while that
+            // moves them, solve again (a few times at most); then keep the forces this state
+            // was solved with, so that the reported forces balance exactly.
+            let drift = slide_drift(&before, &problem.friction_state());
+            if drift <= SLIDE_DRIFT || refreshes == MAX_REFRESHES {
+                problem.set_friction_state(&before);
+                break;
+            }
+            refreshes += 1;
+        } else if resolves == MAX_FRICTION_SOLVES {
             report.status = SolveStatus::NotConverged {
                 reason: format!(
                     "the stick/slide set of the contacts did not settle in {MAX_FRICTION_SOLVES} re-solves"
                 ),
             };
             break;
+        } else {
+            resolves += 1;
         }
-        resolves += 1;
         previous.clone_from(&run.state);
         let user = run.solver.params;
         run.solver.params.max_iterations = user.max_iterations.max(user.snap_iterations);
-        let again = run.solver.solve_in_place(&problem, &mut run.state, to, to);
+        let again = run.solver.solve_in_place(problem, &mut run.state, to, to);
         run.solver.params = user;
         report.iterations += again.iterations;
         let total = report.iterations;
@@ -230,9 +302,6 @@ fn solve_structure(
             };
             run.state.clone_from(&previous);
         }
-    }
-    if report.converged() {
-        run.friction = problem.friction_state();
     }
     report
 }
