@@ -157,10 +157,7 @@ fn contact_problem<'a>(
     let s = &scene.structures[k];
     Some(
         ContactProblem::new(s, c.obstacles.clone(), c.params[k], state)
-            .map(|p| {
-                p.set_friction_state(friction);
-                p
-            })
+            .inspect(|p| p.set_friction_state(friction))
             .map_err(|e| format!("contact: {e}")),
     )
 }
