@@ -100,8 +100,8 @@ fn bench_contact(c: &mut Criterion) {
     let plane = Plane::new(Vec3::zeros(), Vec3::z(), 0.3).expect("plane");
     let params = ContactParams::for_line_load(radius, activation, 0.281 * g * alpha.cos());
     let start = rod.rest_state().clone();
-    let problem =
-        ContactProblem::new(&rod, vec![Box::new(plane)], params, &start).expect("contact");
+    let problem = ContactProblem::new(&rod, vec![std::sync::Arc::new(plane)], params, &start)
+        .expect("contact");
     problem.update_friction(&start, None);
     let dynamics = DynamicsParams::new(1e-3).with_scheme(Scheme::BackwardEuler);
     let mut stepper = TimeStepper::at_rest(&problem, start, dynamics).expect("stepper");

@@ -29,8 +29,8 @@ fn cable_properties() -> (RodProperties, f64) {
     cable_properties_with(1.37e8)
 }
 
-fn boxed(o: impl Obstacle + 'static) -> Box<dyn Obstacle> {
-    Box::new(o)
+fn boxed(o: impl Obstacle + 'static) -> std::sync::Arc<dyn Obstacle> {
+    std::sync::Arc::new(o)
 }
 
 #[test]

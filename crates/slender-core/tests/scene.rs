@@ -57,6 +57,7 @@ fn rod_spec(centerline: Centerline, supports: Vec<(SupportKind, VertexRef)>) -> 
         min_bend_radius: None,
         model: Default::default(),
         shear_stiffness: None,
+        contact_radius: None,
     }
 }
 
@@ -70,6 +71,8 @@ fn scene(rods: Vec<RodSpec>, gravity: [f64; 3]) -> Scene {
         motion: Vec::new(),
         unstable: Default::default(),
         time: None,
+        obstacles: Vec::new(),
+        contact: None,
     }
 }
 

@@ -1184,3 +1184,52 @@ steps = 2
         );
     }
 }
+
+#[test]
+fn a_cable_over_a_bracket_rests_on_its_obstacles_and_balances() {
+    let out = solve("cable_over_bracket");
+    let n = n_steps(&out);
+    assert_eq!(n, 3);
+    // The scene's data: a 1.6 m cable, d = 8 mm, ρ = 1500 kg/m³, ĝ = 1e-4 m, floor μ = 0.3.
+    let (length, d, rho, g, activation) = (1.6, 0.008, 1500.0, 9.81, 1e-4);
+    let weight = rho * circle_area(d) * length * g;
+    for k in 0..n {
+        let r = step(&out, k);
+        assert_eq!(r["converged"], Value::Bool(true), "step {k}");
+        let min_gap = r["min_gap"].as_f64().unwrap();
+        assert!(
+            min_gap > 0.0 && min_gap < activation,
+            "step {k}: min gap {min_gap}"
+        );
+        let mut total = [0.0, 0.0, -weight];
+        let mut contacts = 0;
+        let mut worst_cone: f64 = 0.0;
+        for o in r["obstacles"].as_array().unwrap() {
+            let mu = o["friction"].as_f64().unwrap();
+            for c in o["contacts"].as_array().unwrap() {
+                contacts += 1;
+                let gap = c["gap"].as_f64().unwrap();
+                assert!(gap > 0.0 && gap < activation, "step {k}: gap {gap}");
+                let (f_n, f_t) = (v3(&c["normal_force"]), v3(&c["friction_force"]));
+                // A sliding force is μ f_n of the state before the last warm re-solve: within
+                // the solver's tolerance of μ times the reported normal force.
+                worst_cone = worst_cone.max(norm(f_t) / (mu * norm(f_n)).max(f64::MIN_POSITIVE));
+                assert!(
+                    norm(f_t) <= mu * norm(f_n) * (1.0 + 1e-5) + 1e-15,
+                    "step {k}: friction {} > μ {mu} × {}",
+                    norm(f_t),
+                    norm(f_n)
+                );
+                total = add(total, add(f_n, f_t));
+            }
+        }
+        assert!(contacts >= 2, "step {k}: on the bracket and the floor");
+        for s in r["rods"][0]["supports"].as_array().unwrap() {
+            total = add(total, v3(&s["force"]));
+        }
+        let err = norm(total) / weight;
+        println!("step {k}: {contacts} contacts, min gap {min_gap:.3e} m, |clamp + contacts + weight| / weight = {err:.2e}, largest |f_t| / μ|f_n| = {worst_cone:.12}, relative imbalance {:.2e}", r["rods"][0]["relative_force_imbalance"].as_f64().unwrap());
+        assert!(err <= 1e-6, "step {k}: imbalance {err:e}");
+        assert!(r["rods"][0]["relative_force_imbalance"].as_f64().unwrap() < 1e-9);
+    }
+}

@@ -16,6 +16,7 @@
 //! reported ([`ContactProblem::contact_forces`]).
 
 use std::cell::RefCell;
+use std::sync::Arc;
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -124,7 +125,7 @@ pub struct ContactForce {
 #[derive(Debug)]
 pub struct ContactProblem<'m, P: ContactSites> {
     model: &'m P,
-    obstacles: Vec<Box<dyn Obstacle>>,
+    obstacles: Vec<Arc<dyn Obstacle>>,
     params: ContactParams,
     sites: Vec<ContactSite>,
     groups: Vec<TermGroup>,
@@ -222,7 +223,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     /// than the radius (the cable would start inside; the field names the obstacle).
     pub fn new(
         model: &'m P,
-        obstacles: Vec<Box<dyn Obstacle>>,
+        obstacles: Vec<Arc<dyn Obstacle>>,
         params: ContactParams,
         start: &P::State,
     ) -> Result<Self, ModelError> {
@@ -547,6 +548,26 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             }
         }
         update
+    }
+
+    /// The friction state of every (site, obstacle) contact, at index site·n_obstacles +
+    /// obstacle: to keep it across problems built for successive solves of one model.
+    pub fn friction_state(&self) -> Vec<Friction> {
+        self.friction.borrow().clone()
+    }
+
+    /// Replaces the friction state (see [`Self::friction_state`]). A state of another length
+    /// (another model or obstacle set) is ignored and every contact is left free.
+    pub fn set_friction_state(&self, state: &[Friction]) {
+        let mut f = self.friction.borrow_mut();
+        if state.len() == f.len() {
+            f.copy_from_slice(state);
+        }
+    }
+
+    /// The obstacles.
+    pub fn obstacles(&self) -> &[Arc<dyn Obstacle>] {
+        &self.obstacles
     }
 
     /// The model.

@@ -20,7 +20,8 @@ pub mod time_run;
 pub use compile::{CompiledRod, CompiledScene, CompiledSupport, RodPart};
 pub use error::SceneError;
 pub use result::{
-    FrameEnergy, RodResult, SceneStep, StabilityResult, StructureResult, SupportResult, TimeFrame,
+    ContactResult, FrameEnergy, ObstacleResult, RodResult, SceneStep, StabilityResult,
+    StructureResult, SupportResult, TimeFrame,
 };
 pub use session::{EditReport, Session, SupportPose};
 pub use shell_run::ShellRun;

@@ -154,6 +154,47 @@ pub struct SceneStep {
     /// from the output of equilibrium solves.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub time: Option<TimeFrame>,
+    /// Every obstacle with its active contacts (absent without obstacles).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub obstacles: Vec<ObstacleResult>,
+    /// Smallest gap (m) between a rod's surface and an obstacle over the scene (absent without
+    /// obstacles; negative would be a penetration, which the barrier prevents).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_gap: Option<f64>,
+}
+
+/// An obstacle and the forces it applies.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ObstacleResult {
+    /// Name (`obstacle<i>` by default).
+    pub name: String,
+    /// Coulomb coefficient μ.
+    pub friction: f64,
+    /// Resultant force (N) the obstacle applies to the rods (normal and friction).
+    pub force: [f64; 3],
+    /// Its active contacts (gap below the activation distance).
+    pub contacts: Vec<ContactResult>,
+}
+
+/// One contact of a rod vertex with an obstacle.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ContactResult {
+    /// The rod (name).
+    pub rod: String,
+    /// The rod's vertex.
+    pub vertex: usize,
+    /// The vertex's position (m).
+    pub position: [f64; 3],
+    /// Gap (m) between the rod's surface and the obstacle's, in (0, activation).
+    pub gap: f64,
+    /// Outward unit normal of the obstacle there.
+    pub normal: [f64; 3],
+    /// Normal force on the rod (N), along `normal`.
+    pub normal_force: [f64; 3],
+    /// Friction force on the rod (N), tangential, |friction| ≤ μ |normal force|.
+    pub friction_force: [f64; 3],
+    /// True while the contact sticks.
+    pub sticking: bool,
 }
 
 /// One frame of a time-stepped scene: the state after `time_step` steps.
@@ -212,8 +253,15 @@ fn structure_gradients(s: &Structure, st: &StructureState) -> Vec<HeldForces> {
     out
 }
 
-/// Force and moment balance of a structure: (imbalance, relative) for force and moment.
-fn balance(scene: &CompiledScene, k: usize, st: &StructureState, grads: &[HeldForces]) -> [f64; 4] {
+/// Force and moment balance of a structure: (imbalance, relative) for force and moment;
+/// `external` are further forces (position, force) on it: its contact forces.
+fn balance(
+    scene: &CompiledScene,
+    k: usize,
+    st: &StructureState,
+    grads: &[HeldForces],
+    external: &[(Vec3, Vec3)],
+) -> [f64; 4] {
     let s = &scene.structures[k];
     let mut total_f = Vec3::zeros();
     let mut total_m = Vec3::zeros();
@@ -245,6 +293,12 @@ fn balance(scene: &CompiledScene, k: usize, st: &StructureState, grads: &[HeldFo
             m_scale += x.norm() * f.norm() + mo.norm();
             reaction_moments += mo.norm();
         }
+    }
+    for (x, f) in external {
+        total_f += f;
+        total_m += x.cross(f);
+        f_scale += f.norm();
+        m_scale += x.norm() * f.norm();
     }
     // A moment M at a support is carried by forces of order M/L inside the rod: count it in
     // the force scale, so that a rod bent by its clamps alone has a meaningful one.
@@ -346,6 +400,18 @@ pub fn scene_results(
     reports: &[SolveReport],
     stability: &[StabilityResult],
 ) -> (Vec<RodResult>, Vec<StructureResult>) {
+    scene_results_with(scene, states, reports, stability, &[])
+}
+
+/// As [`scene_results`], with further forces (position, force) per structure in the balance:
+/// its contact forces (empty: none).
+pub fn scene_results_with(
+    scene: &CompiledScene,
+    states: &[StructureState],
+    reports: &[SolveReport],
+    stability: &[StabilityResult],
+    external: &[Vec<(Vec3, Vec3)>],
+) -> (Vec<RodResult>, Vec<StructureResult>) {
     let grads: Vec<Vec<HeldForces>> = scene
         .structures
         .iter()
@@ -353,7 +419,10 @@ pub fn scene_results(
         .map(|(s, st)| structure_gradients(s, st))
         .collect();
     let balances: Vec<[f64; 4]> = (0..scene.structures.len())
-        .map(|k| balance(scene, k, &states[k], &grads[k]))
+        .map(|k| {
+            let ext = external.get(k).map_or(&[][..], |e| e.as_slice());
+            balance(scene, k, &states[k], &grads[k], ext)
+        })
         .collect();
     let structures = (0..scene.structures.len())
         .map(|k| {

@@ -13,16 +13,19 @@
 
 use nalgebra::Rotation3;
 
+use crate::contact::{ContactProblem, ContactSites, Friction};
 use crate::geometry::Vec3;
 use crate::linalg::AdaptiveMatrix;
 use crate::rod::{ClampHold, RodSnapshot};
 use crate::solver::{follow_unstable_mode, EquilibriumSolver, SolveReport, SolveStatus};
-use crate::structure::{MemberState, StructureState};
+use crate::structure::{MemberState, Structure, StructureState};
 
 use super::carry::FramedSnapshot;
 use super::compile::{CompiledScene, MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
 use super::error::SceneError;
-use super::result::{scene_results, SceneStep, StabilityResult};
+use super::result::{
+    scene_results_with, ContactResult, ObstacleResult, SceneStep, StabilityResult,
+};
 use super::shell_run::{move_steps, pose_change, ShellRun, MAX_MOVE_STEPS};
 use super::shells::ShellResult;
 use super::spec::{
@@ -75,6 +78,229 @@ struct Run {
     solver: EquilibriumSolver<StructureState, AdaptiveMatrix>,
     report: SolveReport,
     stability: StabilityResult,
+    /// The friction state of its contacts (empty without contact), kept across edits.
+    friction: Vec<Friction>,
+    /// The friction state of `backup`.
+    backup_friction: Vec<Friction>,
+}
+
+impl Run {
+    /// Remembers the current equilibrium (and friction state) to fall back to.
+    fn save(&mut self) {
+        self.backup.clone_from(&self.state);
+        self.backup_friction.clone_from(&self.friction);
+    }
+
+    /// Back to the remembered equilibrium.
+    fn restore(&mut self) {
+        self.state.clone_from(&self.backup);
+        self.friction.clone_from(&self.backup_friction);
+    }
+}
+
+/// Pieces of a load path solved with friction (the stick/slide set updated after each).
+pub const FRICTION_PIECES: usize = 10;
+
+/// Relative change of the sliding forces below which their refresh needs no re-solve.
+const SLIDE_DRIFT: f64 = 1e-12;
+/// Re-solves allowed for refreshed sliding forces.
+const MAX_REFRESHES: usize = 5;
+
+/// Largest change of a sliding force between two friction states, relative to it.
+fn slide_drift(a: &[Friction], b: &[Friction]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| match (x, y) {
+            (Friction::Slide { force: f }, Friction::Slide { force: g }) => {
+                (f - g).norm() / g.norm().max(f64::MIN_POSITIVE)
+            }
+            _ => 0.0,
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A report of a solve that did not start (`reason`).
+fn unsolved(reason: String) -> SolveReport {
+    SolveReport {
+        status: SolveStatus::NotConverged { reason },
+        load_reached: 0.0,
+        iterations: 0,
+        load_steps: 0,
+        rejected_steps: 0,
+        snaps: 0,
+        branch_switches: 0,
+        residual: f64::NAN,
+        relative_residual: f64::NAN,
+        force_scale: f64::NAN,
+        residual_floor: f64::NAN,
+        energy_decrement: f64::NAN,
+        energy: f64::NAN,
+        inertia: None,
+        lambda_min: None,
+        lambda_min_normalized: None,
+        modes: None,
+    }
+}
+
+/// Re-solves allowed for the stick/slide set of the contacts to settle after a solve.
+pub const MAX_FRICTION_SOLVES: usize = 20;
+
+/// The contact problem of structure `k` of `scene` starting at `state`, with `friction` (if the
+/// scene has contact).
+fn contact_problem<'a>(
+    scene: &'a CompiledScene,
+    k: usize,
+    state: &StructureState,
+    friction: &[Friction],
+) -> Option<Result<ContactProblem<'a, Structure>, String>> {
+    let c = scene.contact.as_ref()?;
+    let s = &scene.structures[k];
+    Some(
+        ContactProblem::new(s, c.obstacles.clone(), c.params[k], state)
+            .inspect(|p| p.set_friction_state(friction))
+            .map_err(|e| format!("contact: {e}")),
+    )
+}
+
+/// A new solver for structure `k` (from its contact problem with contact: with self-contact
+/// its Hessian pattern is dense).
+fn new_solver(
+    scene: &CompiledScene,
+    k: usize,
+    state: &StructureState,
+) -> EquilibriumSolver<StructureState, AdaptiveMatrix> {
+    if let Some(Ok(p)) = contact_problem(scene, k, state, &[]) {
+        return EquilibriumSolver::new(&p, state, scene.solver);
+    }
+    EquilibriumSolver::new(&scene.structures[k], state, scene.solver)
+}
+
+/// The friction state of structure `k` at its start `state`: contacts already within the
+/// activation distance of a rough surface stick where they are.
+fn initial_friction(scene: &CompiledScene, k: usize, state: &StructureState) -> Vec<Friction> {
+    match contact_problem(scene, k, state, &[]) {
+        Some(Ok(p)) => {
+            p.update_friction(state, None);
+            p.friction_state()
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// Solves structure `k` of `scene` in `run` from load `from` to `to` (in place): the structure
+/// alone, or with its contacts, whose stick/slide set is then updated and the equilibrium
+/// re-solved (at load `to`, warm) until the set settles (at most [`MAX_FRICTION_SOLVES`]
+/// times; not settling is reported as not converged).
+fn solve_structure(
+    scene: &CompiledScene,
+    k: usize,
+    run: &mut Run,
+    from: f64,
+    to: f64,
+) -> SolveReport {
+    let problem = match contact_problem(scene, k, &run.state, &run.friction) {
+        None => {
+            return run
+                .solver
+                .solve_in_place(&scene.structures[k], &mut run.state, from, to)
+        }
+        Some(Err(e)) => return unsolved(e),
+        Some(Ok(p)) => p,
+    };
+    // With friction, the load path is taken in pieces with the stick/slide set updated after
+    // each: a sticking contact's anchor is unlimited within a solve, so one solve over a long
+    // path would drag (or lift) what should slide.
+    let rough = scene
+        .contact
+        .as_ref()
+        .is_some_and(|c| c.obstacles.iter().any(|o| o.friction() > 0.0));
+    let pieces = if rough && from != to {
+        FRICTION_PIECES
+    } else {
+        1
+    };
+    let mut report = unsolved(String::new());
+    let (mut iterations, mut load_steps) = (0, 0);
+    for piece in 0..pieces {
+        let a = from + (to - from) * piece as f64 / pieces as f64;
+        let b = if piece + 1 == pieces {
+            to
+        } else {
+            from + (to - from) * (piece + 1) as f64 / pieces as f64
+        };
+        report = settle_friction(&problem, run, a, b);
+        iterations += report.iterations;
+        load_steps += report.load_steps;
+        if !report.converged() {
+            break;
+        }
+    }
+    report.iterations = iterations;
+    report.load_steps = load_steps;
+    if report.converged() {
+        run.friction = problem.friction_state();
+    }
+    report
+}
+
+/// Solves `problem` in `run` from load `from` to `to`, then updates the stick/slide set and
+/// re-solves warm at `to` until it settles (see [`solve_structure`]).
+fn settle_friction(
+    problem: &ContactProblem<'_, Structure>,
+    run: &mut Run,
+    from: f64,
+    to: f64,
+) -> SolveReport {
+    let mut previous = run.state.clone();
+    let mut report = run.solver.solve_in_place(problem, &mut run.state, from, to);
+    let (mut resolves, mut refreshes) = (0, 0);
+    while report.converged() {
+        let before = problem.friction_state();
+        let update = problem.update_friction(&run.state, Some(&previous));
+        // A released contact's anchor acted in the solve: solve again without it.
+        if !update.changed() && update.released == 0 {
+            // The update refreshed the sliding forces to μ f_n of this state: while that
+            // moves them, solve again (a few times at most); then keep the forces this state
+            // was solved with, so that the reported forces balance exactly.
+            let drift = slide_drift(&before, &problem.friction_state());
+            if drift <= SLIDE_DRIFT || refreshes == MAX_REFRESHES {
+                problem.set_friction_state(&before);
+                break;
+            }
+            refreshes += 1;
+        } else if resolves == MAX_FRICTION_SOLVES {
+            report.status = SolveStatus::NotConverged {
+                reason: format!(
+                    "the stick/slide set of the contacts did not settle in {MAX_FRICTION_SOLVES} re-solves"
+                ),
+            };
+            break;
+        } else {
+            resolves += 1;
+        }
+        previous.clone_from(&run.state);
+        let user = run.solver.params;
+        run.solver.params.max_iterations = user.max_iterations.max(user.snap_iterations);
+        let again = run.solver.solve_in_place(problem, &mut run.state, to, to);
+        run.solver.params = user;
+        report.iterations += again.iterations;
+        let total = report.iterations;
+        report = SolveReport {
+            iterations: total,
+            load_steps: report.load_steps,
+            ..again
+        };
+        if let SolveStatus::NotConverged { reason } = &report.status {
+            // Keep the equilibrium of the previous stick/slide set, and say why.
+            report.status = SolveStatus::NotConverged {
+                reason: format!(
+                    "no equilibrium with the contacts' friction: re-solve {resolves} after contacts began to slip did not converge ({reason}); the friction may not hold the structure"
+                ),
+            };
+            run.state.clone_from(&previous);
+        }
+    }
+    report
 }
 
 /// A scene being solved and edited (see the module docs).
@@ -111,18 +337,23 @@ impl Session {
     pub fn from_compiled(spec: Scene, scene: CompiledScene) -> Self {
         let unstable = scene.unstable;
         let mut runs = Vec::with_capacity(scene.structures.len());
-        for s in &scene.structures {
+        for (k, s) in scene.structures.iter().enumerate() {
             let rest = s.rest_state().clone();
-            let mut solver = EquilibriumSolver::new(s, &rest, scene.solver);
-            let mut state = rest.clone();
-            let report = solver.solve_in_place(s, &mut state, 0.0, 1.0);
-            runs.push(Run {
-                backup: state.clone(),
-                stability: StabilityResult::of(&report),
-                state,
+            let solver = new_solver(&scene, k, &rest);
+            let friction = initial_friction(&scene, k, &rest);
+            let mut run = Run {
+                backup: rest.clone(),
+                stability: StabilityResult::of(&unsolved(String::new())),
+                state: rest,
                 solver,
-                report,
-            });
+                report: unsolved(String::new()),
+                backup_friction: friction.clone(),
+                friction,
+            };
+            run.report = solve_structure(&scene, k, &mut run, 0.0, 1.0);
+            run.stability = StabilityResult::of(&run.report);
+            run.save();
+            runs.push(run);
         }
         let mut scene = scene;
         let params = scene.solver;
@@ -194,7 +425,9 @@ impl Session {
         let reports: Vec<SolveReport> = self.runs.iter().map(|r| r.report.clone()).collect();
         let stability: Vec<StabilityResult> =
             self.runs.iter().map(|r| r.stability.clone()).collect();
-        let (rods, structures) = scene_results(&self.scene, &states, &reports, &stability);
+        let (obstacles, min_gap, external) = self.contact_results();
+        let (rods, structures) =
+            scene_results_with(&self.scene, &states, &reports, &stability, &external);
         let shells: Vec<ShellResult> = self
             .shells
             .iter()
@@ -215,7 +448,78 @@ impl Session {
             converged,
             stable,
             time: None,
+            obstacles,
+            min_gap,
         }
+    }
+
+    /// The obstacles with their contacts, the smallest gap and, per structure, its contact
+    /// forces (position, normal + friction force) for the balance.
+    #[allow(clippy::type_complexity)]
+    fn contact_results(&self) -> (Vec<ObstacleResult>, Option<f64>, Vec<Vec<(Vec3, Vec3)>>) {
+        let Some(c) = &self.scene.contact else {
+            return (Vec::new(), None, Vec::new());
+        };
+        let mut obstacles: Vec<ObstacleResult> = c
+            .names
+            .iter()
+            .zip(&c.obstacles)
+            .map(|(name, o)| ObstacleResult {
+                name: name.clone(),
+                friction: o.friction(),
+                force: [0.0; 3],
+                contacts: Vec::new(),
+            })
+            .collect();
+        let mut external = vec![Vec::new(); self.runs.len()];
+        let mut min_gap = f64::INFINITY;
+        for (k, run) in self.runs.iter().enumerate() {
+            let Some(Ok(p)) = contact_problem(&self.scene, k, &run.state, &run.friction) else {
+                continue;
+            };
+            if !c.obstacles.is_empty() {
+                min_gap = min_gap.min(p.min_gap(&run.state));
+            }
+            for f in p.contact_forces(&run.state) {
+                let site = p.sites()[f.site];
+                if site.dofs.iter().all(|d| d.dof == crate::assembly::FIXED) {
+                    // A held vertex: its support takes the contact force.
+                    continue;
+                }
+                let x = p.model().site_position(&run.state, &site);
+                let total = f.force + f.friction;
+                external[k].push((x, total));
+                let (rod, vertex) = self
+                    .scene
+                    .rods
+                    .iter()
+                    .find_map(|r| {
+                        r.parts
+                            .iter()
+                            .find(|part| part.structure == k && part.member == site.member)
+                            .map(|part| (r.name.clone(), part.first_vertex + site.vertex))
+                    })
+                    .unwrap_or_else(|| {
+                        (format!("structure{k}.member{}", site.member), site.vertex)
+                    });
+                let o = &mut obstacles[f.obstacle];
+                for i in 0..3 {
+                    o.force[i] += total[i];
+                }
+                o.contacts.push(ContactResult {
+                    rod,
+                    vertex,
+                    position: x.into(),
+                    gap: f.gap,
+                    normal: f.normal.into(),
+                    normal_force: f.force.into(),
+                    friction_force: f.friction.into(),
+                    sticking: f.sticking,
+                });
+            }
+        }
+        let min_gap = (!c.obstacles.is_empty()).then_some(min_gap);
+        (obstacles, min_gap, external)
     }
 
     /// Follows an unstable equilibrium of structure `k` to a stable one when the policy says
@@ -232,14 +536,26 @@ impl Session {
         let s = &self.scene.structures[k];
         let length: f64 = s.members().iter().map(|m| m.length()).sum();
         let left = run.stability.unstable_modes;
-        match follow_unstable_mode(
-            s,
-            &mut run.solver,
-            &mut run.state,
-            1.0,
-            SWITCH_AMPLITUDE * length,
-            SWITCH_ITERATIONS,
-        ) {
+        let switched = match contact_problem(&self.scene, k, &run.state, &run.friction) {
+            None => follow_unstable_mode(
+                s,
+                &mut run.solver,
+                &mut run.state,
+                1.0,
+                SWITCH_AMPLITUDE * length,
+                SWITCH_ITERATIONS,
+            ),
+            Some(Err(_)) => None,
+            Some(Ok(problem)) => follow_unstable_mode(
+                &problem,
+                &mut run.solver,
+                &mut run.state,
+                1.0,
+                SWITCH_AMPLITUDE * length,
+                SWITCH_ITERATIONS,
+            ),
+        };
+        match switched {
             Some(switch) => {
                 run.report = switch.report;
                 run.stability = StabilityResult {
@@ -427,13 +743,12 @@ impl Session {
         let mut reason = None;
         for &k in &affected {
             let run = &mut self.runs[k];
-            let s = &self.scene.structures[k];
-            run.backup.clone_from(&run.state);
+            run.save();
             let user = run.solver.params;
             let piece = 1.0 / steps;
             run.solver.params.initial_load_step = user.initial_load_step.min(piece);
             run.solver.params.max_load_step = user.max_load_step.min(piece);
-            let report = run.solver.solve_in_place(s, &mut run.state, 0.0, 1.0);
+            let report = solve_structure(&self.scene, k, run, 0.0, 1.0);
             run.solver.params = user;
             if !report.converged() {
                 if reason.is_none() {
@@ -453,7 +768,7 @@ impl Session {
             // Back to the last equilibrium: the support stays where it was.
             for &k in &affected {
                 let run = &mut self.runs[k];
-                run.state.clone_from(&run.backup);
+                run.restore();
                 run.report.status = SolveStatus::NotConverged {
                     reason: format!(
                         "the move did not converge ({}); the last equilibrium is kept",
@@ -525,9 +840,8 @@ impl Session {
         let mut reason = None;
         for &k in &ks {
             let run = &mut self.runs[k];
-            let s = &self.scene.structures[k];
-            run.backup.clone_from(&run.state);
-            let report = run.solver.solve_in_place(s, &mut run.state, 0.0, 1.0);
+            run.save();
+            let report = solve_structure(&self.scene, k, run, 0.0, 1.0);
             if !report.converged() && reason.is_none() {
                 reason = Some(format!("{:?}", report.status));
             }
@@ -564,7 +878,7 @@ impl Session {
                 }
             }
             for run in self.runs.iter_mut() {
-                run.state.clone_from(&run.backup);
+                run.restore();
             }
             return Ok(self.summary(&ks, reason));
         }
@@ -735,15 +1049,31 @@ impl Session {
                 }
             }
             s.reset_joint_twists(&mut state);
-            let mut solver = EquilibriumSolver::new(s, &state, scene.solver);
-            let report = solver.solve_in_place(s, &mut state, 1.0, 1.0);
-            runs.push(Run {
+            let solver = new_solver(&scene, k, &state);
+            // Contacts keep their stick/slide state when the structure keeps its sites.
+            let friction = match self.runs.get(k) {
+                Some(old)
+                    if contact_problem(&scene, k, &state, &[])
+                        .and_then(|p| p.ok())
+                        .is_some_and(|p| p.friction_state().len() == old.friction.len()) =>
+                {
+                    old.friction.clone()
+                }
+                _ => initial_friction(&scene, k, &state),
+            };
+            let mut run = Run {
                 backup: state.clone(),
-                stability: StabilityResult::of(&report),
+                stability: StabilityResult::of(&unsolved(String::new())),
                 state,
                 solver,
-                report,
-            });
+                report: unsolved(String::new()),
+                backup_friction: friction.clone(),
+                friction,
+            };
+            run.report = solve_structure(&scene, k, &mut run, 1.0, 1.0);
+            run.stability = StabilityResult::of(&run.report);
+            run.save();
+            runs.push(run);
         }
         if let Some((k, r)) = runs.iter().enumerate().find(|(_, r)| !r.report.converged()) {
             return Err(SceneError::new(

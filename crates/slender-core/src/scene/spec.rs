@@ -44,6 +44,100 @@ pub struct Scene {
     /// (equilibria only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time: Option<TimeSpec>,
+    /// Rigid obstacles the rods rest on and slide along (barrier contact with Coulomb
+    /// friction). Default: none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub obstacles: Vec<ObstacleSpec>,
+    /// How contacts act (activation distance, barrier stiffness, self-contact). Default: the
+    /// documented defaults when the scene has obstacles; none otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<ContactSpec>,
+}
+
+/// A rigid obstacle: its surface and its Coulomb friction coefficient.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    /// Name reported with its contacts (default `obstacle<i>`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Coulomb friction coefficient μ (finite, ≥ 0; static = kinetic). Default 0
+    /// (frictionless).
+    #[serde(default)]
+    pub friction: f64,
+    /// The obstacle's shape.
+    pub shape: ObstacleShapeSpec,
+}
+
+/// The shape of an obstacle (m; the solid side is the obstacle).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ObstacleShapeSpec {
+    /// The half-space below the plane through `point` with outward normal `normal`.
+    Plane {
+        /// A point of the plane (m).
+        point: [f64; 3],
+        /// Outward normal (any non-zero length).
+        normal: [f64; 3],
+    },
+    /// A solid ball.
+    Sphere {
+        /// Centre (m).
+        center: [f64; 3],
+        /// Radius (m, > 0).
+        radius: f64,
+    },
+    /// An infinite solid round bar around the line through `point` along `axis`.
+    Cylinder {
+        /// A point of the axis (m).
+        point: [f64; 3],
+        /// Axis direction (any non-zero length).
+        axis: [f64; 3],
+        /// Radius (m, > 0).
+        radius: f64,
+    },
+    /// A solid box of edge lengths `size` along its own axes, turned by `rotate` about its
+    /// centre.
+    Box {
+        /// Centre (m).
+        center: [f64; 3],
+        /// Edge lengths (m, each > 0) along the box's axes.
+        size: [f64; 3],
+        /// Rotation vector (axis × angle, rad) of the box's axes from the global ones.
+        /// Default 0.
+        #[serde(default)]
+        rotate: [f64; 3],
+    },
+    /// A triangle mesh given inline (contact with its surface, from either side).
+    Mesh {
+        /// Vertex positions (m).
+        vertices: Vec<[f64; 3]>,
+        /// Triangles: vertex index triples (0-based).
+        triangles: Vec<[usize; 3]>,
+    },
+}
+
+/// The `[contact]` table.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Activation distance ĝ (m, > 0): contacts rest within this gap of a surface (the
+    /// position tolerance of contacts). Default 1e-6 × the longest rod's length.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub activation: Option<f64>,
+    /// Contact of the rods with themselves and with each other (in one structure). Default
+    /// false.
+    #[serde(default)]
+    pub self_contact: bool,
+    /// Barrier stiffness κ (N/m², > 0). Default: the stiffness at which the heaviest rod's
+    /// weight per length under the scene's gravity rests a cable at ĝ/2; without gravity the
+    /// line load EI/L³ of the stiffest rod (its largest bending stiffness over its length
+    /// cubed) instead.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
 }
 
 /// The `[time]` table: implicit time stepping of the scene's rods (discrete elastic rods
@@ -204,6 +298,12 @@ pub struct RodSpec {
     /// `model = "der"`.
     #[serde(default)]
     pub shear_stiffness: Option<[f64; 2]>,
+    /// Radius (m, > 0) of the cable in contacts: its centerline keeps this distance from
+    /// obstacles (and twice it from other cables with self-contact). Default from the
+    /// section: d/2 for a circle, max(width, height)/2 for a rectangle; required with
+    /// `shape = "stiffness"` when the scene has obstacles or self-contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_radius: Option<f64>,
 }
 
 /// The formulation of a rod.

@@ -224,6 +224,8 @@ impl<'a> TimeRun<'a> {
             shells: Vec::new(),
             converged,
             stable: true,
+            obstacles: Vec::new(),
+            min_gap: None,
             time: Some(TimeFrame {
                 t,
                 frame,

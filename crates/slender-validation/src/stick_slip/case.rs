@@ -103,8 +103,8 @@ impl StickSlipCase {
         .allow_rigid_motion()
         .gravity(g)
         .build()?;
-        let plane: Box<dyn Obstacle> =
-            Box::new(Plane::new(Vector3::zeros(), Vector3::z(), self.mu)?);
+        let plane: std::sync::Arc<dyn Obstacle> =
+            std::sync::Arc::new(Plane::new(Vector3::zeros(), Vector3::z(), self.mu)?);
         let params = ContactParams::for_line_load(radius, activation, q * self.alpha.cos());
         let start = rod.rest_state().clone();
         let problem = ContactProblem::new(&rod, vec![plane], params, &start)?;

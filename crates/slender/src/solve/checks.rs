@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 17] = [
+pub const EXAMPLES: [(&str, &str); 18] = [
     (
         "rod_models_cantilever",
         include_str!("../../../../examples/rod_models_cantilever.toml"),
@@ -79,6 +79,10 @@ pub const EXAMPLES: [(&str, &str); 17] = [
     (
         "swinging_cable",
         include_str!("../../../../examples/swinging_cable.toml"),
+    ),
+    (
+        "cable_over_bracket",
+        include_str!("../../../../examples/cable_over_bracket.toml"),
     ),
 ];
 

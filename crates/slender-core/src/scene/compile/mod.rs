@@ -4,6 +4,7 @@
 //! grouping of parts into structures by joints and closures (`structures.rs`), the
 //! prescribed motion (`motion.rs`) and the time stepping (`time.rs`).
 
+pub mod contact;
 pub mod line_loads;
 pub mod motion;
 pub mod rod;
@@ -19,6 +20,7 @@ use super::error::SceneError;
 use super::magnitudes::MAGNITUDE_LIMIT;
 use super::spec::{MotionStage, Scene, UnstablePolicy};
 
+pub use contact::CompiledContact;
 pub use motion::{MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
 pub use rod::{CompiledRod, CompiledSupport, RodPart, DEFAULT_ELEMENTS};
 pub(crate) use section::check_name;
@@ -47,6 +49,9 @@ pub struct CompiledScene {
     pub unstable: UnstablePolicy,
     /// Time stepping (`[time]`), validated; `None` for equilibria only.
     pub time: Option<CompiledTime>,
+    /// Obstacles and contact parameters; `None` without obstacles and self-contact (every
+    /// structure is then solved as it is).
+    pub contact: Option<CompiledContact>,
 }
 
 impl CompiledScene {
@@ -115,7 +120,10 @@ impl Scene {
             names.push(draft.rod.name.clone());
             drafts.push(draft);
         }
-        let structures = structures::build_structures(&mut drafts, &self.joints, time.is_some())?;
+        // A cable may rest on obstacles without supports of its own: the rigid-body check is
+        // left to the solve (a cable held by neither supports nor contacts does not converge).
+        let free = time.is_some() || !self.obstacles.is_empty();
+        let structures = structures::build_structures(&mut drafts, &self.joints, free)?;
         let shortest: Vec<f64> = drafts
             .iter()
             .map(|d| {
@@ -126,6 +134,7 @@ impl Scene {
             })
             .collect();
         let rods: Vec<CompiledRod> = drafts.into_iter().map(|d| d.rod).collect();
+        let contact = contact::compile_contact(self, &rods, &structures)?;
         let mut shells = Vec::with_capacity(self.shells.len());
         for (i, spec) in self.shells.iter().enumerate() {
             let path = format!("shells[{i}]");
@@ -160,6 +169,7 @@ impl Scene {
             gravity: self.gravity,
             unstable: self.unstable,
             time,
+            contact,
         })
     }
 }

@@ -137,6 +137,18 @@ pub(crate) fn check_time(scene: &Scene, time: &TimeSpec) -> Result<CompiledTime,
              [[shells]] cannot have [time] (remove one of them)",
         ));
     }
+    if !scene.obstacles.is_empty() || scene.contact.as_ref().is_some_and(|c| c.self_contact) {
+        return Err(SceneError::new(
+            if scene.obstacles.is_empty() {
+                "contact.self_contact"
+            } else {
+                "obstacles"
+            },
+            "contact (obstacles or self-contact) is solved for equilibria only: time stepping \
+             ([time]) with contact is not supported in scenes yet (remove [time] to solve the \
+             equilibria, or the contact)",
+        ));
+    }
     if !scene.motion.is_empty() {
         return Err(SceneError::new(
             "motion",

@@ -1,0 +1,365 @@
+//! Obstacles in scene files, solved by `Session`: a cable on a frictionless floor (the floor
+//! and the clamp carry the weight), a free cable on a rough slope that holds (friction within
+//! the cone, displacement far below the activation distance) and on a slope steeper than
+//! atan μ (no equilibrium: reported as not converged, the last state kept), bad input naming
+//! the field, and a saved scene with its obstacles solving to the same equilibrium.
+
+use slender_core::scene::{Scene, SceneStep, Session};
+
+fn scene(text: &str) -> Scene {
+    toml::from_str(text).expect("scene")
+}
+
+const G: f64 = 9.81;
+/// Cable: d = 8 mm, ρ = 1500 kg/m³.
+const D: f64 = 0.008;
+const RHO: f64 = 1500.0;
+
+fn weight_per_length() -> f64 {
+    RHO * std::f64::consts::PI * D * D / 4.0 * G
+}
+
+/// Sum of the contact forces (normal + friction) over every obstacle.
+fn contact_total(step: &SceneStep) -> [f64; 3] {
+    let mut t = [0.0; 3];
+    for o in &step.obstacles {
+        for c in &o.contacts {
+            for i in 0..3 {
+                t[i] += c.normal_force[i] + c.friction_force[i];
+            }
+        }
+    }
+    t
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+/// Every contact's friction is within the cone: |f_t| ≤ μ |f_n| (up to round-off).
+fn assert_in_cone(step: &SceneStep) {
+    for o in &step.obstacles {
+        for c in &o.contacts {
+            let (ft, fn_) = (norm(c.friction_force), norm(c.normal_force));
+            assert!(
+                ft <= o.friction * fn_ * (1.0 + 1e-9) + 1e-15,
+                "{} vertex {}: friction {ft} > μ {} × normal {fn_}",
+                o.name,
+                c.vertex,
+                o.friction
+            );
+        }
+    }
+}
+
+const ACTIVATION: f64 = 1e-4;
+
+/// A 1 m cable clamped horizontally at x = 0 at height r + ĝ/2, over a floor z = 0.
+fn floor_scene(mu: f64) -> String {
+    let z0 = D / 2.0 + ACTIVATION / 2.0;
+    format!(
+        r#"
+gravity = [0.0, 0.0, -{G}]
+[[rods]]
+name = "cable"
+elements = 40
+centerline = {{ kind = "straight", start = [0.0, 0.0, {z0}], direction = [1.0, 0.0, 0.0], length = 1.0 }}
+section = {{ shape = "circle", diameter = {D} }}
+material = {{ young = 5.0e8, poisson = 0.4, density = {RHO} }}
+supports = [{{ kind = "clamp", vertex = "start" }}]
+[[obstacles]]
+name = "floor"
+friction = {mu}
+shape = {{ kind = "plane", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }}
+[contact]
+activation = {ACTIVATION}
+"#
+    )
+}
+
+#[test]
+fn cable_on_frictionless_floor_floor_and_clamp_carry_the_weight() {
+    let s = Session::new(scene(&floor_scene(0.0))).expect("compiles");
+    let r = s.results(0, None, 1.0, 1);
+    assert!(r.converged, "{:?}", s.report(0).status);
+    let weight = weight_per_length() * 1.0;
+    let contact = contact_total(&r);
+    let clamp = r.rods[0].supports[0].force;
+    let total_z = contact[2] + clamp[2];
+    let err = (total_z - weight).abs() / weight;
+    println!(
+        "floor: contacts {} carry {:.6} N, clamp {:.6} N, weight {weight:.6} N, rel. error {err:.2e}, min gap {:?}",
+        r.obstacles[0].contacts.len(),
+        contact[2],
+        clamp[2],
+        r.min_gap
+    );
+    assert!(err < 1e-9, "vertical balance {err:e}");
+    assert!(contact[2] > 0.9 * weight, "the floor carries most of it");
+    let g = r.min_gap.expect("min gap");
+    assert!(g > 0.0 && g < ACTIVATION, "min gap {g}");
+    for c in &r.obstacles[0].contacts {
+        assert!(c.gap > 0.0 && c.gap < ACTIVATION);
+        assert_eq!(norm(c.friction_force), 0.0);
+    }
+    assert!(r.rods[0].relative_force_imbalance < 1e-9);
+}
+
+/// A free 0.5 m cable lying across a plane through the origin tilted by `angle` about x (its
+/// fall line in the y–z plane), at gap ĝ/2, held only against spinning about its own axis.
+fn slope_scene(angle: f64, mu: f64) -> String {
+    let (s, c) = angle.sin_cos();
+    let n = [0.0, -s, c];
+    let h = D / 2.0 + ACTIVATION / 2.0;
+    let start = [-0.25, n[1] * h, n[2] * h];
+    format!(
+        r#"
+gravity = [0.0, 0.0, -{G}]
+[[rods]]
+name = "cable"
+elements = 20
+centerline = {{ kind = "straight", start = [{}, {}, {}], direction = [1.0, 0.0, 0.0], length = 0.5 }}
+section = {{ shape = "circle", diameter = {D} }}
+material = {{ young = 5.0e8, poisson = 0.4, density = {RHO} }}
+supports = [{{ kind = "twist_hold", vertex = "start" }}]
+[[obstacles]]
+name = "slope"
+friction = {mu}
+shape = {{ kind = "plane", point = [0.0, 0.0, 0.0], normal = [{}, {}, {}] }}
+[contact]
+activation = {ACTIVATION}
+"#,
+        start[0], start[1], start[2], n[0], n[1], n[2]
+    )
+}
+
+#[test]
+fn cable_on_rough_slope_holds_below_the_friction_angle() {
+    let mu: f64 = 0.5;
+    let angle = 0.8 * mu.atan();
+    let spec = scene(&slope_scene(angle, mu));
+    let rest = spec.clone();
+    let s = Session::new(spec).expect("compiles");
+    let r = s.results(0, None, 1.0, 1);
+    assert!(r.converged, "{:?}", s.report(0).status);
+    assert_in_cone(&r);
+    // Held by the slope alone: the contacts carry the whole weight.
+    let weight = weight_per_length() * 0.5;
+    let contact = contact_total(&r);
+    let err = ((contact[2] - weight).abs() + contact[0].abs() + contact[1].abs()) / weight;
+    // Tangential displacement from rest: elastic deflection of the sticking anchors only.
+    let x0 = Session::new(rest).unwrap().compiled().rest_positions(0);
+    let mut slide: f64 = 0.0;
+    for (p, q) in r.rods[0].positions.iter().zip(&x0) {
+        slide = slide.max(
+            (p[0] - q[0])
+                .abs()
+                .max(((p[1] - q[1]) * angle.cos() + (p[2] - q[2]) * angle.sin()).abs()),
+        );
+    }
+    let ratio = r.obstacles[0]
+        .contacts
+        .iter()
+        .map(|c| norm(c.friction_force) / norm(c.normal_force))
+        .fold(0.0, f64::max);
+    println!(
+        "slope {:.2}° (atan μ = {:.2}°): {} contacts, weight balance {err:.2e}, largest |f_t|/|f_n| {ratio:.4} (tan = {:.4}), tangential displacement {slide:.3e} m",
+        angle.to_degrees(),
+        mu.atan().to_degrees(),
+        r.obstacles[0].contacts.len(),
+        angle.tan()
+    );
+    assert_eq!(r.obstacles[0].contacts.len(), 21);
+    assert!(r.obstacles[0].contacts.iter().all(|c| c.sticking));
+    assert!(err < 1e-6, "weight balance {err:e}");
+    assert!(slide < 1e-3 * ACTIVATION, "slid {slide} m");
+    assert!(
+        (ratio - angle.tan()).abs() < 1e-3,
+        "f_t/f_n {ratio} vs tan {}",
+        angle.tan()
+    );
+}
+
+#[test]
+fn cable_on_slope_steeper_than_the_friction_angle_is_not_held() {
+    let mu: f64 = 0.5;
+    let angle = 1.3 * mu.atan();
+    let s = Session::new(scene(&slope_scene(angle, mu))).expect("compiles");
+    let rep = s.report(0);
+    println!("steep slope {:.2}°: {:?}", angle.to_degrees(), rep.status);
+    assert!(!rep.converged(), "a quasi-static solve cannot hold it");
+    let r = s.results(0, None, 1.0, 1);
+    assert!(!r.converged);
+}
+
+#[test]
+fn bad_obstacles_and_contact_tables_name_the_field() {
+    let base = floor_scene(0.0);
+    let floor = r#"shape = { kind = "plane", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }"#;
+    let cases: Vec<(String, &str)> = vec![
+        (base.replace("friction = 0", "friction = -0.1"), "obstacles[0].friction"),
+        (
+            base.replace(floor, r#"shape = { kind = "plane", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 0.0] }"#),
+            "obstacles[0].shape.normal",
+        ),
+        (
+            base.replace(floor, r#"shape = { kind = "sphere", center = [0.5, 0.0, -1.0], radius = 0.0 }"#),
+            "obstacles[0].shape.radius",
+        ),
+        (
+            base.replace(floor, r#"shape = { kind = "box", center = [0.5, 0.0, -1.0], size = [1.0, 0.0, 1.0] }"#),
+            "obstacles[0].shape.size[1]",
+        ),
+        (
+            base.replace(floor, r#"shape = { kind = "cylinder", point = [0.5, 0.0, -1.0], axis = [0.0, 1.0, 0.0], radius = -1.0 }"#),
+            "obstacles[0].shape.radius",
+        ),
+        (
+            base.replace(
+                floor,
+                r#"shape = { kind = "mesh", vertices = [[0.0, -1.0, -0.1], [2.0, -1.0, -0.1], [0.0, 1.0, -0.1], [1.0, -1.0, -0.1]], triangles = [[0, 1, 2], [0, 1, 3]] }"#,
+            ),
+            "obstacles[0].shape.triangles[1]",
+        ),
+        (
+            // The cable starts inside a sphere.
+            format!(
+                "{base}\n[[obstacles]]\nshape = {{ kind = \"sphere\", center = [0.5, 0.0, 0.0], radius = 0.05 }}\n"
+            ),
+            "obstacles[1]",
+        ),
+        (base.replace("activation = 0.0001", "activation = 0.0"), "contact.activation"),
+        (
+            base.replace("activation = 0.0001", "activation = 0.0001\nstiffness = -1.0"),
+            "contact.stiffness",
+        ),
+        (
+            base.replace(
+                "section = { shape = \"circle\", diameter = 0.008 }\nmaterial = { young = 5.0e8, poisson = 0.4, density = 1500 }",
+                "section = { shape = \"stiffness\", ea = 1e4, ei1 = 0.1, ei2 = 0.1, gj = 0.1, linear_density = 0.08 }",
+            ),
+            "rods[0].contact_radius",
+        ),
+        (
+            base.replace(
+                "supports = [{ kind = \"clamp\", vertex = \"start\" }]",
+                "supports = [{ kind = \"clamp\", vertex = \"start\" }]\ncontact_radius = 0.0",
+            ),
+            "rods[0].contact_radius",
+        ),
+    ];
+    for (text, path) in cases {
+        let (p, m) = match Session::new(
+            toml::from_str::<Scene>(&text).unwrap_or_else(|e| panic!("{e}\n{text}")),
+        ) {
+            Ok(_) => panic!("accepted ({path}):\n{text}"),
+            Err(e) => (e.path, e.message),
+        };
+        println!("{p}: {m}");
+        assert_eq!(p, path, "{m}");
+    }
+    // Time stepping with obstacles is refused, naming the obstacles (a Session solves the
+    // equilibria and ignores [time]).
+    assert!(Session::new(scene(&base)).is_ok());
+    let timed: Scene = scene(&format!("{base}\n[time]\ndt = 0.001\nduration = 0.01\n"));
+    let e = timed.compile().expect_err("refused");
+    assert_eq!(e.path, "obstacles", "{}", e.message);
+    println!("{}: {}", e.path, e.message);
+}
+
+#[test]
+fn saved_scene_with_obstacles_solves_to_the_same_equilibrium() {
+    let text = r#"
+gravity = [0.0, 0.0, -9.81]
+[[rods]]
+name = "cable"
+elements = 40
+centerline = { kind = "straight", start = [0.0, 0.0, 0.3], direction = [1.0, 0.0, 0.0], length = 1.0 }
+section = { shape = "circle", diameter = 0.008 }
+material = { young = 5.0e8, poisson = 0.4, density = 1500.0 }
+supports = [{ kind = "clamp", vertex = "start" }]
+[[obstacles]]
+name = "bracket"
+shape = { kind = "cylinder", point = [0.35, 0.0, 0.2], axis = [0.0, 1.0, 0.0], radius = 0.03 }
+[[obstacles]]
+name = "floor"
+shape = { kind = "plane", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }
+[contact]
+activation = 1e-4
+"#;
+    let mut s = Session::new(scene(text)).expect("compiles");
+    assert!(s.report(0).converged(), "{:?}", s.report(0).status);
+    let e = s
+        .move_support_by(
+            0,
+            0,
+            nalgebra::Vector3::zeros(),
+            nalgebra::Vector3::new(-0.03, 0.0, 0.02),
+        )
+        .expect("edit");
+    assert!(e.converged, "{:?}", e.reason);
+    let saved = s.saved();
+    assert_eq!(saved.obstacles.len(), 2);
+    let round: Scene = toml::from_str(&toml::to_string(&saved).expect("toml")).expect("parses");
+    assert_eq!(round, saved);
+    let mut again = Session::new(round).expect("compiles");
+    for k in 1..=again.motion_steps() {
+        let st = again.run_motion_step(k);
+        assert!(st.converged);
+    }
+    let a = s.results(0, None, 1.0, 1);
+    let b = again.results(0, None, 1.0, 1);
+    let diff = a.rods[0]
+        .positions
+        .iter()
+        .zip(&b.rods[0].positions)
+        .map(|(p, q)| norm([p[0] - q[0], p[1] - q[1], p[2] - q[2]]))
+        .fold(0.0, f64::max);
+    println!(
+        "saved scene: largest position difference {diff:.3e} m, bracket contacts {} / {}",
+        a.obstacles[0].contacts.len(),
+        b.obstacles[0].contacts.len()
+    );
+    assert!(diff < 1e-6, "{diff}");
+    assert!(a.rods[0].relative_force_imbalance < 1e-9);
+}
+
+#[test]
+fn self_contact_in_scenes_solves_and_refuses_a_crossing_start() {
+    let cable = |points: &str| {
+        format!(
+            r#"
+gravity = [0.0, 0.0, -{G}]
+[[rods]]
+name = "cable"
+centerline = {{ kind = "polyline", points = {points} }}
+elements = 40
+section = {{ shape = "circle", diameter = {D} }}
+material = {{ young = 5.0e8, poisson = 0.4, density = {RHO} }}
+supports = [{{ kind = "clamp", vertex = "start" }}]
+[contact]
+self_contact = true
+activation = {ACTIVATION}
+"#
+        )
+    };
+    // A hook: out, across and back toward its start, not touching itself.
+    let ok = cable("[[0.0, 0.0, 0.0], [0.3, 0.0, 0.0], [0.3, 0.1, 0.0], [0.1, 0.1, 0.0]]");
+    let s = Session::new(scene(&ok)).expect("compiles");
+    let r = s.results(0, None, 1.0, 1);
+    println!(
+        "self-contact hook: {:?}, relative imbalance {:.2e}",
+        s.report(0).status,
+        r.rods[0].relative_force_imbalance
+    );
+    assert!(r.converged, "{:?}", s.report(0).status);
+    assert!(r.obstacles.is_empty() && r.min_gap.is_none());
+    assert!(r.rods[0].relative_force_imbalance < 1e-9);
+    // Its last edge comes back within 3 mm of its first (radius 4 mm): refused.
+    let crossing = cable(
+        "[[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.1, 0.0], [0.25, 0.1, 0.0], [0.25, 0.003, 0.0]]",
+    );
+    let e = Session::new(scene(&crossing)).err().expect("refused");
+    println!("{}: {}", e.path, e.message);
+    assert_eq!(e.path, "contact.self_contact");
+}
