@@ -137,9 +137,13 @@ impl Obstacle for Cuboid {
             return 1.0;
         }
         let mut alpha = 0.0;
+        let mut room0: Option<f64> = None;
         for _ in 0..ADVANCE_ITERATIONS {
             let room = self.surface(&(p + dp * alpha)).distance - clearance;
-            if room <= 1e-3 * clearance.max(f64::MIN_POSITIVE) {
+            // Stop once the room left is a small fraction of the room at the start (it is
+            // positive at the start: the point keeps at least its clearance).
+            let start = *room0.get_or_insert(room);
+            if room <= 1e-3 * start {
                 return alpha;
             }
             alpha += room / length;

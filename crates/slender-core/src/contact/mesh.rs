@@ -252,11 +252,15 @@ impl Obstacle for TriangleMesh {
         // distance minus the clearance never reaches the inflated surface. Over a face the
         // distance is linear along the step, and the move is taken in one go.
         let mut alpha = 0.0;
+        let mut room0: Option<f64> = None;
         for _ in 0..ADVANCE_ITERATIONS {
             let x = p + dp * alpha;
             let s = self.surface(&x);
             let room = s.distance - clearance;
-            if room <= 1e-3 * clearance.max(f64::MIN_POSITIVE) {
+            // Stop once the room left is a small fraction of the room at the start (it is
+            // positive at the start: the point keeps at least its clearance).
+            let start = *room0.get_or_insert(room);
+            if room <= 1e-3 * start {
                 return alpha;
             }
             let (_, feature, _) = self.closest(&x);

@@ -872,6 +872,10 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
         alpha
     }
 
+    fn caps_predictor(&self) -> bool {
+        true
+    }
+
     fn force_length(&self, i: usize) -> f64 {
         self.model.force_length(i)
     }

@@ -110,11 +110,18 @@ pub enum ObstacleShapeSpec {
         #[serde(default)]
         rotate: [f64; 3],
     },
-    /// A triangle mesh given inline (contact with its surface, from either side).
+    /// A triangle mesh (contact with its surface, from either side), inline or from a file.
     Mesh {
+        /// An STL (ASCII or binary) or OBJ file, relative to the scene file, whose triangles
+        /// replace `vertices` and `triangles` when the `slender` binary reads the scene
+        /// (`slender solve`, `slender view`). Default: none (the mesh is inline).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        file: Option<String>,
         /// Vertex positions (m).
+        #[serde(default)]
         vertices: Vec<[f64; 3]>,
         /// Triangles: vertex index triples (0-based).
+        #[serde(default)]
         triangles: Vec<[usize; 3]>,
     },
 }

@@ -533,7 +533,12 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                 for p in self.predictor.iter_mut() {
                     *p *= ratio;
                 }
-                problem.displace(state, &self.predictor, 1.0, &mut self.candidate);
+                let alpha = if problem.caps_predictor() {
+                    problem.max_step(state, &self.predictor)
+                } else {
+                    1.0
+                };
+                problem.displace(state, &self.predictor, alpha, &mut self.candidate);
             }
             None => self.candidate.clone_from(state),
         }

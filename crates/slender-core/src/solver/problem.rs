@@ -131,6 +131,13 @@ pub trait EquilibriumProblem: MassMetric {
     /// turns by more than π/4 in one step).
     fn max_step(&self, state: &Self::State, dx: &[f64]) -> f64;
 
+    /// True if the continuation's secant predictor must respect [`max_step`](Self::max_step)
+    /// too (a contact model: an extrapolated state must not jump through an obstacle).
+    /// Default false: the predictor is the plain secant.
+    fn caps_predictor(&self) -> bool {
+        false
+    }
+
     /// Length (m) that turns the generalized force of DOF `i` into a force: 1 for coordinates,
     /// a characteristic length for angles (whose generalized forces are moments).
     fn force_length(&self, i: usize) -> f64;

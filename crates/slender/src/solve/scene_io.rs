@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
+use slender_core::scene::spec::ObstacleShapeSpec;
 use slender_core::scene::Scene;
 
 /// Scene file syntax.
@@ -51,16 +52,88 @@ pub fn parse_scene(text: &str, syntax: Syntax, name: &str) -> Result<Scene> {
     }
 }
 
-/// Reads and parses a scene file.
+/// Reads and parses a scene file, and the obstacle meshes it names (`file`, relative to the
+/// scene file's folder).
 pub fn read_scene(path: &Path) -> Result<Scene> {
     let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
     let Ok(text) = String::from_utf8(bytes) else {
         bail!("{}: not UTF-8 text", path.display());
     };
-    parse_scene(&text, Syntax::of(path), &path.display().to_string())
+    let mut scene = parse_scene(&text, Syntax::of(path), &path.display().to_string())?;
+    load_mesh_files(&mut scene, path.parent().unwrap_or(Path::new(".")))?;
+    Ok(scene)
+}
+
+/// Replaces the vertices and triangles of every mesh obstacle that names a `file` by the
+/// file's (relative paths from `folder`); errors name the obstacle.
+pub fn load_mesh_files(scene: &mut Scene, folder: &Path) -> Result<()> {
+    for (i, o) in scene.obstacles.iter_mut().enumerate() {
+        if let ObstacleShapeSpec::Mesh {
+            file: Some(file),
+            vertices,
+            triangles,
+        } = &mut o.shape
+        {
+            let (v, t) = super::mesh_file::read_mesh(&folder.join(&*file))
+                .with_context(|| format!("obstacles[{i}].shape.file"))?;
+            *vertices = v;
+            *triangles = t;
+        }
+    }
+    Ok(())
 }
 
 /// The JSON Schema of the scene format, generated from the Rust types.
 pub fn scene_schema() -> serde_json::Value {
     serde_json::to_value(schemars::schema_for!(Scene)).expect("a schema serializes")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slender_core::scene::Session;
+
+    /// A cable clamped 5 mm above a floor given as an OBJ file next to the scene: the file is
+    /// read, and the cable rests on it.
+    #[test]
+    fn a_mesh_obstacle_is_read_from_its_file_and_carries_the_cable() {
+        let dir = std::env::temp_dir().join(format!("slender-scene-mesh-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("floor.obj"),
+            "v -1 -1 0\nv 2 -1 0\nv 2 1 0\nv -1 1 0\nf 1 2 3 4\n",
+        )
+        .unwrap();
+        let scene = r#"
+gravity = [0.0, 0.0, -9.81]
+[[rods]]
+elements = 40
+centerline = { kind = "straight", start = [0.0, 0.0, 0.008], direction = [1.0, 0.0, 0.0], length = 1.0 }
+section = { shape = "circle", diameter = 0.006 }
+material = { young = 1.0e8, poisson = 0.4, density = 1400.0 }
+supports = [ { kind = "clamp", vertex = "start" } ]
+[[obstacles]]
+shape = { kind = "mesh", file = "floor.obj" }
+"#;
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, scene).unwrap();
+        let spec = read_scene(&path).unwrap();
+        let session = Session::new(spec).unwrap();
+        assert!(session.report(0).converged(), "{:?}", session.report(0));
+        let step = session.results(0, None, 1.0, 1);
+        let obstacles = &step.obstacles;
+        assert!(
+            !obstacles[0].contacts.is_empty(),
+            "the cable does not touch the mesh floor"
+        );
+        let gap = step.min_gap.expect("a min gap");
+        assert!(gap > 0.0 && gap < 1e-5, "min gap {gap}");
+        // A missing file is named with its obstacle.
+        std::fs::write(&path, scene.replace("floor.obj", "nowhere.stl")).unwrap();
+        let e = format!("{:#}", read_scene(&path).unwrap_err());
+        assert!(
+            e.contains("obstacles[0].shape.file") && e.contains("nowhere.stl"),
+            "{e}"
+        );
+    }
 }

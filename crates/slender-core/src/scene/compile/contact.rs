@@ -134,9 +134,18 @@ fn obstacle(path: &str, spec: &ObstacleSpec) -> Result<Arc<dyn Obstacle>, SceneE
             )
         }
         ObstacleShapeSpec::Mesh {
+            file,
             vertices,
             triangles,
         } => {
+            if let (Some(file), true) = (file, vertices.is_empty()) {
+                return Err(SceneError::new(
+                    format!("{sp}.file"),
+                    format!(
+                        "the mesh file {file:?} was not read: the slender binary (solve, view) loads mesh files; elsewhere give `vertices` and `triangles` inline"
+                    ),
+                ));
+            }
             let mut vs = Vec::with_capacity(vertices.len());
             for (k, v) in vertices.iter().enumerate() {
                 vs.push(finite3(format!("{sp}.vertices[{k}]"), *v)?);
