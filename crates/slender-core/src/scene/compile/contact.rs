@@ -8,7 +8,8 @@ use std::sync::Arc;
 use nalgebra::{Rotation3, Vector3};
 
 use crate::contact::{
-    ContactParams, ContactProblem, Cuboid, Cylinder, Obstacle, Plane, Sphere, TriangleMesh,
+    ContactParams, ContactProblem, ContactSites, Cuboid, Cylinder, Obstacle, Plane, Sphere,
+    TriangleMesh,
 };
 use crate::error::ModelError;
 use crate::structure::Structure;
@@ -267,6 +268,34 @@ pub(crate) fn compile_contact(
             ..ContactParams::for_line_load(radius, activation, line_load)
         };
         p.validate().map_err(|e| SceneError::model("contact", e))?;
+        // A rod starting inside an obstacle: named by rod and vertex.
+        let rest = s.rest_state();
+        for site in s.contact_sites() {
+            let x = s.site_position(rest, &site);
+            for (o, obstacle) in obstacles.iter().enumerate() {
+                let gap = obstacle.surface(&x).distance - radius;
+                if !(gap > 0.0) {
+                    let (rod, vertex) = rods
+                        .iter()
+                        .find_map(|r| {
+                            r.parts
+                                .iter()
+                                .find(|q| q.structure == k && q.member == site.member)
+                                .map(|q| (r.name.as_str(), q.first_vertex + site.vertex))
+                        })
+                        .unwrap_or(("?", site.vertex));
+                    return Err(SceneError::new(
+                        format!("obstacles[{o}]"),
+                        format!(
+                            "rod {rod:?} starts inside {:?}: its vertex {vertex} at {:?} is {:.3e} m from the surface, less than its contact radius {radius} m (move the obstacle or the rod, or lower contact_radius)",
+                            names[o],
+                            [x.x, x.y, x.z],
+                            gap + radius
+                        ),
+                    ));
+                }
+            }
+        }
         ContactProblem::new(s, obstacles.clone(), p, s.rest_state()).map_err(|e| match e {
             ModelError::InvalidStructure { field, reason } => {
                 let path = if field == "self_contact" {
