@@ -368,7 +368,8 @@ fn coil_pressed_against_itself_stops_at_its_solid_length() {
     // by 10 N, which shortens the free spring by ≈ 19 mm (it also tilts): its coils close
     // (3 mm per turn, 9 mm in all) and press on each other instead, touching without crossing.
     // (At 20 N the continuation stalls at 57 % of the load: the conservative step cap of
-    // sliding coils, see `ContactProblem::max_step`, allows only small steps.)
+    // sliding coils, see `ContactProblem::max_step`, allows only small steps; it also caps the
+    // continuation's predictor, which makes this solve take about a minute.)
     let d = 0.002;
     let r = 0.5 * d;
     let section = slender_core::rod::CrossSection::Circle { diameter: d };
