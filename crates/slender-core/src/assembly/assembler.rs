@@ -167,11 +167,12 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             if selected == TermSet::NONE {
                 continue;
             }
+            // Whole-matrix assignment: vector stores (nalgebra's `fill` walks the entries).
             if want_grad {
-                g.fill(0.0);
+                g = SVector::zeros();
             }
             if want_hess {
-                h.fill(0.0);
+                h = SMatrix::zeros();
             }
             let mut out = LocalDerivatives {
                 energy: 0.0,
@@ -252,7 +253,12 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             }
         }
         if let Some(hm) = self.hess.as_deref_mut() {
-            hm.add_lower_block(&dofs, |a, b| hw * coefs[a] * coefs[b] * h[(a, b)]);
+            // Unit coefficients (every DOF but a slider's) multiply exactly: skip them.
+            if coefs.iter().zip(&dofs).all(|(&c, &d)| c == 1.0 || d == FIXED) {
+                hm.add_lower_block(&dofs, |a, b| hw * h[(a, b)]);
+            } else {
+                hm.add_lower_block(&dofs, |a, b| hw * coefs[a] * coefs[b] * h[(a, b)]);
+            }
         }
     }
 

@@ -428,6 +428,55 @@ impl SymmetricMatrix for SymmetricBandMatrix {
         SymmetricBandMatrix::add(self, i, j, v)
     }
 
+    /// The same additions, in the same order, as the entry-by-entry default, with the band and
+    /// size checked once per block instead of once per entry (the scatter of the rod stencils
+    /// was a fifth of a warm re-solve).
+    #[inline]
+    fn add_lower_block<const D: usize>(
+        &mut self,
+        dofs: &[usize; D],
+        value: impl Fn(usize, usize) -> f64,
+    ) {
+        let (lo, hi) = dofs
+            .iter()
+            .filter(|&&i| i != crate::assembly::FIXED)
+            .fold((usize::MAX, 0), |(l, h), &i| (l.min(i), h.max(i)));
+        if lo == usize::MAX {
+            return;
+        }
+        if hi >= self.n || hi - lo > self.bw {
+            // Outside the matrix or the band: the checked path poisons the diagonal.
+            for (a, &i) in dofs.iter().enumerate() {
+                if i == crate::assembly::FIXED {
+                    continue;
+                }
+                for (b, &j) in dofs.iter().enumerate().take(a + 1) {
+                    if j == crate::assembly::FIXED {
+                        continue;
+                    }
+                    let v = value(a, b);
+                    self.add(i, j, if i == j && a != b { 2.0 * v } else { v });
+                }
+            }
+            return;
+        }
+        // Entry (r, c), c ≤ r ≤ c + bw, sits at r·(bw + 1) + c + bw − r = r·bw + c + bw.
+        let bw = self.bw;
+        for (a, &i) in dofs.iter().enumerate() {
+            if i == crate::assembly::FIXED {
+                continue;
+            }
+            for (b, &j) in dofs.iter().enumerate().take(a + 1) {
+                if j == crate::assembly::FIXED {
+                    continue;
+                }
+                let v = value(a, b);
+                let (r, c) = if i >= j { (i, j) } else { (j, i) };
+                self.data[r * bw + c + bw] += if i == j && a != b { 2.0 * v } else { v };
+            }
+        }
+    }
+
     fn diagonal(&self, i: usize) -> f64 {
         self.row(i)[self.bw]
     }

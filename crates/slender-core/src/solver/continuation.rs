@@ -368,6 +368,35 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             )
             .is_ok();
         }
+        if failure.is_none()
+            && params.follow_stable
+            && last.hessian_lags
+            && !(self.mode_valid && self.mode.value > null_band(problem, &self.ws.hess))
+        {
+            // A chord final check left the Hessian one step behind, and the stability analysis
+            // needs more than the margin λ_min gives: measure the state itself.
+            let p = SolverParams {
+                max_iterations: 0,
+                polish_iterations: None,
+                chord_final_check: false,
+                ..params
+            };
+            last = newton(problem, state, to, &p, &mut self.ws).last;
+            if params.compute_lambda_min {
+                let positive_definite = last.inertia.is_some_and(|i| is_stable(&i));
+                self.mode_valid = lowest_mode_with(
+                    problem,
+                    &self.ws.hess,
+                    positive_definite,
+                    &mut self.scaled,
+                    &mut self.ws.ldlt,
+                    EIGEN_TOLERANCE,
+                    &mut self.eigen,
+                    &mut self.mode,
+                )
+                .is_ok();
+            }
+        }
         self.factor_at_equilibrium =
             failure.is_none() && last.inertia.is_some_and(|i| i.is_positive_definite());
         let modes = if failure.is_none() && params.follow_stable {

@@ -22,6 +22,8 @@ pub struct NewtonWorkspace<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     pub(crate) scaled: M,
     /// Gradient at a polishing trial (the workspace keeps the accepted state's).
     pub(crate) trial_grad: Vec<f64>,
+    /// Chord step at a trial (see [`SolverParams::chord_final_check`]).
+    pub(crate) trial_dx: Vec<f64>,
     pub(crate) eigen: EigenWorkspace,
     pub(crate) shift_mode: LowestMode,
 }
@@ -41,6 +43,7 @@ impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
             ldlt: M::Factor::default(),
             trial: template.clone(),
             trial_grad: vec![0.0; n],
+            trial_dx: vec![0.0; n],
             eigen: EigenWorkspace::default(),
             shift_mode: LowestMode {
                 value: 0.0,
@@ -80,6 +83,10 @@ pub struct IterateMeasures {
     pub energy: f64,
     /// Inertia of the unshifted Hessian, if its LDLᵀ factorization exists.
     pub inertia: Option<Inertia>,
+    /// True if the Hessian, its factorization and inertia are those of the previous iterate,
+    /// one below-tolerance Newton step away (a chord final check, see
+    /// [`SolverParams::chord_final_check`]); false if they are this iterate's.
+    pub hessian_lags: bool,
 }
 
 /// Result of [`newton`].
@@ -126,6 +133,8 @@ pub fn newton<P: EquilibriumProblem>(
     let mut shift = 0.0_f64;
     let mut last = IterateMeasures::default();
     let mut previous_residual: Option<f64> = None;
+    // Newton decrement of the previous measured iterate (quadratic-convergence forecast).
+    let mut previous_decrement: Option<f64> = None;
     for iteration in 0..=params.max_iterations {
         let (measures, info) = measure(problem, state, load, params, ws);
         last = measures;
@@ -143,6 +152,27 @@ pub fn newton<P: EquilibriumProblem>(
         previous_residual = Some(residual);
         if iteration == params.max_iterations {
             break;
+        }
+        let forecast = previous_decrement.take();
+        previous_decrement = Some(last.decrement);
+        if params.chord_final_check
+            && inertia.is_some_and(|i| i.is_positive_definite())
+            && next_decrement_passes(&last, forecast, &info, params)
+        {
+            match chord_final_check(problem, state, load, params, ws, &mut last) {
+                ChordCheck::Converged => {
+                    polish(problem, state, load, params, ws, &mut last);
+                    return NewtonOutcome {
+                        converged: true,
+                        iterations: iteration + 1,
+                        failure: None,
+                        last,
+                    };
+                }
+                // The full step lowered the residual: measure there next.
+                ChordCheck::Improved => continue,
+                ChordCheck::Rejected => {}
+            }
         }
         if !residual.is_finite() {
             return failed(iteration, "non-finite residual", last);
@@ -275,9 +305,117 @@ fn measure<P: EquilibriumProblem>(
             decrement,
             energy: info.energy,
             inertia,
+            hessian_lags: false,
         },
         info,
     )
+}
+
+/// The outcome of [`chord_final_check`].
+enum ChordCheck {
+    /// The full Newton step reached an equilibrium; the state is there.
+    Converged,
+    /// Not converged, but the full step lowered the residual; the state is there.
+    Improved,
+    /// The step was refused; state and workspace are as before.
+    Rejected,
+}
+
+/// True if the Newton decrement test of [`converged`] is expected to pass after the full
+/// Newton step from the measured iterate: it passes here already, or quadratic convergence
+/// from the previous iterate's decrement forecasts it (e ↦ C e² for the error makes the
+/// decrement d ∝ e² go as d_{k+1} ≈ d_k³ / d_{k−1}²).
+fn next_decrement_passes(
+    last: &IterateMeasures,
+    previous: Option<f64>,
+    info: &crate::solver::AssemblyInfo,
+    params: &SolverParams,
+) -> bool {
+    let scale = if info.external_work != 0.0 {
+        info.external_work.abs()
+    } else {
+        info.energy_magnitude
+    };
+    let bound = params.energy_tolerance * scale;
+    let d = last.decrement;
+    d <= bound
+        || previous.is_some_and(|p| p > 0.0 && d < p && d * (d / p) * (d / p) <= bound)
+}
+
+/// At an iterate whose decrement passes but whose residual does not, with `ws.dx` its Newton
+/// step and `ws.ldlt` its positive definite factorization: takes the full step and tests
+/// convergence there from a gradient-only assembly, with the chord step (the new gradient
+/// solved with this factorization) standing in for the Newton step (see
+/// [`SolverParams::chord_final_check`]). Near an equilibrium the full Newton step converges
+/// quadratically, so the new point usually passes, and the Hessian is neither assembled nor
+/// factored there.
+fn chord_final_check<P: EquilibriumProblem>(
+    problem: &P,
+    state: &mut P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+    last: &mut IterateMeasures,
+) -> ChordCheck {
+    let n = problem.n_free();
+    if !(problem.max_step(state, &ws.dx) >= 1.0) {
+        return ChordCheck::Rejected;
+    }
+    problem.displace(state, &ws.dx, 1.0, &mut ws.trial);
+    let mut asm = Assembler::<P::Hessian>::new(
+        TermSet::ALL,
+        Some(&mut ws.trial_grad),
+        None,
+        Some(&mut ws.abs_grad),
+    );
+    problem.assemble_selected(&ws.trial, load, &mut asm);
+    let info = asm.finish();
+    let hess = &ws.hess;
+    let (residual, floor) = residual_and_floor(
+        problem,
+        &ws.trial,
+        params,
+        &ws.trial_grad,
+        &ws.abs_grad,
+        |i| hess.diagonal(i),
+    );
+    if !(residual < last.residual) {
+        return ChordCheck::Rejected;
+    }
+    let force_scale = if info.external_force > 0.0 {
+        info.external_force
+    } else {
+        0.5 * (0..n)
+            .map(|i| ws.abs_grad[i] / problem.force_length(i))
+            .fold(0.0, f64::max)
+    };
+    for i in 0..n {
+        ws.trial_dx[i] = -ws.trial_grad[i];
+    }
+    if ws.ldlt.try_solve_in_place(&mut ws.trial_dx).is_err() {
+        return ChordCheck::Rejected;
+    }
+    let measures = IterateMeasures {
+        residual,
+        floor,
+        external_force: info.external_force,
+        force_scale,
+        decrement: dot(&ws.trial_grad, &ws.trial_dx).abs(),
+        energy: info.energy,
+        inertia: last.inertia,
+        hessian_lags: true,
+    };
+    // The state moves to the trial either way (the step lowered the residual).
+    std::mem::swap(state, &mut ws.trial);
+    std::mem::swap(&mut ws.grad, &mut ws.trial_grad);
+    std::mem::swap(&mut ws.dx, &mut ws.trial_dx);
+    let previous = last.residual;
+    *last = measures;
+    if converged(last, &info, params, problem, state, ws, Some(previous)) {
+        ChordCheck::Converged
+    } else {
+        ChordCheck::Improved
+    }
 }
 
 /// Largest residual force (N) and its round-off floor (N) from a gradient and its Σ|term|.
@@ -376,20 +514,59 @@ fn polish<P: EquilibriumProblem>(
             Some(&mut ws.abs_grad),
         );
         problem.assemble_selected(&ws.trial, load, &mut asm);
-        asm.finish();
-        let (r, _) = residual_and_floor(
+        let info = asm.finish();
+        let hess = &ws.hess;
+        let (r, floor) = residual_and_floor(
             problem,
             &ws.trial,
             params,
             &ws.trial_grad,
             &ws.abs_grad,
-            |_| 0.0,
+            |i| hess.diagonal(i),
         );
         if !(r < last.residual) {
+            if last.hessian_lags {
+                // A chord step from a lagging factorization can be worse than the state: the
+                // soft modes may still be off by more than the residual shows. Measure the
+                // state and polish with its own Newton step.
+                let (m, _) = measure(problem, state, load, params, ws);
+                *last = m;
+                continue;
+            }
             // Rejected: the workspace still holds the state's gradient, Hessian and factors.
             return;
         }
         std::mem::swap(state, &mut ws.trial);
+        if params.chord_final_check {
+            // Keep the factorization: the next polishing step is the chord step.
+            std::mem::swap(&mut ws.grad, &mut ws.trial_grad);
+            for i in 0..ws.dx.len() {
+                ws.dx[i] = -ws.grad[i];
+            }
+            if ws.ldlt.try_solve_in_place(&mut ws.dx).is_err() {
+                let (m, _) = measure(problem, state, load, params, ws);
+                *last = m;
+                continue;
+            }
+            let halved = r <= 0.5 * last.residual;
+            last.residual = r;
+            last.floor = floor;
+            last.energy = info.energy;
+            last.decrement = dot(&ws.grad, &ws.dx).abs();
+            last.hessian_lags = true;
+            if halved {
+                continue;
+            }
+            if r <= floor {
+                // At the round-off floor: nothing left to polish.
+                return;
+            }
+            // The chord steps stall above round-off (the Hessian changed too much since it
+            // was factored): polish on with true Newton steps.
+            let (m, _) = measure(problem, state, load, params, ws);
+            *last = m;
+            continue;
+        }
         let (m, _) = measure(problem, state, load, params, ws);
         *last = m;
     }

@@ -64,6 +64,17 @@ pub struct SolverParams {
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub chord_predictor: bool,
+    /// Once an iterate's Newton decrement passes and only the force test fails, take its full
+    /// Newton step and test convergence at the new point with a gradient-only assembly and the
+    /// chord decrement (the step with the iterate's factorization), instead of assembling and
+    /// factoring the Hessian there: one assembly of the Hessian and one factorization fewer per
+    /// solve. The inertia, λ_min and factorization reported are then those of the Hessian one
+    /// below-tolerance step before the returned state (where the stability analysis needs
+    /// more — an eigenvalue in the null band — the state is measured again). Not part of the
+    /// scene file: scene sessions turn it on; benchmarks keep it off.
+    #[serde(skip)]
+    #[cfg_attr(feature = "schema", schemars(skip))]
+    pub chord_final_check: bool,
 }
 
 impl Default for SolverParams {
@@ -84,6 +95,7 @@ impl Default for SolverParams {
             polish_iterations: None,
             follow_stable: false,
             chord_predictor: false,
+            chord_final_check: false,
         }
     }
 }

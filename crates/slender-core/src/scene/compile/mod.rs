@@ -160,6 +160,7 @@ impl Scene {
             .get_or_insert(SCENE_POLISH_ITERATIONS);
         solver.follow_stable = self.unstable == UnstablePolicy::Follow;
         solver.chord_predictor = true;
+        solver.chord_final_check = true;
         Ok(CompiledScene {
             rods,
             structures,
