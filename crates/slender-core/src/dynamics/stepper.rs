@@ -209,7 +209,12 @@ impl<'m, P: FlatDofs> TimeStepper<'m, P> {
             &self.params.solver,
             &mut self.ws,
         );
-        if !outcome.converged {
+        // A start already at the solution up to round-off (a rigid spin of stiff elements:
+        // no force anywhere, the residual is the rounding of their strains) can stop with no
+        // descent left at its first iterate, before the convergence test has a second residual
+        // to compare; its residual under the round-off floor makes it converged all the same.
+        let at_roundoff = outcome.last.residual <= outcome.last.floor;
+        if !(outcome.converged || at_roundoff) {
             return StepReport {
                 converged: false,
                 iterations: outcome.iterations,
