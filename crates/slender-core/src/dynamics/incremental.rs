@@ -13,7 +13,7 @@ use crate::solver::{EquilibriumProblem, MassMetric};
 
 use super::flat::FlatDofs;
 use super::frames::FrameInertia;
-use super::pullback::{NodeFrameMap, NodeRecord};
+use super::pullback::{NodeFrameMap, PulledBack};
 use super::quadrature::gauss_legendre_unit;
 use super::scheme::Scheme;
 
@@ -86,7 +86,7 @@ pub struct IncrementalProblem<'m, P: FlatDofs> {
     /// Frame orientations of the state being assembled.
     orientations: RefCell<Vec<UnitQuaternion<f64>>>,
     /// A quadrature node's assembly before its pullback (energy-conserving scheme, frames).
-    record: RefCell<Option<NodeRecord>>,
+    record: RefCell<Option<PulledBack>>,
 }
 
 /// A frame at the start of a step.
@@ -352,7 +352,7 @@ impl<'m, P: FlatDofs> IncrementalProblem<'m, P> {
     }
 
     /// The energy-conserving scheme's average with frames: each node assembled into a
-    /// record, then carried to y's chart ([`NodeRecord::add_to`]).
+    /// record that carries it to y's chart ([`PulledBack`]), the sum added to `asm` once.
     fn add_pulled_back_nodes<M: SymmetricMatrix>(
         &self,
         state: &P::State,
@@ -366,7 +366,8 @@ impl<'m, P: FlatDofs> IncrementalProblem<'m, P> {
         let charts = self.frame_charts(state);
         let mut record = self.record.borrow_mut();
         let record =
-            record.get_or_insert_with(|| NodeRecord::new(self.model.n_free(), &self.frames));
+            record.get_or_insert_with(|| PulledBack::new(self.model.n_free(), &self.frames));
+        record.begin();
         let mut nodes = self.nodes.borrow_mut();
         let mut maps = Vec::with_capacity(charts.len());
         for (&(s, w), z) in self.rule.iter().zip(nodes.iter_mut()) {
@@ -374,25 +375,28 @@ impl<'m, P: FlatDofs> IncrementalProblem<'m, P> {
                 *o = s * di;
             }
             self.model.chart(&self.start, scaled, z);
-            let NodeRecord {
-                grad,
-                abs_grad,
+            maps.clear();
+            maps.extend(charts.iter().map(|c| NodeFrameMap::new(c, s)));
+            record.set_node(&maps, s);
+            let PulledBack {
+                node_grad,
+                node_abs,
                 hess,
+                ..
             } = record;
             let mut inner = Assembler::new(
                 asm.selection(),
-                Some(grad.as_mut_slice()),
+                Some(node_grad.as_mut_slice()),
                 hessian.then_some(hess),
-                Some(abs_grad.as_mut_slice()),
+                Some(node_abs.as_mut_slice()),
             );
             let mut part = inner.rescaled(weight * w / s, 1.0);
             self.model.assemble_selected(z, load, &mut part);
             let info = part.finish();
             asm.absorb(info);
-            maps.clear();
-            maps.extend(charts.iter().map(|c| NodeFrameMap::new(c, s)));
-            record.add_to(&maps, s, hessian, asm);
+            record.end_node(&maps, hessian);
         }
+        record.add_to(hessian, asm);
     }
 
     /// The log chart of every frame at `state`: φ = log(p p̄ₙ) and its derivatives in the

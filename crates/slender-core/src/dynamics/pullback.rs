@@ -1,17 +1,15 @@
-//! Derivatives of a model's energy at a state that moves nonlinearly with the unknown: the
+//! Derivatives of a model's energy at states that move nonlinearly with the unknown: the
 //! quadrature nodes xₙ ⊕ s·(y ⊖ xₙ) of the energy-conserving scheme, whose frames turn by
 //! e(s·log(y ⊖ xₙ)) from xₙ while Newton moves y by spatial increments.
 //!
-//! A node's energy is assembled as usual into a [`BlockHessian`] (the model's local blocks
-//! summed per pair of DOF groups: a frame's three rotation components, or one coordinate),
-//! then carried to the unknown's chart: a coordinate moves by s per unit of its own, a frame
-//! by the 3×3 Jacobian T of its node increment ζ(δ) (the chain e(s φ(δ)) with φ the log map,
-//! [`crate::lie::LogChart`] and [`crate::lie::ExpChart`]). The Hessian becomes Tᵀ H T plus
-//! the contraction of the node's gradient with ζ's second derivative on each frame's block,
-//! the gradient Tᵀ g: the exact derivatives of the node energy as a function of y.
-
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
+//! Each node's energy is assembled as usual, but into a [`PulledBack`] record: its Hessian
+//! blocks are carried to the unknown's chart as they arrive (a frame's block by the 3×3
+//! Jacobian T of its node increment ζ(δ), the chain e(s φ(δ)) with φ the log map,
+//! [`crate::lie::LogChart`] and [`crate::lie::ExpChart`]; coordinates by s), and summed over
+//! the nodes per pair of DOF groups (a frame's rotation components, or up to three
+//! coordinates). Its gradient is kept per node, then carried (Tᵀg) and summed, and its
+//! contraction with ζ's second derivative added to each frame's block: the exact derivatives
+//! of Σ wᵢ E(nodeᵢ(y))/sᵢ. The sum goes into the caller's assembler once per assembly.
 
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
@@ -21,51 +19,66 @@ use crate::linalg::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
 
 use super::frames::FrameInertia;
 
-/// A cheap hasher for pairs of group indices (the blocks are keyed by them, and hashed once
-/// per pair of groups a term touches).
-#[derive(Clone, Copy, Debug, Default)]
-struct PairHasher(u64);
+/// How a group's DOFs move per unit of the unknown's: a frame's 3×3 Jacobian, or a scale
+/// (coordinates).
+#[derive(Clone, Copy, Debug)]
+enum Transform {
+    Frame(Matrix3<f64>),
+    Scale(f64),
+}
 
-impl Hasher for PairHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(u64::from(b));
+impl Transform {
+    /// Tᵀ B U for the block B between a group with this transform (rows) and one with `u`.
+    fn apply(&self, b: &Matrix3<f64>, u: &Transform) -> Matrix3<f64> {
+        match (self, u) {
+            (Self::Scale(s), Self::Scale(t)) => b * (s * t),
+            (Self::Scale(s), Self::Frame(t)) => b * t * *s,
+            (Self::Frame(t), Self::Scale(s)) => t.transpose() * b * *s,
+            (Self::Frame(t), Self::Frame(u)) => t.transpose() * b * u,
         }
     }
 
-    fn write_u64(&mut self, i: u64) {
-        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    /// Tᵀ g.
+    fn pull(&self, g: &Vector3<f64>) -> Vector3<f64> {
+        match self {
+            Self::Scale(s) => g * *s,
+            Self::Frame(t) => t.transpose() * g,
+        }
     }
 
-    fn write_usize(&mut self, i: usize) {
-        self.write_u64(i as u64);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
+    /// |T|ᵀ a: the round-off scale carried like the gradient.
+    fn pull_abs(&self, a: &Vector3<f64>) -> Vector3<f64> {
+        match self {
+            Self::Scale(s) => a * s.abs(),
+            Self::Frame(t) => t.abs().transpose() * a,
+        }
     }
 }
 
-type Blocks = HashMap<(usize, usize), [f64; 9], BuildHasherDefault<PairHasher>>;
-
-/// A symmetric matrix kept as dense 3×3 blocks per pair of DOF groups (a frame's rotation
-/// components, or one coordinate as a 1×1 block): what a node's assembly is recorded in before
-/// its pullback. Block (a, b) with a ≥ b holds rows of group a and columns of group b;
-/// the matrix is never factored (its [`SymmetricFactor`] refuses).
+/// A symmetric matrix kept as 3×3 blocks per pair of DOF groups (each frame's rotation
+/// components; the other DOFs in consecutive runs of up to three), into which the blocks
+/// of several assemblies are summed after a per-group [`Transform`]: the record of the
+/// quadrature nodes' Hessians. Row `a` holds the blocks (a, b ≤ a), rows of group a and
+/// columns of group b. It is never factored (its [`SymmetricFactor`] refuses), and it is
+/// cleared by [`PulledBack::begin`] only: [`SymmetricMatrix::set_zero`], which each node's
+/// assembler calls, keeps what the earlier nodes added.
 #[derive(Clone, Debug)]
 pub(crate) struct BlockHessian {
     /// Group and component of every free DOF.
     slot: Vec<(usize, usize)>,
     /// The free DOFs of every group ([`FIXED`] on unused components).
     groups: Vec<[usize; 3]>,
-    blocks: Blocks,
+    /// Number of frame groups (the first ones).
+    n_frames: usize,
+    /// The current node's transform of every group.
+    transforms: Vec<Transform>,
+    rows: Vec<Vec<(usize, Matrix3<f64>)>>,
 }
 
 impl BlockHessian {
-    /// Groups: each frame of `frames` (in order), then every DOF of `n` that no frame holds.
-    pub(crate) fn new(n: usize, frames: &[FrameInertia]) -> Self {
+    fn new(n: usize, frames: &[FrameInertia]) -> Self {
         let mut slot = vec![(usize::MAX, 0); n];
-        let mut groups = Vec::with_capacity(n);
+        let mut groups = Vec::new();
         for f in frames {
             for (k, &i) in f.dofs.iter().enumerate() {
                 if i != FIXED {
@@ -74,43 +87,71 @@ impl BlockHessian {
             }
             groups.push(f.dofs);
         }
-        for (i, s) in slot.iter_mut().enumerate() {
-            if s.0 == usize::MAX {
-                *s = (groups.len(), 0);
-                groups.push([i, FIXED, FIXED]);
+        let mut run = [FIXED; 3];
+        let mut len = 0;
+        for i in 0..n {
+            if slot[i].0 != usize::MAX {
+                continue;
             }
+            slot[i] = (groups.len(), len);
+            run[len] = i;
+            len += 1;
+            if len == 3 {
+                groups.push(run);
+                (run, len) = ([FIXED; 3], 0);
+            }
+        }
+        if len > 0 {
+            groups.push(run);
         }
         Self {
             slot,
+            transforms: vec![Transform::Scale(1.0); groups.len()],
+            rows: vec![Vec::new(); groups.len()],
+            n_frames: frames.len(),
             groups,
-            blocks: Blocks::default(),
         }
     }
 
-    /// Adds v to entry (i, j) of the block of their groups (and (j, i) inside one group).
-    fn add_entry(&mut self, i: usize, j: usize, v: f64) {
-        let ((gi, ci), (gj, cj)) = (self.slot[i], self.slot[j]);
-        if gi == gj {
-            let b = self.blocks.entry((gi, gi)).or_insert([0.0; 9]);
-            b[3 * ci + cj] += v;
-            if ci != cj {
-                b[3 * cj + ci] += v;
+    fn clear(&mut self) {
+        self.rows.iter_mut().for_each(Vec::clear);
+    }
+
+    /// The stored block (a, b), a ≥ b, created empty if absent.
+    fn block_mut(&mut self, a: usize, b: usize) -> &mut Matrix3<f64> {
+        let row = &mut self.rows[a];
+        let k = match row.iter().position(|(c, _)| *c == b) {
+            Some(k) => k,
+            None => {
+                row.push((b, Matrix3::zeros()));
+                row.len() - 1
             }
-        } else if gi > gj {
-            self.blocks.entry((gi, gj)).or_insert([0.0; 9])[3 * ci + cj] += v;
+        };
+        &mut row[k].1
+    }
+
+    fn block(&self, a: usize, b: usize) -> Option<&Matrix3<f64>> {
+        self.rows[a].iter().find(|(c, _)| *c == b).map(|(_, m)| m)
+    }
+
+    /// Adds `b` (rows of group `ga`, columns of `gb`, in the node's chart) carried to the
+    /// unknown's.
+    fn add_transformed(&mut self, ga: usize, gb: usize, b: &Matrix3<f64>) {
+        let m = self.transforms[ga].apply(b, &self.transforms[gb]);
+        if ga >= gb {
+            *self.block_mut(ga, gb) += m;
         } else {
-            self.blocks.entry((gj, gi)).or_insert([0.0; 9])[3 * cj + ci] += v;
+            *self.block_mut(gb, ga) += m.transpose();
         }
     }
 
     fn entry(&self, i: usize, j: usize) -> f64 {
         let ((gi, ci), (gj, cj)) = (self.slot[i], self.slot[j]);
-        let (key, idx) = if gi >= gj {
-            ((gi, gj), 3 * ci + cj)
+        if gi >= gj {
+            self.block(gi, gj).map_or(0.0, |b| b[(ci, cj)])
         } else {
-            ((gj, gi), 3 * cj + ci)
-        };
-        self.blocks.get(&key).map_or(0.0, |b| b[idx])
+            self.block(gj, gi).map_or(0.0, |b| b[(cj, ci)])
+        }
     }
 }
 
@@ -121,7 +162,7 @@ pub(crate) struct NoFactor;
 impl SymmetricFactor<BlockHessian> for NoFactor {
     fn factorize(&mut self, _: &BlockHessian, _: f64) -> Result<Inertia, FactorError> {
         Err(FactorError::Analysis {
-            reason: "a block record of a quadrature node is not factored".into(),
+            reason: "a record of quadrature nodes is not factored".into(),
         })
     }
 
@@ -137,13 +178,17 @@ impl SymmetricMatrix for BlockHessian {
         self.slot.len()
     }
 
-    fn set_zero(&mut self) {
-        // Keys change with the state's pattern of contributions; the map keeps its capacity.
-        self.blocks.clear();
-    }
+    /// Keeps the blocks: the record sums the nodes of one assembly (see the type's docs).
+    fn set_zero(&mut self) {}
 
     fn add(&mut self, i: usize, j: usize, v: f64) {
-        self.add_entry(i, j, v);
+        let ((gi, ci), (gj, cj)) = (self.slot[i], self.slot[j]);
+        let mut b = Matrix3::zeros();
+        b[(ci, cj)] += v;
+        if gi == gj && i != j {
+            b[(cj, ci)] += v;
+        }
+        self.add_transformed(gi, gj, &b);
     }
 
     fn add_lower_block<const D: usize>(
@@ -152,7 +197,7 @@ impl SymmetricMatrix for BlockHessian {
         value: impl Fn(usize, usize) -> f64,
     ) {
         // The default's additions (one per lower pair of slots, twice for two slots naming
-        // one DOF), with the block looked up once per pair of groups instead of per entry.
+        // one DOF), gathered per pair of groups and carried once per pair.
         let mut group = [usize::MAX; D];
         let mut comp = [0; D];
         for a in 0..D {
@@ -160,7 +205,6 @@ impl SymmetricMatrix for BlockHessian {
                 (group[a], comp[a]) = self.slot[dofs[a]];
             }
         }
-        // Distinct groups of the stencil, in order of first appearance.
         let mut distinct = [usize::MAX; D];
         let mut n_distinct = 0;
         for &g in &group {
@@ -172,31 +216,31 @@ impl SymmetricMatrix for BlockHessian {
         for p in 0..n_distinct {
             for q in 0..=p {
                 let (g1, g2) = (distinct[p], distinct[q]);
-                let (hi, lo) = if g1 >= g2 { (g1, g2) } else { (g2, g1) };
-                let block = self.blocks.entry((hi, lo)).or_insert([0.0; 9]);
-                for a in 0..D {
-                    for b in 0..=a {
-                        let (ga, gb) = (group[a], group[b]);
-                        if !((ga == g1 && gb == g2) || (ga == g2 && gb == g1)) {
-                            continue;
-                        }
-                        let v = value(a, b);
-                        if hi == lo {
-                            if dofs[a] == dofs[b] && a != b {
-                                block[3 * comp[a] + comp[a]] += 2.0 * v;
-                            } else {
-                                block[3 * comp[a] + comp[b]] += v;
-                                if comp[a] != comp[b] {
-                                    block[3 * comp[b] + comp[a]] += v;
+                // Rows of g1, columns of g2.
+                let mut b = Matrix3::zeros();
+                for x in 0..D {
+                    for y in 0..=x {
+                        let (gx, gy) = (group[x], group[y]);
+                        if gx == g1 && gy == g2 {
+                            let v = value(x, y);
+                            if g1 == g2 {
+                                if dofs[x] == dofs[y] && x != y {
+                                    b[(comp[x], comp[x])] += 2.0 * v;
+                                } else {
+                                    b[(comp[x], comp[y])] += v;
+                                    if comp[x] != comp[y] {
+                                        b[(comp[y], comp[x])] += v;
+                                    }
                                 }
+                            } else {
+                                b[(comp[x], comp[y])] += v;
                             }
-                        } else if ga == hi {
-                            block[3 * comp[a] + comp[b]] += v;
-                        } else {
-                            block[3 * comp[b] + comp[a]] += v;
+                        } else if g1 != g2 && gx == g2 && gy == g1 {
+                            b[(comp[y], comp[x])] += value(x, y);
                         }
                     }
                 }
+                self.add_transformed(g1, g2, &b);
             }
         }
     }
@@ -207,20 +251,18 @@ impl SymmetricMatrix for BlockHessian {
 
     fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
         y.fill(0.0);
-        for (&(ga, gb), b) in &self.blocks {
-            let (da, db) = (self.groups[ga], self.groups[gb]);
-            for (r, &i) in da.iter().enumerate() {
-                if i == FIXED {
-                    continue;
-                }
-                for (c, &j) in db.iter().enumerate() {
-                    if j == FIXED {
-                        continue;
-                    }
-                    let v = b[3 * r + c];
-                    y[i] += v * x[j];
-                    if ga != gb {
-                        y[j] += v * x[i];
+        for (ga, row) in self.rows.iter().enumerate() {
+            for (gb, b) in row {
+                let (da, db) = (self.groups[ga], self.groups[*gb]);
+                for (r, &i) in da.iter().enumerate() {
+                    for (c, &j) in db.iter().enumerate() {
+                        if i == FIXED || j == FIXED {
+                            continue;
+                        }
+                        y[i] += b[(r, c)] * x[j];
+                        if ga != *gb {
+                            y[j] += b[(r, c)] * x[i];
+                        }
                     }
                 }
             }
@@ -233,17 +275,18 @@ impl SymmetricMatrix for BlockHessian {
             return (0.0, 0.0);
         }
         let mut radius = vec![0.0; n];
-        for (&(ga, gb), b) in &self.blocks {
-            let (da, db) = (self.groups[ga], self.groups[gb]);
-            for (r, &i) in da.iter().enumerate() {
-                for (c, &j) in db.iter().enumerate() {
-                    if i == FIXED || j == FIXED || i == j {
-                        continue;
-                    }
-                    let v = b[3 * r + c].abs();
-                    radius[i] += v;
-                    if ga != gb {
-                        radius[j] += v;
+        for (ga, row) in self.rows.iter().enumerate() {
+            for (gb, b) in row {
+                let (da, db) = (self.groups[ga], self.groups[*gb]);
+                for (r, &i) in da.iter().enumerate() {
+                    for (c, &j) in db.iter().enumerate() {
+                        if i == FIXED || j == FIXED || i == j {
+                            continue;
+                        }
+                        radius[i] += b[(r, c)].abs();
+                        if ga != *gb {
+                            radius[j] += b[(r, c)].abs();
+                        }
                     }
                 }
             }
@@ -255,21 +298,23 @@ impl SymmetricMatrix for BlockHessian {
     }
 
     fn first_non_finite(&self) -> Option<usize> {
-        self.blocks.iter().find_map(|(&(ga, _), b)| {
-            b.iter()
-                .any(|v| !v.is_finite())
+        self.rows.iter().enumerate().find_map(|(ga, row)| {
+            row.iter()
+                .any(|(_, b)| b.iter().any(|v| !v.is_finite()))
                 .then(|| self.groups[ga].into_iter().find(|&i| i != FIXED).unwrap_or(0))
         })
     }
 
     fn congruence_scaled(&self, s: &[f64], out: &mut Self) {
         out.clone_from(self);
-        for (&(ga, gb), b) in out.blocks.iter_mut() {
-            let (da, db) = (self.groups[ga], self.groups[gb]);
-            for (r, &i) in da.iter().enumerate() {
-                for (c, &j) in db.iter().enumerate() {
-                    if i != FIXED && j != FIXED {
-                        b[3 * r + c] *= s[i] * s[j];
+        for (ga, row) in out.rows.iter_mut().enumerate() {
+            for (gb, b) in row.iter_mut() {
+                let (da, db) = (self.groups[ga], self.groups[*gb]);
+                for (r, &i) in da.iter().enumerate() {
+                    for (c, &j) in db.iter().enumerate() {
+                        if i != FIXED && j != FIXED {
+                            b[(r, c)] *= s[i] * s[j];
+                        }
                     }
                 }
             }
@@ -308,107 +353,101 @@ impl NodeFrameMap {
     }
 }
 
-/// Scratch outputs of one node's assembly.
+/// The quadrature nodes of one assembly, summed in the unknown's chart.
 #[derive(Clone, Debug)]
-pub(crate) struct NodeRecord {
-    pub(crate) grad: Vec<f64>,
-    pub(crate) abs_grad: Vec<f64>,
+pub(crate) struct PulledBack {
+    /// The current node's gradient and round-off scale (its own chart).
+    pub(crate) node_grad: Vec<f64>,
+    pub(crate) node_abs: Vec<f64>,
+    /// The nodes' Hessian, carried and summed.
     pub(crate) hess: BlockHessian,
+    grad: Vec<f64>,
+    abs: Vec<f64>,
 }
 
-/// Adds gradient `g` with round-off scale `a` (≥ |g| per slot) on `dofs` to `asm`: the
-/// assembler adds |g| to its scale per call, so the gradient goes in as two halves whose
-/// magnitudes sum to `a`.
-fn add_gradient<M: SymmetricMatrix, const D: usize>(
-    asm: &mut Assembler<'_, M>,
-    dofs: &[usize; D],
-    g: &SVector<f64, D>,
-    a: &SVector<f64, D>,
-) {
-    let a = a.zip_map(g, |a, g| a.max(g.abs()));
-    let zero = SMatrix::<f64, D, D>::zeros();
-    asm.local(dofs, 0.0, 0.0, &((g + a) * 0.5), &zero);
-    asm.local(dofs, 0.0, 0.0, &((g - a) * 0.5), &zero);
-}
-
-impl NodeRecord {
+impl PulledBack {
     pub(crate) fn new(n: usize, frames: &[FrameInertia]) -> Self {
         Self {
-            grad: vec![0.0; n],
-            abs_grad: vec![0.0; n],
+            node_grad: vec![0.0; n],
+            node_abs: vec![0.0; n],
             hess: BlockHessian::new(n, frames),
+            grad: vec![0.0; n],
+            abs: vec![0.0; n],
         }
     }
 
-    /// The group transforms: a frame's node map, or s on a coordinate (as a 3×3 whose (0, 0)
-    /// entry is used).
-    fn transform(&self, group: usize, maps: &[NodeFrameMap], s: f64) -> Matrix3<f64> {
-        if group < maps.len() {
-            maps[group].jac
-        } else {
-            Matrix3::from_diagonal(&Vector3::new(s, 0.0, 0.0))
+    /// Starts an assembly: nothing recorded.
+    pub(crate) fn begin(&mut self) {
+        self.hess.clear();
+        self.grad.fill(0.0);
+        self.abs.fill(0.0);
+    }
+
+    /// Sets the transforms of the next node (`maps`: its frames', in order; `s`: its
+    /// coordinates'), before the node is assembled into `node_grad`, `node_abs` and `hess`.
+    pub(crate) fn set_node(&mut self, maps: &[NodeFrameMap], s: f64) {
+        let h = &mut self.hess;
+        for (t, m) in h.transforms.iter_mut().zip(maps) {
+            *t = Transform::Frame(m.jac);
+        }
+        for t in h.transforms.iter_mut().skip(h.n_frames) {
+            *t = Transform::Scale(s);
         }
     }
 
-    /// Adds the recorded node (gradient, and Hessian if `hessian`) to `asm`, carried to the
-    /// unknown's chart: coordinates scaled by `s`, frame f by `maps[f]`.
-    pub(crate) fn add_to<M: SymmetricMatrix>(
-        &self,
-        maps: &[NodeFrameMap],
-        s: f64,
-        hessian: bool,
-        asm: &mut Assembler<'_, M>,
-    ) {
-        let groups = &self.hess.groups;
+    /// After a node's assembly: carries its gradient into the sum and, with `hessian`, adds
+    /// the contraction of its frames' gradients with their maps' second derivatives.
+    pub(crate) fn end_node(&mut self, maps: &[NodeFrameMap], hessian: bool) {
+        let h = &mut self.hess;
         let gather = |v: &[f64], dofs: &[usize; 3]| {
             Vector3::from_fn(|k, _| if dofs[k] == FIXED { 0.0 } else { v[dofs[k]] })
         };
-        // Frames: gradient Tᵀg, and the diagonal block Tᵀ H T + Σ g_k ∂²ζ_k.
-        for (f, map) in maps.iter().enumerate() {
-            let dofs = &groups[f];
-            let g = gather(&self.grad, dofs);
-            let a = gather(&self.abs_grad, dofs);
-            let t = map.jac;
-            add_gradient(asm, dofs, &(t.transpose() * g), &(t.abs().transpose() * a));
-            if hessian {
-                let mut h = match self.hess.blocks.get(&(f, f)) {
-                    Some(b) => t.transpose() * Matrix3::from_row_slice(b) * t,
-                    None => Matrix3::zeros(),
-                };
-                h += map.contracted_hessian(&g);
-                asm.local(dofs, 0.0, 0.0, &Vector3::zeros(), &h);
+        for g in 0..h.groups.len() {
+            let dofs = &h.groups[g];
+            let t = h.transforms[g];
+            let node = gather(&self.node_grad, dofs);
+            let pulled = t.pull(&node);
+            let abs = t.pull_abs(&gather(&self.node_abs, dofs));
+            for (k, &i) in dofs.iter().enumerate() {
+                if i != FIXED {
+                    self.grad[i] += pulled[k];
+                    self.abs[i] += abs[k];
+                }
+            }
+            let _ = dofs;
+            if hessian && g < maps.len() {
+                let c = maps[g].contracted_hessian(&node);
+                *h.block_mut(g, g) += c;
             }
         }
-        // Coordinates: gradient s·g.
-        for (group, dofs) in groups.iter().enumerate().skip(maps.len()) {
-            let i = dofs[0];
-            let _ = group;
-            add_gradient(
-                asm,
-                &[i],
-                &SVector::<f64, 1>::new(s * self.grad[i]),
-                &SVector::<f64, 1>::new(s * self.abs_grad[i]),
-            );
+    }
+
+    /// Adds the summed nodes (gradient, and Hessian if `hessian`) to `asm`.
+    pub(crate) fn add_to<M: SymmetricMatrix>(&self, hessian: bool, asm: &mut Assembler<'_, M>) {
+        // The gradient as two generalized forces per DOF whose magnitudes sum to its round-off
+        // scale (the assembler adds |force| to the scale per call).
+        for (i, (&g, &a)) in self.grad.iter().zip(&self.abs).enumerate() {
+            let a = a.max(g.abs());
+            asm.generalized_force(i, -0.5 * (g + a));
+            asm.generalized_force(i, -0.5 * (g - a));
         }
         if !hessian {
             return;
         }
-        for (&(ga, gb), b) in &self.hess.blocks {
-            if ga == gb && ga < maps.len() {
-                continue; // a frame's own block, done above
-            }
-            let h = self.transform(ga, maps, s).transpose()
-                * Matrix3::from_row_slice(b)
-                * self.transform(gb, maps, s);
-            if ga == gb {
-                asm.local(&groups[ga], 0.0, 0.0, &Vector3::zeros(), &h);
-            } else {
-                let (da, db) = (groups[ga], groups[gb]);
-                let stencil = [da[0], da[1], da[2], db[0], db[1], db[2]];
-                let mut m = SMatrix::<f64, 6, 6>::zeros();
-                m.fixed_view_mut::<3, 3>(3, 0).copy_from(&h.transpose());
-                m.fixed_view_mut::<3, 3>(0, 3).copy_from(&h);
-                asm.local(&stencil, 0.0, 0.0, &SVector::<f64, 6>::zeros(), &m);
+        let groups = &self.hess.groups;
+        let zero3 = Vector3::zeros();
+        for (ga, row) in self.hess.rows.iter().enumerate() {
+            for (gb, b) in row {
+                if ga == *gb {
+                    asm.local(&groups[ga], 0.0, 0.0, &zero3, b);
+                } else {
+                    let (da, db) = (groups[ga], groups[*gb]);
+                    let stencil = [da[0], da[1], da[2], db[0], db[1], db[2]];
+                    let mut m = SMatrix::<f64, 6, 6>::zeros();
+                    m.fixed_view_mut::<3, 3>(0, 3).copy_from(b);
+                    m.fixed_view_mut::<3, 3>(3, 0).copy_from(&b.transpose());
+                    asm.local(&stencil, 0.0, 0.0, &SVector::<f64, 6>::zeros(), &m);
+                }
             }
         }
     }
