@@ -163,8 +163,8 @@ fn bench_cosserat(c: &mut Criterion) {
         Scheme::BackwardEuler,
     ] {
         let params = DynamicsParams::new(1e-3).with_scheme(scheme);
-        let mut stepper = TimeStepper::at_rest(&rod, rod.rest_state().clone(), params)
-            .expect("valid params");
+        let mut stepper =
+            TimeStepper::at_rest(&rod, rod.rest_state().clone(), params).expect("valid params");
         let mut snapshots = Vec::new();
         for k in 0..1000 {
             let r = stepper.step();

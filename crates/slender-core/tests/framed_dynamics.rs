@@ -136,8 +136,12 @@ fn check_step_derivatives<P: Model>(rod: &P, name: &str) {
             );
             problem.restart(&start, &velocity, 1.0);
             for (terms, what) in [(TermSet::NONE, "inertia"), (TermSet::ALL, "all terms")] {
-                let u: Vec<f64> = (0..rod.n_free()).map(|i| rng.uniform() * scale(i)).collect();
-                let v: Vec<f64> = (0..rod.n_free()).map(|i| rng.uniform() * scale(i)).collect();
+                let u: Vec<f64> = (0..rod.n_free())
+                    .map(|i| rng.uniform() * scale(i))
+                    .collect();
+                let v: Vec<f64> = (0..rod.n_free())
+                    .map(|i| rng.uniform() * scale(i))
+                    .collect();
                 let e = fd_errors(&problem, &y, 1.0, terms, &u, &v);
                 let best = |x: &[f64]| x.iter().cloned().fold(f64::INFINITY, f64::min);
                 let (g, h) = (best(&e.gradient), best(&e.hessian));
@@ -241,7 +245,10 @@ fn newton_converges_quadratically_on_a_step() {
     let (p, g) = moderate();
     both_models!(
         (line([1.0, 0.3, -0.2], 1.0), p, g),
-        |b| b.elements(8).clamp_start().gravity(Vector3::new(0.0, -9.0, 2.0)),
+        |b| b
+            .elements(8)
+            .clamp_start()
+            .gravity(Vector3::new(0.0, -9.0, 2.0)),
         |name, rod| {
             for scheme in [
                 Scheme::BackwardEuler,
@@ -249,7 +256,10 @@ fn newton_converges_quadratically_on_a_step() {
                 Scheme::EnergyConserving,
             ] {
                 let r = newton_residuals(&rod, scheme);
-                println!("{name} {scheme:?}: Newton residuals {:?}", r.iter().map(|x| format!("{x:.2e}")).collect::<Vec<_>>());
+                println!(
+                    "{name} {scheme:?}: Newton residuals {:?}",
+                    r.iter().map(|x| format!("{x:.2e}")).collect::<Vec<_>>()
+                );
                 // Quadratic: once in the basin, each residual (relative to the first) is
                 // at most a modest multiple of the square of the previous one.
                 let r0 = r[0];
@@ -257,12 +267,21 @@ fn newton_converges_quadratically_on_a_step() {
                 for w in r.windows(2) {
                     let (e0, e1) = (w[0] / r0, w[1] / r0);
                     if e0 < 1e-2 && e0 > 1e-9 {
-                        assert!(e1 <= 1e3 * e0 * e0, "{name} {scheme:?}: {e0:.2e} -> {e1:.2e}");
+                        assert!(
+                            e1 <= 1e3 * e0 * e0,
+                            "{name} {scheme:?}: {e0:.2e} -> {e1:.2e}"
+                        );
                         checked += 1;
                     }
                 }
-                assert!(checked >= 1, "{name} {scheme:?}: too few iterations to judge: {r:?}");
-                assert!(*r.last().unwrap() < 1e-11, "{name} {scheme:?}: did not converge: {r:?}");
+                assert!(
+                    checked >= 1,
+                    "{name} {scheme:?}: too few iterations to judge: {r:?}"
+                );
+                assert!(
+                    *r.last().unwrap() < 1e-11,
+                    "{name} {scheme:?}: did not converge: {r:?}"
+                );
             }
         }
     );
@@ -288,13 +307,23 @@ fn loose_frames() -> (RodProperties, ShearStiffness) {
 /// The torque-free axisymmetric top (principal moments A, A, C): from R₀ with spatial
 /// angular velocity ω₀, R(t) = exp(t π/A) R₀ exp(−κ t e₃) with π = I₀ω₀ and
 /// κ = (C − A)/A · (d₃·ω₀) (ω = π/A − κ d₃, d₃·ω constant).
-fn top(q0: &UnitQuaternion<f64>, omega0: &Vector3<f64>, a: f64, c: f64, t: f64) -> UnitQuaternion<f64> {
+fn top(
+    q0: &UnitQuaternion<f64>,
+    omega0: &Vector3<f64>,
+    a: f64,
+    c: f64,
+    t: f64,
+) -> UnitQuaternion<f64> {
     let r = q0.to_rotation_matrix();
     let d3 = r.matrix().column(2).into_owned();
-    let inertia = r.matrix() * nalgebra::Matrix3::from_diagonal(&Vector3::new(a, a, c)) * r.matrix().transpose();
+    let inertia = r.matrix()
+        * nalgebra::Matrix3::from_diagonal(&Vector3::new(a, a, c))
+        * r.matrix().transpose();
     let pi = inertia * omega0;
     let kappa = (c - a) / a * d3.dot(omega0);
-    UnitQuaternion::from_scaled_axis(pi * (t / a)) * q0 * UnitQuaternion::from_scaled_axis(Vector3::z() * (-kappa * t))
+    UnitQuaternion::from_scaled_axis(pi * (t / a))
+        * q0
+        * UnitQuaternion::from_scaled_axis(Vector3::z() * (-kappa * t))
 }
 
 /// Largest angle (rad) between the frames after `t_end` with step `dt` and the closed form,
@@ -369,7 +398,10 @@ fn free_frames_turn_as_the_torque_free_symmetric_top() {
                 }
                 // Torque-free: π of every frame is kept (to the solver tolerance and the
                 // residual stiffness).
-                assert!(drift < 1e-9, "{name} {scheme:?}: momentum drift {drift:.2e}");
+                assert!(
+                    drift < 1e-9,
+                    "{name} {scheme:?}: momentum drift {drift:.2e}"
+                );
             }
         }
     );
@@ -473,7 +505,11 @@ fn modes<P: Model>(rod: &P) -> Vec<(f64, f64, f64)> {
                     _ => {}
                 }
             }
-            (eig.eigenvalues[c].max(0.0).sqrt(), transverse / total, torsion / total)
+            (
+                eig.eigenvalues[c].max(0.0).sqrt(),
+                transverse / total,
+                torsion / total,
+            )
         })
         .collect();
     out.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -493,7 +529,10 @@ fn cantilever_bending_and_torsion_frequencies_from_the_eigenproblem() {
             let bent: Vec<f64> = modes.iter().filter(|m| m.1 > 0.9).map(|m| m.0).collect();
             // Isotropic section: the y and z modes come in pairs.
             for pair in bent.chunks(2).take(3) {
-                assert!((pair[0] - pair[1]).abs() <= 1e-6 * pair[0], "{name}: pair {pair:?}");
+                assert!(
+                    (pair[0] - pair[1]).abs() <= 1e-6 * pair[0],
+                    "{name}: pair {pair:?}"
+                );
             }
             for k in 0..3 {
                 let err = relative(bent[2 * k], bending[k]);
@@ -541,7 +580,11 @@ fn velocity_field<P: Model>(
         }
     }
     for j in 0..frames {
-        let s = if at_node { j as f64 * h } else { (j as f64 + 0.5) * h };
+        let s = if at_node {
+            j as f64 * h
+        } else {
+            (j as f64 + 0.5) * h
+        };
         let x = w(s);
         for k in 0..3 {
             let i = dofs.frame(j, k);
@@ -657,9 +700,10 @@ fn first_bending_and_torsion_frequencies_from_time_histories() {
             );
             let period = 2.0 * std::f64::consts::PI / bending;
             let n = rod.core().n_edges();
-            let (omega, crossings) = history_frequency(&rod, velocity, period / 400.0, 4 * 400 + 50, |s| {
-                s.positions()[n].y
-            });
+            let (omega, crossings) =
+                history_frequency(&rod, velocity, period / 400.0, 4 * 400 + 50, |s| {
+                    s.positions()[n].y
+                });
             let err = relative(omega, bending);
             println!(
                 "{name} time history (midpoint, h = T/400, {crossings} crossings): omega_1 = \
@@ -676,9 +720,10 @@ fn first_bending_and_torsion_frequencies_from_time_histories() {
             let period = 2.0 * std::f64::consts::PI / torsion;
             let last = rod.core().rest_state().frames().len() - 1;
             let rest = rod.core().rest_state().frames()[last];
-            let (omega, crossings) = history_frequency(&rod, velocity, period / 400.0, 4 * 400 + 50, |s| {
-                (s.frames()[last] * rest.inverse()).scaled_axis().x
-            });
+            let (omega, crossings) =
+                history_frequency(&rod, velocity, period / 400.0, 4 * 400 + 50, |s| {
+                    (s.frames()[last] * rest.inverse()).scaled_axis().x
+                });
             let err = relative(omega, torsion);
             println!(
                 "{name} time history (midpoint, h = T/400, {crossings} crossings): torsion omega = \
@@ -711,12 +756,20 @@ const G: f64 = 9.81;
 /// with an initial sideways (z) velocity `side` (m/s at the tip, first mode shape) that
 /// makes the swing three-dimensional: (max |E − E₀| / max kinetic energy, max kinetic energy,
 /// largest Newton iteration count) over `steps` steps of `dt`.
-fn release<P: Model>(rod: &P, scheme: Scheme, dt: f64, steps: usize, side: f64) -> (f64, f64, usize) {
+fn release<P: Model>(
+    rod: &P,
+    scheme: Scheme,
+    dt: f64,
+    steps: usize,
+    side: f64,
+) -> (f64, f64, usize) {
     let mut params = DynamicsParams::new(dt).with_scheme(scheme);
     params.solver.force_tolerance = 1e-13;
     params.solver.energy_tolerance = 1e-20;
     let tip = first_mode(1.0).0;
-    let velocity = chord_velocity(rod, |s| Vector3::new(0.0, 0.0, side * first_mode(s).0 / tip));
+    let velocity = chord_velocity(rod, |s| {
+        Vector3::new(0.0, 0.0, side * first_mode(s).0 / tip)
+    });
     let start = rod.core().rest_state().clone();
     let mut stepper = TimeStepper::new(rod, start, velocity, params).unwrap();
     let e0 = stepper.energy().total();
@@ -737,7 +790,10 @@ fn energy_conserving_scheme_conserves_energy_of_a_released_cantilever() {
     let (p, g) = cable();
     both_models!(
         (line([1.0, 0.0, 0.0], 1.0), p, g),
-        |b| b.elements(20).clamp_start().gravity(Vector3::new(0.0, -G, 0.0)),
+        |b| b
+            .elements(20)
+            .clamp_start()
+            .gravity(Vector3::new(0.0, -G, 0.0)),
         |name, rod| {
             for side in [0.0, 1.0] {
                 let (drift, kinetic, iterations) =
@@ -749,7 +805,10 @@ fn energy_conserving_scheme_conserves_energy_of_a_released_cantilever() {
                 );
                 // A large swing: at least a tenth of what a rigid fall by L/2 would release.
                 assert!(kinetic > 0.1 * 0.281 * G * 0.5);
-                assert!(drift <= 1e-6, "{name} side {side}: energy drift {drift:.3e}");
+                assert!(
+                    drift <= 1e-6,
+                    "{name} side {side}: energy drift {drift:.3e}"
+                );
             }
         }
     );
@@ -792,8 +851,12 @@ fn schemes_converge_at_their_orders() {
                 (Scheme::ImplicitMidpoint, 1.7, 2.4),
                 (Scheme::EnergyConserving, 1.7, f64::INFINITY),
             ] {
-                let errors = dts.map(|dt| (swing_tip_at(&rod, scheme, dt, t_end) - reference).norm());
-                let orders = [(errors[0] / errors[1]).log2(), (errors[1] / errors[2]).log2()];
+                let errors =
+                    dts.map(|dt| (swing_tip_at(&rod, scheme, dt, t_end) - reference).norm());
+                let orders = [
+                    (errors[0] / errors[1]).log2(),
+                    (errors[1] / errors[2]).log2(),
+                ];
                 println!(
                     "{name} {scheme:?}: dt = {dts:?} s, tip errors = {:?} m, observed orders = \
                      {orders:.3?}",
@@ -898,7 +961,10 @@ fn a_rod_spinning_about_its_axis_keeps_its_angular_momentum() {
                      1 ms (3.2 turns): max relative change of the axial angular momentum \
                      {drift:.2e}, of the energy {energy:.2e}"
                 );
-                assert!(drift <= bound, "{name} {scheme:?} wobble {wobble}: drift {drift:.2e}");
+                assert!(
+                    drift <= bound,
+                    "{name} {scheme:?} wobble {wobble}: drift {drift:.2e}"
+                );
             }
         }
     );

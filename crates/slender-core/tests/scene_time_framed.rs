@@ -19,7 +19,11 @@ fn history(text: &str) -> (Vec<f64>, Vec<f64>, Vec<f64>, f64, f64) {
     let (rest, at): (UnitQuaternion<f64>, f64) = {
         let s = run.state(0).members[0].as_framed().expect("a framed rod");
         let n = s.positions().len() - 1;
-        let at = if s.frames().len() == n { 1.0 - 0.5 / n as f64 } else { 1.0 };
+        let at = if s.frames().len() == n {
+            1.0 - 0.5 / n as f64
+        } else {
+            1.0
+        };
         (*s.frames().last().unwrap(), at)
     };
     let (mut t, mut twist, mut total) = (vec![], vec![], vec![]);
@@ -29,7 +33,11 @@ fn history(text: &str) -> (Vec<f64>, Vec<f64>, Vec<f64>, f64, f64) {
         let clamp = s.positions()[0];
         assert!(clamp.norm() == 0.0, "the clamp moved: {clamp}");
         t.push(run.time());
-        twist.push((s.frames().last().unwrap() * rest.inverse()).scaled_axis().x);
+        twist.push(
+            (s.frames().last().unwrap() * rest.inverse())
+                .scaled_axis()
+                .x,
+        );
         let e = run.energy();
         total.push(e.total);
         kinetic = kinetic.max(e.kinetic);
@@ -61,7 +69,9 @@ fn check(text: &str, name: &str) {
         / (n_period as f64 * dt);
     let peak = twist.iter().cloned().fold(f64::MIN, f64::max);
     // First return to rest: the first minimum after the peak of the first period.
-    let k_peak = (0..n_period).max_by(|&a, &b| twist[a].total_cmp(&twist[b])).unwrap();
+    let k_peak = (0..n_period)
+        .max_by(|&a, &b| twist[a].total_cmp(&twist[b]))
+        .unwrap();
     let k_back = (k_peak..t.len() - 1)
         .find(|&k| twist[k + 1] > twist[k])
         .unwrap();
@@ -80,9 +90,18 @@ fn check(text: &str, name: &str) {
         peak / (2.0 * static_twist) - 1.0,
         back / period - 1.0
     );
-    assert!((mean / static_twist - 1.0).abs() < 1e-2, "{name}: mean twist {mean}");
-    assert!((peak / (2.0 * static_twist) - 1.0).abs() < 0.1, "{name}: peak twist {peak}");
-    assert!((back / period - 1.0).abs() < 2e-2, "{name}: return at {back} s");
+    assert!(
+        (mean / static_twist - 1.0).abs() < 1e-2,
+        "{name}: mean twist {mean}"
+    );
+    assert!(
+        (peak / (2.0 * static_twist) - 1.0).abs() < 0.1,
+        "{name}: peak twist {peak}"
+    );
+    assert!(
+        (back / period - 1.0).abs() < 2e-2,
+        "{name}: return at {back} s"
+    );
     assert!(drift < 1e-6, "{name}: energy drift {drift:.2e}");
 }
 

@@ -57,14 +57,21 @@ fn slice_moments(s: &crate::rod::SectionStiffness, rho_a: f64, length: f64) -> V
 
 /// The frames of a framed model with the free DOFs mapped by `dof` (own index → free index
 /// of the whole, [`FIXED`] when dropped), and the frame slot of each.
-fn framed_frames<T: FramedModel>(r: &T, dof: impl Fn(usize) -> usize) -> Vec<(usize, FrameInertia)> {
+fn framed_frames<T: FramedModel>(
+    r: &T,
+    dof: impl Fn(usize) -> usize,
+) -> Vec<(usize, FrameInertia)> {
     let core = r.core();
     let p = core.properties();
     (0..core.dofs().n_frames())
         .filter_map(|j| {
-            let dofs = core.dofs().frame_slots(j).map(|i| if i == FIXED { FIXED } else { dof(i) });
+            let dofs = core
+                .dofs()
+                .frame_slots(j)
+                .map(|i| if i == FIXED { FIXED } else { dof(i) });
             (dofs.iter().any(|&i| i != FIXED)).then(|| {
-                let principal = slice_moments(&p.stiffness, p.linear_density, core.frame_lengths[j]);
+                let principal =
+                    slice_moments(&p.stiffness, p.linear_density, core.frame_lengths[j]);
                 (j, FrameInertia { dofs, principal })
             })
         })
@@ -77,7 +84,10 @@ impl<T: FramedModel> FlatDofs for T {
     }
 
     fn frames(&self) -> Vec<FrameInertia> {
-        framed_frames(self, |i| i).into_iter().map(|(_, f)| f).collect()
+        framed_frames(self, |i| i)
+            .into_iter()
+            .map(|(_, f)| f)
+            .collect()
     }
 
     fn frame_orientations(&self, state: &Self::State, out: &mut Vec<UnitQuaternion<f64>>) {
@@ -122,7 +132,10 @@ impl FlatDofs for Structure {
             let dofs = core.dofs();
             for j in 0..dofs.n_frames() {
                 let slots = dofs.frame_slots(j);
-                if slots.iter().any(|&i| i != FIXED && self.frame_dof(m, i) != FIXED) {
+                if slots
+                    .iter()
+                    .any(|&i| i != FIXED && self.frame_dof(m, i) != FIXED)
+                {
                     out.push(s.frames()[j]);
                 }
             }

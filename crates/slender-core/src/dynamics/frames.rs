@@ -39,10 +39,9 @@ impl FrameInertia {
     /// `m` with the rows and columns of held components zeroed: the inertia the free
     /// components see (a held component does not move, and its reaction does no work).
     pub fn masked(&self, m: &Matrix3<f64>) -> Matrix3<f64> {
-        let free = self.free();
         let mut out = *m;
-        for k in 0..3 {
-            if !free[k] {
+        for (k, free) in self.free().into_iter().enumerate() {
+            if !free {
                 out.row_mut(k).fill(0.0);
                 out.column_mut(k).fill(0.0);
             }
@@ -69,7 +68,7 @@ impl FrameInertia {
         // a is symmetric positive definite on the free block and the identity elsewhere.
         a.cholesky()
             .map(|c| c.solve(&rhs))
-            .unwrap_or_else(|| Vector3::zeros())
+            .unwrap_or_else(Vector3::zeros)
     }
 
     /// Spatial angular velocity (rad/s) of this frame in a free-DOF velocity vector (0 on
@@ -93,7 +92,11 @@ impl FrameInertia {
 
     /// Angular momentum I ω (kg m²/s, in space) at `orientation` with angular velocity
     /// `omega` (rad/s), over the free components.
-    pub fn momentum(&self, orientation: &UnitQuaternion<f64>, omega: &Vector3<f64>) -> Vector3<f64> {
+    pub fn momentum(
+        &self,
+        orientation: &UnitQuaternion<f64>,
+        omega: &Vector3<f64>,
+    ) -> Vector3<f64> {
         let w = self.masked_vector(omega);
         self.masked(&self.spatial(orientation)) * w
     }
@@ -102,7 +105,9 @@ impl FrameInertia {
     /// (a planar rod turns its frames about the plane's normal only). Errors name
     /// `frames[f]`.
     pub(crate) fn validate(&self, f: usize) -> Result<(), ModelError> {
-        if let Some(k) = (0..3).find(|&k| !(self.principal[k].is_finite() && self.principal[k] > 0.0)) {
+        if let Some(k) =
+            (0..3).find(|&k| !(self.principal[k].is_finite() && self.principal[k] > 0.0))
+        {
             return Err(ModelError::parameter(
                 format!("frames[{f}].principal[{k}]"),
                 self.principal[k],

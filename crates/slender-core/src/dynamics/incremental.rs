@@ -237,7 +237,8 @@ impl<'m, P: FlatDofs> IncrementalProblem<'m, P> {
             return;
         }
         let mut orientations = self.orientations.borrow_mut();
-        self.model.frame_orientations(&self.start, &mut orientations);
+        self.model
+            .frame_orientations(&self.start, &mut orientations);
         let h = self.dt;
         self.frame_start.clear();
         for (f, p) in self.frames.iter().zip(orientations.iter()) {

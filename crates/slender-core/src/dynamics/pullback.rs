@@ -89,11 +89,11 @@ impl BlockHessian {
         }
         let mut run = [FIXED; 3];
         let mut len = 0;
-        for i in 0..n {
-            if slot[i].0 != usize::MAX {
+        for (i, si) in slot.iter_mut().enumerate() {
+            if si.0 != usize::MAX {
                 continue;
             }
-            slot[i] = (groups.len(), len);
+            *si = (groups.len(), len);
             run[len] = i;
             len += 1;
             if len == 3 {
@@ -301,7 +301,12 @@ impl SymmetricMatrix for BlockHessian {
         self.rows.iter().enumerate().find_map(|(ga, row)| {
             row.iter()
                 .any(|(_, b)| b.iter().any(|v| !v.is_finite()))
-                .then(|| self.groups[ga].into_iter().find(|&i| i != FIXED).unwrap_or(0))
+                .then(|| {
+                    self.groups[ga]
+                        .into_iter()
+                        .find(|&i| i != FIXED)
+                        .unwrap_or(0)
+                })
         })
     }
 
@@ -349,7 +354,9 @@ impl NodeFrameMap {
     pub(crate) fn contracted_hessian(&self, g: &Vector3<f64>) -> Matrix3<f64> {
         let a = self.log.jac * self.s;
         a.transpose() * self.exp.contracted_hessian(g) * a
-            + self.log.contracted_hessian(&(self.exp.jac.transpose() * g * self.s))
+            + self
+                .log
+                .contracted_hessian(&(self.exp.jac.transpose() * g * self.s))
     }
 }
 
