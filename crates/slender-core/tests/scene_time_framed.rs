@@ -1,5 +1,5 @@
 //! Time stepping of scenes with Cosserat rods and SE(3) beams (`[time]`): the example
-//! `examples/twisted_shaft.toml` (a clamped shaft struck by an end torque) against the
+//! `tests/scenes/twisted_shaft.toml` (a clamped shaft struck by an end torque) against the
 //! Saint-Venant torsion wave — the twist at arc length s averages Ts/(GJ) over a period,
 //! peaks near 2Ts/(GJ) and first returns to rest at t = 4L/c, c = √(GJ/(ρJ)) —, with energy
 //! conserved; the same scene with an SE(3) beam.
@@ -7,7 +7,7 @@
 use nalgebra::UnitQuaternion;
 use slender_core::scene::{Scene, TimeRun};
 
-const SCENE: &str = include_str!("../../../examples/twisted_shaft.toml");
+const SCENE: &str = include_str!("scenes/twisted_shaft.toml");
 
 /// (times, twist of the last frame about x (rad), total energies, largest kinetic energy,
 /// arc length of the last frame as a fraction of the length: a Cosserat rod's frames sit at

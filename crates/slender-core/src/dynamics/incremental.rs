@@ -45,8 +45,11 @@ use super::scheme::Scheme;
 ///
 /// with Ĩ the inertia at the predicted mid-step orientation e((h/2) ωₙ) pₙ (h the full step):
 /// Ĩ ωₙ = πₙ + (h/2) ωₙ × πₙ + O(h²), which puts the gyroscopic term ω × Iω of Euler's
-/// equations into the step at the order the schemes need (with Iₙ, a free body would turn
-/// about ωₙ instead of precessing). Newton moves the frame by spatial increments δ, in which
+/// equations into the step at the order the schemes need (with Iₙ the step would turn a free
+/// frame about ωₙ: a first-order error in its precession). A gyroscopic term does no work
+/// and is not the gradient of any function of y, so it can only enter the minimization
+/// through start data like these; the step stays a minimization. Newton moves the frame by
+/// spatial increments δ, in which
 /// φ has the Jacobian dexp⁻¹ = J_l(φ)⁻¹ and a second derivative ([`LogChart`]): K's gradient
 /// and Hessian go through both, so they are exact. After the step the momentum is balanced,
 /// π_{n+1} = πₙ + h T, with T the frame's torque (elastic, load and damping) at the unknown
