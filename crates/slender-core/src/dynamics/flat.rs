@@ -55,12 +55,9 @@ fn slice_moments(s: &crate::rod::SectionStiffness, rho_a: f64, length: f64) -> V
     Vector3::new(s.ei2, s.ei1, s.ei1 + s.ei2) * per_length
 }
 
-/// The frames of a framed model with the free DOFs mapped by `dof` (own index → free index
-/// of the whole, [`FIXED`] when dropped), and the frame slot of each.
-fn framed_frames<T: FramedModel>(
-    r: &T,
-    dof: impl Fn(usize) -> usize,
-) -> Vec<(usize, FrameInertia)> {
+/// The frames of a framed model whose rotation is free in at least one component, with the
+/// free DOFs mapped by `dof` (own index → free index of the whole, [`FIXED`] when dropped).
+fn framed_frames<T: FramedModel>(r: &T, dof: impl Fn(usize) -> usize) -> Vec<FrameInertia> {
     let core = r.core();
     let p = core.properties();
     (0..core.dofs().n_frames())
@@ -69,10 +66,9 @@ fn framed_frames<T: FramedModel>(
                 .dofs()
                 .frame_slots(j)
                 .map(|i| if i == FIXED { FIXED } else { dof(i) });
-            (dofs.iter().any(|&i| i != FIXED)).then(|| {
-                let principal =
-                    slice_moments(&p.stiffness, p.linear_density, core.frame_lengths[j]);
-                (j, FrameInertia { dofs, principal })
+            (dofs.iter().any(|&i| i != FIXED)).then(|| FrameInertia {
+                dofs,
+                principal: slice_moments(&p.stiffness, p.linear_density, core.frame_lengths[j]),
             })
         })
         .collect()
@@ -85,9 +81,6 @@ impl<T: FramedModel> FlatDofs for T {
 
     fn frames(&self) -> Vec<FrameInertia> {
         framed_frames(self, |i| i)
-            .into_iter()
-            .map(|(_, f)| f)
-            .collect()
     }
 
     fn frame_orientations(&self, state: &Self::State, out: &mut Vec<UnitQuaternion<f64>>) {
@@ -117,7 +110,7 @@ impl FlatDofs for Structure {
                 Member::Cosserat(r) => framed_frames(r, map),
                 Member::Se3(r) => framed_frames(r, map),
             };
-            out.extend(frames.into_iter().map(|(_, f)| f));
+            out.extend(frames);
         }
         out
     }
@@ -150,8 +143,8 @@ trait FrameDof {
 
 impl FrameDof for Structure {
     /// Framed members are never joined (joints, sliders and twist holds take discrete elastic
-    /// rods only), so their DOFs map one to one with coefficient 1; a DOF that did not would
-    /// not be a frame's rotation, and is left out (held) rather than mistaken for one.
+    /// rods only), so their DOFs map one to one with coefficient 1. A rotation DOF that did
+    /// not (a tie) would not be one frame's rotation: it is left out of the frame.
     fn frame_dof(&self, m: usize, own: usize) -> usize {
         let slot = self.member_dof(m, own);
         if slot.coef == 1.0 {
