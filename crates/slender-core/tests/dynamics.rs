@@ -610,7 +610,11 @@ fn a_jointed_structure_has_summed_joint_masses_and_conserves_energy() {
 }
 
 #[test]
-fn models_with_rotation_dofs_are_refused() {
+fn rotation_dofs_not_listed_as_frames_are_refused() {
+    // A structure of a Cosserat rod lists its frames and is stepped
+    // (tests/framed_dynamics.rs); a contact problem around it does not pass the frames on,
+    // so its rotation DOFs would be stepped as coordinates: refused, naming the model.
+    use slender_core::contact::{ContactParams, ContactProblem, Plane};
     let cosserat = CosseratBuilder::new(
         RestCurve::Straight {
             start: [0.0; 3],
@@ -628,7 +632,18 @@ fn models_with_rotation_dofs_are_refused() {
         .member(Member::Cosserat(cosserat))
         .build()
         .unwrap();
-    let e = TimeStepper::at_rest(&s, s.rest_state().clone(), DynamicsParams::new(1e-3))
+    let mut stepper = TimeStepper::at_rest(&s, s.rest_state().clone(), DynamicsParams::new(1e-3))
+        .expect("a structure of a Cosserat rod is stepped");
+    assert!(stepper.step().converged);
+    let plane = Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::y(), 0.0).unwrap();
+    let contact = ContactProblem::new(
+        &s,
+        vec![std::sync::Arc::new(plane)],
+        ContactParams::for_line_load(0.005, 1e-3, RHO_A * G),
+        s.rest_state(),
+    )
+    .unwrap();
+    let e = TimeStepper::at_rest(&contact, s.rest_state().clone(), DynamicsParams::new(1e-3))
         .err()
         .expect("refused");
     assert_eq!(field_of(e), "model");

@@ -201,16 +201,17 @@ fn bad_time_tables_and_what_time_stepping_does_not_cover_are_refused_naming_the_
         assert!(toml::from_str::<Scene>(&p(bad)).is_err(), "{bad}");
     }
     let ok = p("dt = 0.1\nduration = 1.0");
-    let cosserat = ok.replace(
-        "name = \"pendulum\"",
-        "name = \"pendulum\"\nmodel = \"cosserat\"",
-    );
-    assert_eq!(error_path(&cosserat), "rods[0].model");
-    let se3 = ok.replace(
-        "name = \"pendulum\"",
-        "name = \"pendulum\"\nmodel = \"se3\"",
-    );
-    assert_eq!(error_path(&se3), "rods[0].model");
+    // Every rod model is stepped (a Cosserat rod or SE(3) beam needs a clamp or three pins,
+    // with or without [time]).
+    for model in ["cosserat", "cosserat_tan", "se3"] {
+        let clamped = ok
+            .replace(
+                "name = \"pendulum\"",
+                &format!("name = \"pendulum\"\nmodel = \"{model}\""),
+            )
+            .replace("kind = \"pin\"", "kind = \"clamp\"");
+        assert!(scene(&clamped).compile().is_ok(), "{model}");
+    }
     let follower = ok.replace(
         "supports = [",
         "forces = [{ vertex = \"end\", force = [0.0, 0.0, 1.0], follower = true }]\nsupports = [",

@@ -14,13 +14,19 @@
 //! model, so the Newton loop, line search and convergence tests are reused unchanged;
 //! [`TimeStepper`] owns state, velocity and time and advances them.
 //!
+//! Rods with material frames (the Cosserat rod, the SE(3) beam) are stepped too: their frames'
+//! rotations live on SO(3), their rotary inertia turns with them, and the step measures them
+//! by log maps whose derivatives (dexp⁻¹) it carries exactly (see [`IncrementalProblem`]).
+//!
 //! Quasi-static solves are untouched: nothing here is used unless a [`TimeStepper`] is made.
 
 pub mod energy;
 pub mod flat;
+pub mod frames;
 pub mod incremental;
 pub mod mass;
 pub mod params;
+mod pullback;
 pub mod quadrature;
 pub mod report;
 pub mod scheme;
@@ -28,6 +34,7 @@ pub mod stepper;
 
 pub use energy::MechanicalEnergy;
 pub use flat::FlatDofs;
+pub use frames::FrameInertia;
 pub use incremental::IncrementalProblem;
 pub use mass::LumpedMass;
 pub use params::DynamicsParams;

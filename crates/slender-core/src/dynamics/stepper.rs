@@ -49,11 +49,14 @@ impl<P: FlatDofs> Clone for TimeStepper<'_, P> {
 
 impl<'m, P: FlatDofs> TimeStepper<'m, P> {
     /// A stepper starting at `state` with free-DOF velocity `velocity` (m/s for coordinates,
-    /// rad/s for angles; length [`EquilibriumProblem::n_free`](crate::solver::EquilibriumProblem::n_free)) at time 0.
+    /// rad/s for angles and for the spatial angular velocity of a frame on its three rotation
+    /// DOFs; length [`EquilibriumProblem::n_free`](crate::solver::EquilibriumProblem::n_free))
+    /// at time 0.
     ///
     /// Errors name the field: `dt`, `rayleigh_mass`, `rayleigh_stiffness`, `load`, a solver
     /// tolerance, `velocity` (wrong length or not finite), `inertia_metric[i]` (a DOF without
-    /// mass) or `model` (DOFs on a rotation group, see [`FlatDofs`]).
+    /// mass), `frames[f]…` (a frame's inertia or DOFs, see [`LumpedMass::of`]) or `model`
+    /// (rotation DOFs that are not listed as frames, see [`FlatDofs`]).
     pub fn new(
         model: &'m P,
         state: P::State,
@@ -61,11 +64,12 @@ impl<'m, P: FlatDofs> TimeStepper<'m, P> {
         params: DynamicsParams,
     ) -> Result<Self, ModelError> {
         params.validate()?;
-        if !model.has_flat_dofs() {
+        if !model.has_flat_dofs() && model.frames().is_empty() {
             return Err(ModelError::structure(
                 "model",
-                "time stepping needs flat DOFs (discrete elastic rods); this model has \
-                 rotation DOFs",
+                "time stepping needs coordinates and listed frames (FlatDofs::frames); this \
+                 model has rotation DOFs it does not list as frames (e.g. a contact problem \
+                 around a Cosserat rod or SE(3) beam)",
             ));
         }
         let n = model.n_free();
@@ -155,12 +159,41 @@ impl<'m, P: FlatDofs> TimeStepper<'m, P> {
         Ok(())
     }
 
-    /// Kinetic and potential energy (J) of the current state and velocity.
+    /// Kinetic and potential energy (J) of the current state and velocity (with the frames'
+    /// rotary kinetic energy ½ ωᵀ I ω at their current orientations).
     pub fn energy(&self) -> MechanicalEnergy {
-        MechanicalEnergy {
-            kinetic: self.mass.kinetic_energy(&self.velocity),
-            potential: self.problem.model().energy(&self.state, self.params.load),
+        let model = self.problem.model();
+        let mut kinetic = self.mass.kinetic_energy(&self.velocity);
+        if !self.mass.frames().is_empty() {
+            let mut orientations = Vec::new();
+            model.frame_orientations(&self.state, &mut orientations);
+            kinetic += self
+                .mass
+                .frames()
+                .iter()
+                .zip(&orientations)
+                .map(|(f, q)| f.kinetic_energy(q, &f.angular_velocity(&self.velocity)))
+                .sum::<f64>();
         }
+        MechanicalEnergy {
+            kinetic,
+            potential: model.energy(&self.state, self.params.load),
+        }
+    }
+
+    /// The spatial angular momentum I ω (kg m²/s) of every frame (in the order of
+    /// [`LumpedMass::frames`]) at the current state and velocity; empty without frames.
+    pub fn frame_momenta(&self) -> Vec<nalgebra::Vector3<f64>> {
+        let mut orientations = Vec::new();
+        self.problem
+            .model()
+            .frame_orientations(&self.state, &mut orientations);
+        self.mass
+            .frames()
+            .iter()
+            .zip(&orientations)
+            .map(|(f, q)| f.momentum(q, &f.angular_velocity(&self.velocity)))
+            .collect()
     }
 
     /// Advances by one time step: solves the scheme's equation by Newton from the inertial
@@ -176,7 +209,12 @@ impl<'m, P: FlatDofs> TimeStepper<'m, P> {
             &self.params.solver,
             &mut self.ws,
         );
-        if !outcome.converged {
+        // A start already at the solution up to round-off (a rigid spin of stiff elements:
+        // no force anywhere, the residual is the rounding of their strains) can stop with no
+        // descent left at its first iterate, before the convergence test has a second residual
+        // to compare; its residual under the round-off floor makes it converged all the same.
+        let at_roundoff = outcome.last.residual <= outcome.last.floor;
+        if !(outcome.converged || at_roundoff) {
             return StepReport {
                 converged: false,
                 iterations: outcome.iterations,

@@ -11,12 +11,18 @@
 //!   by the chain rule through the exact second-order expansion of the quaternions involved
 //!   ([`quaternion`]) and maps of a quaternion with their own derivatives ([`darboux`],
 //!   [`twist_angle`], [`se3`]). Only contractions of second derivatives with a weight vector
-//!   are ever needed, so that is what the Hessian functions return.
+//!   are ever needed, so that is what the Hessian functions return;
+//! * rotation vectors measured from a fixed frame (log maps, as a time step's inertia does)
+//!   are differentiated in the same chart by [`rotation_chart`] (dexp⁻¹ and dexp, with their
+//!   derivatives), through the quaternion exponential of [`exp_map`].
 
 pub mod darboux;
+pub mod exp_map;
 pub mod quaternion;
+pub mod rotation_chart;
 pub mod se3;
 pub mod twist_angle;
 
 pub use darboux::{DarbouxMeasure, QuaternionMap};
 pub use quaternion::{Quat, RelativeRotation, SingleRotation};
+pub use rotation_chart::{left_jacobian, ExpChart, LogChart};

@@ -3,8 +3,9 @@
 //! t = 0. No I/O: the caller (`slender solve`) writes the frames.
 //!
 //! Supports stay at their rest pose, so a time-stepped scene has no prescribed motion (it is
-//! refused when compiling), and shells and Cosserat/SE(3) rods are refused too (see
-//! [`compile::time`](super::compile::time)).
+//! refused when compiling), and shells are refused too (see
+//! [`compile::time`](super::compile::time)). Cosserat rods and SE(3) beams are stepped like
+//! discrete elastic rods: the stepper takes their frames' rotary inertia from the structure.
 
 use crate::dynamics::TimeStepper;
 use crate::solver::{EquilibriumProblem, SolveReport, SolveStatus};

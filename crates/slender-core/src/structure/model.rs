@@ -83,6 +83,12 @@ impl Structure {
         }
     }
 
+    /// Where member `m`'s own free DOF `own` goes among the structure's free DOFs (global
+    /// DOF and coefficient; the DOF is [`FIXED`] when a structure-level support drops it).
+    pub fn member_dof(&self, m: usize, own: usize) -> crate::assembly::MapSlot {
+        self.dofs.maps[m][own]
+    }
+
     /// The members.
     pub fn members(&self) -> &[Member] {
         &self.members

@@ -1,11 +1,11 @@
 //! The `[time]` table: validated into the parameters of a time integration, and the scene
-//! checked for what time stepping covers (discrete elastic rods, conservative loads, fixed
+//! checked for what time stepping covers (rods of every model, conservative loads, fixed
 //! supports).
 
 use crate::dynamics::DynamicsParams;
 
 use super::super::error::SceneError;
-use super::super::spec::{RodModelSpec, Scene, TimeSpec};
+use super::super::spec::{Scene, TimeSpec};
 
 /// Largest number of time steps a scene may ask for.
 pub const MAX_TIME_STEPS: usize = 10_000_000;
@@ -100,17 +100,9 @@ pub(crate) fn check_time(scene: &Scene, time: &TimeSpec) -> Result<CompiledTime,
         Some(k) => k,
         None => steps.div_ceil(DEFAULT_FRAMES).max(1),
     };
+    // Every rod model is stepped: the Cosserat rod's and the SE(3) beam's frames carry their
+    // rotary inertia (dynamics::IncrementalProblem).
     for (i, rod) in scene.rods.iter().enumerate() {
-        if rod.model != RodModelSpec::Der {
-            return Err(SceneError::new(
-                format!("rods[{i}].model"),
-                format!(
-                    "\"{}\": time stepping ([time]) covers discrete elastic rods only; use \
-                     model = \"der\" or remove [time]",
-                    rod.model.name()
-                ),
-            ));
-        }
         for (k, f) in rod.forces.iter().enumerate() {
             if f.follower {
                 return Err(SceneError::new(
@@ -133,8 +125,8 @@ pub(crate) fn check_time(scene: &Scene, time: &TimeSpec) -> Result<CompiledTime,
     if !scene.shells.is_empty() {
         return Err(SceneError::new(
             "shells",
-            "time stepping ([time]) covers discrete elastic rods only; a scene with \
-             [[shells]] cannot have [time] (remove one of them)",
+            "time stepping ([time]) covers rods only; a scene with [[shells]] cannot have \
+             [time] (remove one of them)",
         ));
     }
     if !scene.obstacles.is_empty() || scene.contact.as_ref().is_some_and(|c| c.self_contact) {
