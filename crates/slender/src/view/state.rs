@@ -6,6 +6,7 @@
 //! in a session: [`SceneGeometry`] is sent once, with the reply to `state`.
 
 use serde::Serialize;
+use serde_json::Value;
 use slender_core::bspline_shell::StripEnd;
 use slender_core::geometry::Vec3;
 use slender_core::scene::spec::{ObstacleShapeSpec, SectionSpec, SupportKind, UnstablePolicy};
@@ -37,6 +38,16 @@ pub struct ViewState {
     /// Smallest gap (m) between a rod's surface and an obstacle over the scene; `None` without
     /// obstacles.
     pub min_gap: Option<f64>,
+    /// With self-contact (`contact.self_contact`): every active contact between two segments
+    /// of the centerlines, as the core's results list them (`segment_contacts`: kind, the two
+    /// sides' rods, edges or vertex, closest points and forces, gap); absent without
+    /// self-contact, or from a core whose results do not list them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub segment_contacts: Option<Value>,
+    /// With self-contact: the smallest gap (m) between two segments that may touch, as the
+    /// core's results give it (`min_segment_gap`); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_segment_gap: Option<Value>,
 }
 
 /// One rod as drawn.
@@ -297,6 +308,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 .collect(),
         })
         .collect();
+    let (segment_contacts, min_segment_gap) = segment_contacts(session, step);
     ViewState {
         gravity: session.spec().gravity,
         unstable_policy: session.spec().unstable,
@@ -307,6 +319,30 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
         shells,
         obstacles: step.obstacles.clone(),
         min_gap: step.min_gap,
+        segment_contacts,
+        min_segment_gap,
+    }
+}
+
+/// The results' `segment_contacts` and `min_segment_gap` (self-contact), read by name from
+/// the serialized step: the view forwards them where the core reports them and needs no
+/// change of its own when they appear or change. Only scenes with self-contact pay for the
+/// serialization.
+fn segment_contacts(session: &Session, step: &SceneStep) -> (Option<Value>, Option<Value>) {
+    let self_contact = session
+        .compiled()
+        .contact
+        .as_ref()
+        .is_some_and(|c| c.params.iter().any(|p| p.self_contact));
+    if !self_contact {
+        return (None, None);
+    }
+    match serde_json::to_value(step) {
+        Ok(Value::Object(mut m)) => (
+            m.remove("segment_contacts").filter(|v| !v.is_null()),
+            m.remove("min_segment_gap").filter(|v| !v.is_null()),
+        ),
+        _ => (None, None),
     }
 }
 
