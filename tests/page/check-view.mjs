@@ -21,6 +21,9 @@
 //     server's reply, coloured by sticking / sliding / frictionless; the normal-force arrows
 //     along the reply's normal forces with lengths |f_n| × the page's scale; the bracket's
 //     value under the pointer (hover) and its resultant in the panel; a drag updates them.
+//  5b. cable on cable (scenes/crossing_cables.toml, self_contact): where the core's results
+//     list the touching segment pairs, one marker per pair, the force on each cable as an
+//     arrow, the pair's values on hover (skipped, and said so, where they are not listed).
 //  6. speed (a measurement, never a pass/fail criterion): drag a 100-element cable with 3 clips
 //     and a 100-element flat cable; update rates, median and 95th percentile of frame times.
 //
@@ -384,6 +387,48 @@ try {
     `bracket: after a drag (${v5.converged ? "converged" : "not converged: last equilibrium kept"}) ${d5b.markers.length} markers for the reply's ${countContacts(last5)} contacts, min gap ${last5.view.min_gap.toExponential(2)} m`);
   for (const e of s5.errors) fail(e);
   check(s5.errors.length === 0, "no console errors (bracket page)");
+
+  // ---- 5b. cable on cable (self-contact), where the core's results list the pairs ----
+  const s5c = await open(join(scenes, "crossing_cables.toml"));
+  sessions.push(s5c);
+  const r5c = await s5c.replies[0];
+  if (r5c.view.segment_contacts === undefined) {
+    console.log("view test: skipped cable on cable: the core's results do not list segment contacts (segment_contacts)");
+  } else {
+    const pairs = r5c.view.segment_contacts;
+    const d5c = await s5c.page.evaluate(() => {
+      const out = { markers: [], arrows: [] };
+      window.slender.scene.updateMatrixWorld(true);
+      const visible = (o) => { for (let x = o; x; x = x.parent) if (!x.visible) return false; return true; };
+      window.slender.scene.traverse((o) => {
+        if (o.userData.pairMarker && visible(o)) out.markers.push({ pair: o.userData.pair, at: o.getWorldPosition(o.position.clone()).toArray() });
+        if (o.userData.contactArrow === "pair" && visible(o)) {
+          out.arrows.push({ pair: o.userData.pair, origin: o.getWorldPosition(o.position.clone()).toArray(), tip: o.cone.getWorldPosition(o.position.clone()).toArray() });
+        }
+      });
+      out.scale = window.slender.contactScale();
+      return out;
+    });
+    check(pairs.length >= 1 && d5c.markers.length === pairs.length,
+      `cable on cable: ${d5c.markers.length} pair markers for the reply's ${pairs.length} touching segment pairs (min segment gap ${r5c.view.min_segment_gap})`);
+    // Two arrows per pair, one along each side's force, |f| × the scale long.
+    let worst = 0;
+    for (const a of d5c.arrows) {
+      const p = pairs[a.pair];
+      const v = a.tip.map((x, k) => x - a.origin[k]);
+      const err = Math.min(...[p.force_a, p.force_b].map((f) => Math.hypot(...v.map((x, k) => x - f[k] * d5c.scale))));
+      worst = Math.max(worst, err / (Math.hypot(...p.force_a) * d5c.scale));
+    }
+    check(d5c.arrows.length === 2 * pairs.length && worst < 1e-6, `cable on cable: the force on each cable drawn (${d5c.arrows.length} arrows, to ${worst.toExponential(1)})`);
+    const at = await s5c.page.evaluate((x) => window.slender.screenPointOf(x), d5c.markers[0].at);
+    await s5c.page.mouse.move(at.x, at.y);
+    await s5c.page.waitForSelector("#tooltip:not([hidden])", { timeout: 5000 }).catch(() => {});
+    const tip = await s5c.page.evaluate(() => (document.getElementById("tooltip").hidden ? "" : document.getElementById("tooltip").textContent));
+    check(/^(lower|upper) (edge|vertex) \d+ – (lower|upper) edge \d+ /.test(tip), `cable on cable: hovering the pair shows "${tip}"`);
+    await s5c.page.screenshot({ path: join(out, "view-cable-on-cable.png") });
+  }
+  for (const e of s5c.errors) fail(e);
+  check(s5c.errors.length === 0, "no console errors (crossing cables page)");
 
   // ---- 6. speed (measured, not asserted) ----
   const speed = {};

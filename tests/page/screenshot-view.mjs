@@ -3,8 +3,8 @@
 //    curvature, the pin selected;
 //  - assets/view-contact.png (with a third argument): examples/cable_over_bracket.toml, the
 //    cable draped over the bracket onto the rough floor, its contacts (sticking, sliding,
-//    frictionless) with their force arrows, a contact's values under the pointer, the panel
-//    at the obstacles.
+//    frictionless) with their force arrows, a floor contact's values under the pointer, the
+//    panel at the obstacles with the floor's contacts listed.
 // Usage: node screenshot-view.mjs SLENDER_BINARY OUT.png [CONTACT_OUT.png]
 import { launchChromium } from "./chromium.mjs";
 import { spawn } from "node:child_process";
@@ -41,7 +41,7 @@ try {
   if (contactShot) {
     await withView(browser, join(here, "../../examples/cable_over_bracket.toml"), { width: 1280, height: 820 }, async (page) => {
       await page.selectOption("#colour", "curvature");
-      await page.evaluate(() => window.slender.setCamera([0.72, -1.2, 0.42], [0.8, 0, 0.1]));
+      await page.evaluate(() => window.slender.setCamera([0.3, -1.85, 0.62], [0.76, 0, 0.1]));
       // The pointer on the floor's strongest contact: its values in the tooltip.
       const p = await page.evaluate(() => {
         const s = window.slender;
@@ -52,7 +52,11 @@ try {
       });
       await page.mouse.move(p.x, p.y);
       await page.waitForSelector("#tooltip:not([hidden])");
-      await page.evaluate(() => document.getElementById("contacts-box").scrollIntoView());
+      // The panel at the obstacles, the floor's contacts listed.
+      await page.evaluate(() => {
+        document.querySelector('#obstacle-table details[data-obstacle="1"]').open = true;
+        document.getElementById("contacts-box").scrollIntoView();
+      });
       await page.screenshot({ path: contactShot });
     });
   }

@@ -604,3 +604,28 @@ fn fuzz_contact_scene_requests() {
         Ok(())
     });
 }
+
+#[test]
+fn self_contact_pairs_are_forwarded_as_the_results_list_them() {
+    // Two cables crossing 8 mm apart, the upper one sagging onto the lower one (the page
+    // test's scene). Where the core's results list the touching segment pairs, the view
+    // carries them unchanged; where they do not, the view has none either.
+    let scene: Scene = toml::from_str(include_str!(
+        "../../../../tests/page/scenes/crossing_cables.toml"
+    ))
+    .expect("the crossing scene parses");
+    let mut s = Session::new(scene).expect("the crossing scene compiles");
+    let (v, _) = exchange(&mut s, r#"{"op": "state"}"#);
+    assert_eq!(v["geometry"]["self_contact"], json!(true));
+    assert_eq!(v["geometry"]["obstacles"], json!([]));
+    let step = serde_json::to_value(s.results(0, None, 1.0, 1)).unwrap();
+    assert_eq!(v["view"]["segment_contacts"], step["segment_contacts"]);
+    assert_eq!(v["view"]["min_segment_gap"], step["min_segment_gap"]);
+    if let Some(pairs) = step["segment_contacts"].as_array() {
+        assert!(!pairs.is_empty(), "the cables touch: {step}");
+    }
+    // Without self-contact nothing is forwarded.
+    let (v, _) = exchange(&mut contact_session(), r#"{"op": "state"}"#);
+    assert!(v["view"].get("segment_contacts").is_none());
+    assert_eq!(v["geometry"]["self_contact"], json!(false));
+}

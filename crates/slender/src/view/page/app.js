@@ -505,14 +505,20 @@ function buildObstacles() {
   const any = geometry.obstacles.length > 0 || geometry.self_contact;
   $("contacts-box").hidden = !any;
   $("pair-legend").hidden = !geometry.self_contact;
+  const obstacles = geometry.obstacles.length > 0;
+  $("min-gap-row").hidden = !obstacles;
+  $("show-obstacles-row").hidden = !obstacles;
+  const unbounded = geometry.obstacles.some((o) => o.shape.kind === "plane" || o.shape.kind === "cylinder");
   $("gap-note").textContent = geometry.activation
-    ? `Contacts rest within the activation distance ĝ = ${fmtGap(geometry.activation)} of a surface; a negative gap would be a penetration. Planes and round bars are unbounded: drawn over the scene.`
+    ? `Contacts rest within the activation distance ĝ = ${fmtGap(geometry.activation)} of a surface; a negative gap would be a penetration.${unbounded ? " Planes and round bars are unbounded: drawn over the scene." : ""}`
     : "";
 }
 
 function fmtGap(g) {
   if (g === null || g === undefined) return "–";
-  return Math.abs(g) >= 1e-2 ? `${(g * 1000).toPrecision(3)} mm` : `${g.toExponential(2)} m`;
+  if (g >= 1e-3) return `${(g * 1e3).toPrecision(3)} mm`;
+  if (g >= 1e-6) return `${(g * 1e6).toPrecision(3)} µm`;
+  return `${g.toExponential(2)} m`;
 }
 
 /** Sticking, sliding, or frictionless (μ = 0: nothing to stick with). */
@@ -649,11 +655,12 @@ function updateContactPanel() {
     const counts = ["sticking", "sliding", "frictionless"].map((k) => [k, mine.filter((h) => h.state === k).length]).filter(([, n]) => n > 0);
     const kind = geometry?.obstacles[i]?.shape.kind ?? "";
     const f = ob.force;
-    const rows = mine.slice(0, 200).map((h) => `<tr class="contact-row"><td>${h.c.rod} v ${h.c.vertex}</td><td>${fmtGap(h.c.gap)}</td><td>${fmtForce(Math.hypot(...h.c.normal_force))}</td><td>${fmtForce(Math.hypot(...h.c.friction_force))}</td><td><span class="swatch" style="background:#${CONTACT_COLOURS[h.state].toString(16).padStart(6, "0")}"></span>${h.state}</td></tr>`).join("");
+    const where = (c) => (view.rods.length > 1 ? `${c.rod} v ${c.vertex}` : `v ${c.vertex}`);
+    const rows = mine.slice(0, 200).map((h) => `<tr class="contact-row"><td>${where(h.c)}</td><td>${fmtGap(h.c.gap)}</td><td>${fmtForce(Math.hypot(...h.c.normal_force))}</td><td>${h.state === "frictionless" ? "–" : fmtForce(Math.hypot(...h.c.friction_force))}</td><td><span class="swatch" title="${h.state}" style="background:#${CONTACT_COLOURS[h.state].toString(16).padStart(6, "0")}"></span>${{ sticking: "stick", sliding: "slide", frictionless: "" }[h.state]}</td></tr>`).join("");
     return `<div class="obstacle" data-obstacle="${i}"><b>${ob.name}</b> <span class="muted">${kind}, μ = ${ob.friction}</span><br>
       ${mine.length} contact${mine.length === 1 ? "" : "s"}${counts.length ? ` (${counts.map(([k, n]) => `${n} ${k}`).join(", ")})` : ""};
       resultant <b class="resultant">${fmtForce(Math.hypot(...f))}</b> <span class="muted">[${f.map((x) => x.toExponential(2)).join(", ")}] N</span>
-      ${mine.length ? `<details data-obstacle="${i}"${open.has(String(i)) ? " open" : ""}><summary>contacts</summary><table><tr><td>at</td><td>gap</td><td>|normal|</td><td>|friction|</td><td></td></tr>${rows}</table></details>` : ""}</div>`;
+      ${mine.length ? `<details data-obstacle="${i}"${open.has(String(i)) ? " open" : ""}><summary>contacts</summary><table><tr><td>at</td><td>gap</td><td>|normal|</td><td>|friction|</td><td></td></tr>${rows}</table>${mine.length > 200 ? `<div class="note">the first 200 of ${mine.length}</div>` : ""}</details>` : ""}</div>`;
   }).join("");
 }
 
@@ -676,6 +683,7 @@ function hover(ev) {
   const box = canvas.getBoundingClientRect();
   tip.hidden = false;
   tip.textContent = c ? contactText(c) : pairText(p);
+  tip.classList.toggle("left", ev.clientX - box.left > 0.5 * box.width);
   tip.style.left = `${ev.clientX - box.left}px`;
   tip.style.top = `${ev.clientY - box.top}px`;
 }
