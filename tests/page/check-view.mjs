@@ -11,7 +11,20 @@
 //  3. Euler column: push a straight clamped column past its Euler load (scenes/euler_column.toml,
 //     unstable = "keep"): the page marks it unstable; "Snap to the stable branch" buckles it
 //     and the mark goes.
-//  4. speed (a measurement, never a pass/fail criterion): drag a 100-element cable with 3 clips
+//  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar and a ramp read
+//     from an OBJ file): each is a mesh of the three.js scene, tagged with its obstacle, at its
+//     pose (the ball's bounds, the box's corners, the ramp's vertices as in the file); the
+//     toggle hides them; one marker per active contact of the server's reply; the clamp
+//     dragged 8 cm down, into the floor: every reply's min gap > 0, no vertex under the floor,
+//     the page shows the min gap ≥ 0 and the refused move, no console errors.
+//  5. contacts (examples/cable_over_bracket.toml): one marker per active contact of the
+//     server's reply, coloured by sticking / sliding / frictionless; the normal-force arrows
+//     along the reply's normal forces with lengths |f_n| × the page's scale; the bracket's
+//     value under the pointer (hover) and its resultant in the panel; a drag updates them.
+//  5b. cable on cable (scenes/crossing_cables.toml, self_contact): where the core's results
+//     list the touching segment pairs, one marker per pair, the force on each cable as an
+//     arrow, the pair's values on hover (skipped, and said so, where they are not listed).
+//  6. speed (a measurement, never a pass/fail criterion): drag a 100-element cable with 3 clips
 //     and a 100-element flat cable; update rates, median and 95th percentile of frame times.
 //
 // Usage: node check-view.mjs SLENDER_BINARY [OUT_DIR]
@@ -84,18 +97,21 @@ const quantile = (xs, q) => {
 
 const browser = await launchChromium();
 
-/** Opens the page of `scene`; collects console errors, page errors and failed requests. */
+/** Opens the page of `scene`; collects console errors, page errors and failed requests, and
+ *  the server's replies to the page's requests (`replies`: promises of the JSON, in order). */
 async function open(scene) {
   const { url, proc } = await startView(scene);
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 }, acceptDownloads: true });
   const errors = [];
+  const replies = [];
+  page.on("response", (r) => { if (r.url().endsWith("/api")) replies.push(r.json()); });
   page.on("console", (m) => { if (m.type() === "error") errors.push(`console error: ${m.text()}`); });
   page.on("pageerror", (e) => errors.push(`page error: ${e.message}`));
   page.on("requestfailed", (r) => errors.push(`request failed: ${r.url()} (${r.failure()?.errorText})`));
   page.on("response", (r) => { if (r.status() >= 400) errors.push(`HTTP ${r.status()}: ${r.url()}`); });
   await page.goto(url);
   await page.waitForSelector("body[data-ready=true]", { timeout: 30000 });
-  return { page, proc, errors, url };
+  return { page, proc, errors, url, replies };
 }
 
 /** Fraction of canvas pixels that differ from the background colour. */
@@ -214,7 +230,207 @@ try {
   for (const e of s3.errors) fail(e);
   check(s3.errors.length === 0, "no console errors (Euler page)");
 
-  // ---- 4. speed (measured, not asserted) ----
+  // ---- 4. obstacles drawn; a clamp dragged into the floor ----
+  const s4 = await open(join(scenes, "obstacles.toml"));
+  sessions.push(s4);
+  const first = await s4.replies[0];
+  const shapes = first.geometry?.obstacles ?? [];
+  /** What the page's three.js scene holds: obstacle meshes, visible contact markers, contact
+   *  arrows (world-space origin, tip, the force they stand for), all read from the scene graph. */
+  const drawn = (page) => page.evaluate(() => {
+    const out = { obstacles: [], markers: [], arrows: [] };
+    window.slender.scene.updateMatrixWorld(true);
+    const visible = (o) => { for (let x = o; x; x = x.parent) if (!x.visible) return false; return true; };
+    window.slender.scene.traverse((o) => {
+      if (o.isMesh && o.name.startsWith("obstacle:")) {
+        const pos = o.geometry.attributes.position;
+        const world = [];
+        for (let i = 0; i < pos.count; i++) world.push(o.localToWorld(o.position.clone().fromBufferAttribute(pos, i)).toArray());
+        o.geometry.computeBoundingBox();
+        const box = o.geometry.boundingBox.clone().applyMatrix4(o.matrixWorld);
+        out.obstacles.push({ ...o.userData, name: o.name, visible: visible(o), triangles: (o.geometry.index ? o.geometry.index.count : pos.count) / 3,
+          world, box: [box.min.toArray(), box.max.toArray()] });
+      }
+      if (o.userData.contactMarker && visible(o)) {
+        out.markers.push({ ...o.userData.contact, colour: o.material.color.getHex(), at: o.getWorldPosition(o.position.clone()).toArray() });
+      }
+      if (o.userData.contactArrow && visible(o)) {
+        const origin = o.getWorldPosition(o.position.clone());
+        const tip = o.cone.getWorldPosition(o.position.clone());
+        out.arrows.push({ kind: o.userData.contactArrow, force: o.userData.force, ...o.userData.contact, origin: origin.toArray(), tip: tip.toArray() });
+      }
+    });
+    out.scale = window.slender.contactScale();
+    return out;
+  });
+  const countContacts = (reply) => reply.view.obstacles.reduce((n, o) => n + o.contacts.length, 0);
+  let d4 = await drawn(s4.page);
+  const kinds = d4.obstacles.map((o) => `${o.name.slice(9)}=${o.kind}`).join(", ");
+  check(shapes.length === 5 && d4.obstacles.length === 5 && d4.obstacles.every((o, i) => o.obstacle === i && o.kind === shapes[i].shape.kind && o.visible),
+    `obstacles: every obstacle is a mesh of the scene, tagged (${kinds})`);
+  const ball = d4.obstacles.find((o) => o.kind === "sphere");
+  const ballErr = Math.max(...[0, 1, 2].flatMap((k) => [Math.abs(ball.box[0][k] - ([0.4, 0, 0][k] - 0.045)), Math.abs(ball.box[1][k] - ([0.4, 0, 0][k] + 0.045))]));
+  check(ballErr < 1e-6, `obstacles: the ball's bounds are its centre ± its radius (${ballErr.toExponential(1)} m)`);
+  // The box's corners: centre + R(rotate)·(±size/2), R by Rodrigues' formula.
+  const rodrigues = (w, v) => {
+    const t = Math.hypot(...w);
+    if (t === 0) return v;
+    const k = w.map((x) => x / t);
+    const kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    const kxv = [k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]];
+    return v.map((x, i) => x * Math.cos(t) + kxv[i] * Math.sin(t) + k[i] * kv * (1 - Math.cos(t)));
+  };
+  const block = d4.obstacles.find((o) => o.kind === "box");
+  const corners = [];
+  for (const sx of [-1, 1]) for (const sy of [-1, 1]) for (const sz of [-1, 1])
+    corners.push(rodrigues([0, 0, 0.4], [sx * 0.03, sy * 0.04, sz * 0.015]).map((x, i) => x + [0.2, 0, 0.015][i]));
+  const nearest = (p, pts) => Math.min(...pts.map((q) => Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2])));
+  const boxErr = Math.max(...corners.map((c) => nearest(c, block.world)));
+  check(boxErr < 1e-6, `obstacles: the box's corners at its centre, size and rotation (${boxErr.toExponential(1)} m)`);
+  // The ramp: the OBJ file's triangles, at the file's vertices.
+  const obj = readFileSync(join(scenes, "ramp.obj"), "utf8").split("\n");
+  const objVertices = obj.filter((l) => l.startsWith("v ")).map((l) => l.split(/\s+/).slice(1, 4).map(Number));
+  const objFaces = obj.filter((l) => l.startsWith("f ")).length;
+  const ramp = d4.obstacles.find((o) => o.kind === "mesh");
+  const rampErr = Math.max(...ramp.world.map((p) => nearest(p, objVertices)), ...objVertices.map((p) => nearest(p, ramp.world)));
+  check(ramp.triangles === objFaces && rampErr < 1e-6, `obstacles: the ramp has the OBJ file's ${objFaces} triangles at its vertices (${ramp.triangles} drawn, ${rampErr.toExponential(1)} m)`);
+  const floor = d4.obstacles.find((o) => o.kind === "plane");
+  const floorShape = shapes.find((o) => o.shape.kind === "plane").shape;
+  check(Math.max(Math.abs(floor.box[0][2]), Math.abs(floor.box[1][2])) < 1e-9 && Math.abs(floor.box[1][0] - floor.box[0][0] - floorShape.size) < 1e-6,
+    `obstacles: the floor is a square of ${floorShape.size.toFixed(3)} m in its plane`);
+  check(d4.markers.length === countContacts(first) && d4.markers.length > 0,
+    `obstacles: ${d4.markers.length} contact markers for the reply's ${countContacts(first)} active contacts`);
+  const shown = await paintedFraction(s4.page);
+  await s4.page.click("#show-obstacles");
+  const hidden = await drawn(s4.page);
+  const without = await paintedFraction(s4.page);
+  await s4.page.click("#show-obstacles");
+  check(hidden.obstacles.every((o) => !o.visible) && without < shown && (await drawn(s4.page)).obstacles.every((o) => o.visible),
+    `obstacles: the toggle hides and shows them (${(100 * shown).toFixed(1)} % → ${(100 * without).toFixed(1)} % of pixels drawn)`);
+  // Drag the clamp 8 cm down (to 2 cm under the floor) in 1 cm gizmo moves.
+  const n4 = s4.replies.length;
+  await s4.page.evaluate(async () => {
+    for (let k = 0; k < 8; k++) await window.slender.dragSupport(0, 0, [0, 0, -0.01], 1);
+  });
+  const dragReplies = await Promise.all(s4.replies.slice(n4));
+  const gaps = dragReplies.filter((r) => r.ok).map((r) => r.view.min_gap);
+  const lowest = Math.min(...dragReplies.filter((r) => r.ok).flatMap((r) => r.view.rods[0].positions.map((p) => p[2])));
+  const refused = dragReplies.filter((r) => !r.ok || !r.edit?.converged).length;
+  check(gaps.length === dragReplies.length && gaps.every((g) => g > 0) && lowest > 0,
+    `drag into the floor: ${dragReplies.length} replies, every min gap > 0 (smallest ${Math.min(...gaps).toExponential(2)} m), lowest vertex at ${(lowest * 1000).toFixed(2)} mm`);
+  check(refused > 0, `drag into the floor: the moves that would take the cable through it do not converge (${refused} of ${dragReplies.length}) and keep the last equilibrium`);
+  const last4 = dragReplies.at(-1);
+  const pageGap = await s4.page.evaluate(() => ({ data: Number(document.body.dataset.minGap), text: document.getElementById("min-gap").textContent, status: document.getElementById("st-converged").textContent }));
+  check(pageGap.data === last4.view.min_gap && pageGap.data >= 0 && pageGap.text !== "–",
+    `drag into the floor: the page shows min gap ${pageGap.text} (≥ 0), status "${pageGap.status}"`);
+  d4 = await drawn(s4.page);
+  check(d4.markers.length === countContacts(last4), `drag into the floor: ${d4.markers.length} markers for the last reply's ${countContacts(last4)} contacts`);
+  await s4.page.screenshot({ path: join(out, "view-obstacles.png") });
+  for (const e of s4.errors) fail(e);
+  check(s4.errors.length === 0, "no console errors (obstacles page)");
+
+  // ---- 5. contacts of the cable over the bracket ----
+  const s5 = await open(join(here, "../../examples/cable_over_bracket.toml"));
+  sessions.push(s5);
+  const r5 = await s5.replies[0];
+  const d5 = await drawn(s5.page);
+  check(d5.obstacles.map((o) => `${o.name}=${o.kind}`).join() === "obstacle:bracket=cylinder,obstacle:floor=plane", `bracket: the bar and the floor are drawn (${d5.obstacles.map((o) => o.name).join(", ")})`);
+  check(d5.markers.length === countContacts(r5) && d5.markers.length >= 2,
+    `bracket: ${d5.markers.length} contact markers for the reply's ${countContacts(r5)} active contacts`);
+  const colours = { sticking: 0x2e7d32, sliding: 0xe65100, frictionless: 0x8e24aa };
+  const stateOf = (o, c) => (o.friction === 0 ? "frictionless" : c.sticking ? "sticking" : "sliding");
+  const byState = {};
+  const colourOk = d5.markers.every((m) => {
+    const o = r5.view.obstacles[m.obstacle];
+    const st = stateOf(o, o.contacts[m.index]);
+    byState[st] = (byState[st] ?? 0) + 1;
+    return m.colour === colours[st];
+  });
+  check(colourOk, `bracket: markers coloured by state (${Object.entries(byState).map(([k, n]) => `${n} ${k}`).join(", ")})`);
+  // Normal-force arrows: along the reply's force, |f_n| × the page's scale long.
+  let worstLen = 0, worstDir = 0, arrowsSeen = 0;
+  for (const a of d5.arrows.filter((x) => x.kind === "normal")) {
+    const f = r5.view.obstacles[a.obstacle].contacts[a.index].normal_force;
+    const fn = Math.hypot(...f);
+    const v = a.tip.map((x, k) => x - a.origin[k]);
+    const len = Math.hypot(...v);
+    worstLen = Math.max(worstLen, Math.abs(len - fn * d5.scale) / (fn * d5.scale));
+    worstDir = Math.max(worstDir, 1 - v.reduce((s, x, k) => s + x * f[k], 0) / (len * fn));
+    arrowsSeen++;
+  }
+  const bracketFn = Math.hypot(...r5.view.obstacles[0].contacts[0].normal_force);
+  const bracketArrow = d5.arrows.find((a) => a.kind === "normal" && a.obstacle === 0 && a.index === 0);
+  check(arrowsSeen >= 2 && bracketArrow && worstLen < 1e-6 && worstDir < 1e-9 && Math.abs(bracketArrow.force - bracketFn) <= 1e-12 * bracketFn,
+    `bracket: ${arrowsSeen} normal-force arrows along the reply's forces, lengths |f_n| × ${d5.scale.toPrecision(3)} m/N to ${worstLen.toExponential(1)} (bracket: ${bracketFn.toPrecision(4)} N)`);
+  // The bracket's contact under the pointer: its values.
+  const bm = d5.markers.find((m) => m.obstacle === 0);
+  const at = await s5.page.evaluate((x) => window.slender.screenPointOf(x), bm.at);
+  await s5.page.mouse.move(at.x, at.y);
+  await s5.page.waitForSelector("#tooltip:not([hidden])", { timeout: 5000 }).catch(() => {});
+  const tip = await s5.page.evaluate(() => (document.getElementById("tooltip").hidden ? "" : document.getElementById("tooltip").textContent));
+  const fmt = (n) => (n === 0 ? "0 N" : Math.abs(n) >= 1e3 || Math.abs(n) < 1e-3 ? `${n.toExponential(2)} N` : `${n.toPrecision(3)} N`);
+  check(tip.startsWith("bracket · cable vertex ") && tip.includes(`normal force ${fmt(bracketFn)}, frictionless`),
+    `bracket: hovering its contact shows "${tip}"`);
+  const panel = await s5.page.evaluate(() => [...document.querySelectorAll("#obstacle-table .resultant")].map((e) => e.textContent));
+  const resultants = r5.view.obstacles.map((o) => fmt(Math.hypot(...o.force)));
+  check(panel.join() === resultants.join(), `bracket: the panel gives each obstacle's resultant (${panel.join(", ")}) and min gap ${await s5.page.locator("#min-gap").textContent()}`);
+  const painted5 = await paintedFraction(s5.page);
+  check(painted5 > 0.01, `bracket: canvas not blank (${(100 * painted5).toFixed(1)} % of pixels drawn)`);
+  await s5.page.screenshot({ path: join(out, "view-contact.png") });
+  // A drag (the clamp pulled back 2 cm, as in the example's motion): the markers follow.
+  const n5 = s5.replies.length;
+  await s5.page.mouse.move(5, 5);
+  const v5 = await s5.page.evaluate(() => window.slender.dragSupport(0, 0, [-0.02, 0, 0], 4));
+  const last5 = (await Promise.all(s5.replies.slice(n5))).filter((r) => r.ok).at(-1);
+  const d5b = await drawn(s5.page);
+  check(d5b.markers.length === countContacts(last5) && last5.view.min_gap > 0,
+    `bracket: after a drag (${v5.converged ? "converged" : "not converged: last equilibrium kept"}) ${d5b.markers.length} markers for the reply's ${countContacts(last5)} contacts, min gap ${last5.view.min_gap.toExponential(2)} m`);
+  for (const e of s5.errors) fail(e);
+  check(s5.errors.length === 0, "no console errors (bracket page)");
+
+  // ---- 5b. cable on cable (self-contact), where the core's results list the pairs ----
+  const s5c = await open(join(scenes, "crossing_cables.toml"));
+  sessions.push(s5c);
+  const r5c = await s5c.replies[0];
+  if (r5c.view.segment_contacts === undefined) {
+    console.log("view test: skipped cable on cable: the core's results do not list segment contacts (segment_contacts)");
+  } else {
+    const pairs = r5c.view.segment_contacts;
+    const d5c = await s5c.page.evaluate(() => {
+      const out = { markers: [], arrows: [] };
+      window.slender.scene.updateMatrixWorld(true);
+      const visible = (o) => { for (let x = o; x; x = x.parent) if (!x.visible) return false; return true; };
+      window.slender.scene.traverse((o) => {
+        if (o.userData.pairMarker && visible(o)) out.markers.push({ pair: o.userData.pair, at: o.getWorldPosition(o.position.clone()).toArray() });
+        if (o.userData.contactArrow === "pair" && visible(o)) {
+          out.arrows.push({ pair: o.userData.pair, origin: o.getWorldPosition(o.position.clone()).toArray(), tip: o.cone.getWorldPosition(o.position.clone()).toArray() });
+        }
+      });
+      out.scale = window.slender.contactScale();
+      return out;
+    });
+    check(pairs.length >= 1 && d5c.markers.length === pairs.length,
+      `cable on cable: ${d5c.markers.length} pair markers for the reply's ${pairs.length} touching segment pairs (min segment gap ${r5c.view.min_segment_gap})`);
+    // Two arrows per pair, one along each side's force, |f| × the scale long.
+    let worst = 0;
+    for (const a of d5c.arrows) {
+      const p = pairs[a.pair];
+      const v = a.tip.map((x, k) => x - a.origin[k]);
+      const err = Math.min(...[p.force_a, p.force_b].map((f) => Math.hypot(...v.map((x, k) => x - f[k] * d5c.scale))));
+      worst = Math.max(worst, err / (Math.hypot(...p.force_a) * d5c.scale));
+    }
+    check(d5c.arrows.length === 2 * pairs.length && worst < 1e-6, `cable on cable: the force on each cable drawn (${d5c.arrows.length} arrows, to ${worst.toExponential(1)})`);
+    const at = await s5c.page.evaluate((x) => window.slender.screenPointOf(x), d5c.markers[0].at);
+    await s5c.page.mouse.move(at.x, at.y);
+    await s5c.page.waitForSelector("#tooltip:not([hidden])", { timeout: 5000 }).catch(() => {});
+    const tip = await s5c.page.evaluate(() => (document.getElementById("tooltip").hidden ? "" : document.getElementById("tooltip").textContent));
+    check(/^(lower|upper) (edge|vertex) \d+ – (lower|upper) edge \d+ /.test(tip), `cable on cable: hovering the pair shows "${tip}"`);
+    await s5c.page.screenshot({ path: join(out, "view-cable-on-cable.png") });
+  }
+  for (const e of s5c.errors) fail(e);
+  check(s5c.errors.length === 0, "no console errors (crossing cables page)");
+
+  // ---- 6. speed (measured, not asserted) ----
   const speed = {};
   for (const [name, scene, support, d, n] of [
     ["cable_100_elements_3_clips", "bench_cable_3clips.toml", 4, [-0.4, 0.3, 0.3], 300],

@@ -46,6 +46,55 @@ fn session() -> Session {
     Session::new(scene).expect("the test scene compiles")
 }
 
+/// A 0.8 m cable clamped 6 cm above a rough floor, hanging onto a box, a ball, a round bar
+/// and a ramp (an inline triangle mesh): every obstacle kind, contacts on three of them.
+const CONTACT_SCENE: &str = r#"
+gravity = [0.0, 0.0, -9.81]
+[[rods]]
+name = "cable"
+elements = 20
+centerline = { kind = "straight", start = [0.0, 0.0, 0.06], direction = [1.0, 0.0, 0.0], length = 0.8 }
+section = { shape = "circle", diameter = 0.004 }
+material = { young = 2.0e8, poisson = 0.4, density = 1500.0 }
+supports = [{ kind = "clamp", vertex = "start" }]
+[[obstacles]]
+name = "floor"
+friction = 0.3
+shape = { kind = "plane", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 2.0] }
+[[obstacles]]
+name = "block"
+shape = { kind = "box", center = [0.2, 0.0, 0.015], size = [0.06, 0.08, 0.03], rotate = [0.0, 0.0, 0.4] }
+[[obstacles]]
+friction = 0.2
+shape = { kind = "sphere", center = [0.4, 0.0, 0.0], radius = 0.045 }
+[[obstacles]]
+name = "bar"
+shape = { kind = "cylinder", point = [0.55, 0.0, 0.025], axis = [0.0, 3.0, 0.0], radius = 0.012 }
+[[obstacles]]
+name = "ramp"
+friction = 0.1
+shape = { kind = "mesh", vertices = [[0.6, -0.12, 0.0], [0.85, -0.12, 0.04], [0.85, 0.12, 0.04], [0.6, 0.12, 0.0]], triangles = [[0, 1, 2], [0, 2, 3]] }
+[contact]
+activation = 1e-4
+"#;
+
+fn contact_session() -> Session {
+    let scene: Scene = toml::from_str(CONTACT_SCENE).expect("the contact scene parses");
+    Session::new(scene).expect("the contact scene compiles")
+}
+
+/// The scene's smallest gap and its number of active contacts in a reply's view.
+fn gap_and_contacts(v: &Value) -> (f64, usize) {
+    let gap = v["view"]["min_gap"].as_f64().expect("a contact scene reports its min gap");
+    let n = v["view"]["obstacles"]
+        .as_array()
+        .expect("the view lists the obstacles")
+        .iter()
+        .map(|o| o["contacts"].as_array().expect("contacts").len())
+        .sum();
+    (gap, n)
+}
+
 /// Every vertex position of every rod and strip, and the supports' and clamps' poses, bit
 /// for bit.
 fn equilibrium(s: &Session) -> (Vec<Vec<[f64; 3]>>, Vec<String>) {
@@ -356,7 +405,18 @@ fn request() -> impl Strategy<Value = String> {
 
 /// Runs `cases` random messages from `strategy` against one session, in sequence.
 fn fuzz(strategy: impl Strategy<Value = String>, cases: u32) {
-    let s = RefCell::new(session());
+    fuzz_session(session(), strategy, cases, |_| Ok(()));
+}
+
+/// Runs `cases` random messages from `strategy` against `session`, in sequence; `check` is
+/// asked about every reply besides the common checks.
+fn fuzz_session(
+    session: Session,
+    strategy: impl Strategy<Value = String>,
+    cases: u32,
+    check: impl Fn(&Value) -> Result<(), TestCaseError>,
+) {
+    let s = RefCell::new(session);
     let mut runner = TestRunner::new(Config {
         cases,
         failure_persistence: None,
@@ -372,7 +432,7 @@ fn fuzz(strategy: impl Strategy<Value = String>, cases: u32) {
                 !(refused || not_converged) || kept,
                 "{message}: refused or not converged, yet the equilibrium changed: {v}"
             );
-            Ok(())
+            check(&v)
         })
         .unwrap();
 }
@@ -421,4 +481,151 @@ fn a_strip_clamp_is_dragged_through_the_move_message() {
     assert!((r[2] - 0.2).abs() < 1e-12, "{r:?}");
     // The rods did not move.
     assert_eq!(equilibrium(&s).0[0], before.0[0]);
+}
+
+#[test]
+fn the_state_reply_draws_every_obstacle_and_every_update_carries_the_contacts() {
+    let mut s = contact_session();
+    let (v, _) = exchange(&mut s, r#"{"op": "state"}"#);
+    let g = &v["geometry"];
+    let kinds: Vec<&str> = g["obstacles"]
+        .as_array()
+        .expect("the state reply carries the obstacles' shapes")
+        .iter()
+        .map(|o| o["shape"]["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["plane", "box", "sphere", "cylinder", "mesh"]);
+    let names: Vec<&str> = g["obstacles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["floor", "block", "obstacle2", "bar", "ramp"]);
+    assert_eq!(g["activation"], json!(1e-4));
+    assert_eq!(g["self_contact"], json!(false));
+    let f = |x: &Value| x.as_f64().unwrap();
+    let v3 = |x: &Value| [f(&x[0]), f(&x[1]), f(&x[2])];
+    // The extent: the cable at rest (0 … 0.8 m along x), the bounded obstacles (the ramp to
+    // y = ±0.12, the ball down to z = −0.045).
+    let [lo, hi] = [v3(&g["extent"][0]), v3(&g["extent"][1])];
+    assert!((lo[0] - 0.0).abs() < 1e-12 && (hi[0] - 0.85).abs() < 1e-12, "{lo:?} {hi:?}");
+    assert!((lo[1] + 0.12).abs() < 1e-12 && (lo[2] + 0.045).abs() < 1e-12, "{lo:?}");
+    let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    // The floor: a unit normal, a square of 1.5 diagonals centred under the extent's centre.
+    let floor = &g["obstacles"][0]["shape"];
+    assert_eq!(v3(&floor["normal"]), [0.0, 0.0, 1.0]);
+    let c = v3(&floor["center"]);
+    assert!((c[0] - 0.425).abs() < 1e-12 && c[2] == 0.0, "{c:?}");
+    assert!((f(&floor["size"]) - 1.5 * diagonal).abs() < 1e-12);
+    // The bar: a unit axis, centred on the extent along it, its extent plus half a diagonal.
+    let bar = &g["obstacles"][3]["shape"];
+    assert_eq!(v3(&bar["axis"]), [0.0, 1.0, 0.0]);
+    let c = v3(&bar["center"]);
+    assert!((c[0] - 0.55).abs() < 1e-12 && c[1].abs() < 1e-12 && (c[2] - 0.025).abs() < 1e-12);
+    assert!((f(&bar["length"]) - (0.24 + 0.5 * diagonal)).abs() < 1e-12);
+    assert_eq!(g["obstacles"][1]["shape"]["rotation"], json!([0.0, 0.0, 0.4]));
+    assert_eq!(g["obstacles"][4]["shape"]["triangles"], json!([[0, 1, 2], [0, 2, 3]]));
+    assert_eq!(g["obstacles"][2]["friction"], json!(0.2));
+    // The contacts: on the ball, the bar and the ramp, each within ĝ of the surface; the
+    // resultant of an obstacle is the sum of its contacts' forces.
+    let (gap, n) = gap_and_contacts(&v);
+    assert!(gap > 0.0 && gap < 1e-4, "min gap {gap}");
+    assert!(n >= 3, "{n} contacts");
+    for o in v["view"]["obstacles"].as_array().unwrap() {
+        let mut sum = [0.0; 3];
+        for c in o["contacts"].as_array().unwrap() {
+            let g = f(&c["gap"]);
+            assert!(g > 0.0 && g < 1e-4, "{c}");
+            for k in 0..3 {
+                sum[k] += f(&c["normal_force"][k]) + f(&c["friction_force"][k]);
+            }
+        }
+        let r = v3(&o["force"]);
+        for k in 0..3 {
+            assert!((r[k] - sum[k]).abs() <= 1e-12 * (1.0 + r[k].abs()), "{o}");
+        }
+    }
+    assert!(v["view"]["rods"][0]["contact_radius"] == json!(0.002));
+    // Updates carry the contacts, not the shapes.
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "move_by", "rod": 0, "support": 0, "translation": [0.0, 0.0, 0.01]}"#,
+    );
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    assert!(v.get("geometry").is_none(), "only `state` sends the shapes");
+    let (gap, n) = gap_and_contacts(&v);
+    assert!(gap > 0.0 && n >= 1, "{gap} {n}");
+    // Without obstacles: no shapes, no contacts, no gap.
+    let (v, _) = exchange(&mut session(), r#"{"op": "state"}"#);
+    assert_eq!(v["geometry"]["obstacles"], json!([]));
+    assert_eq!(v["geometry"]["activation"], json!(null));
+    assert_eq!(v["view"]["obstacles"], json!([]));
+    assert_eq!(v["view"]["min_gap"], json!(null));
+    assert_eq!(v["view"]["rods"][0]["contact_radius"], json!(null));
+}
+
+#[test]
+fn a_clamp_dragged_into_the_floor_never_takes_the_cable_through_it() {
+    // The clamp 6 cm above the floor, pushed down in 1 cm steps to 4 cm below it: every
+    // reply has every gap positive; where the cable cannot follow, the edit does not converge
+    // and the last equilibrium (outside) is kept.
+    let mut s = contact_session();
+    let mut refused_or_kept = 0;
+    for _ in 0..10 {
+        let (v, kept) = exchange(
+            &mut s,
+            r#"{"op": "move_by", "rod": 0, "support": 0, "translation": [0.0, 0.0, -0.01]}"#,
+        );
+        if v["ok"] == json!(false) || v["edit"]["converged"] == json!(false) {
+            assert!(kept, "{v}");
+            refused_or_kept += 1;
+        }
+        let (gap, _) = gap_and_contacts(&exchange(&mut s, r#"{"op": "state"}"#).0);
+        assert!(gap > 0.0, "min gap {gap} after {v}");
+        let z: Vec<f64> = s.results(0, None, 1.0, 1).rods[0]
+            .positions
+            .iter()
+            .map(|p| p[2])
+            .collect();
+        assert!(z.iter().all(|&z| z > 0.0), "a vertex under the floor: {z:?}");
+    }
+    assert!(refused_or_kept > 0, "the clamp went through the floor");
+}
+
+#[test]
+fn fuzz_contact_scene_requests() {
+    fuzz_session(contact_session(), request(), 60, |v| {
+        if v["ok"] == json!(true) {
+            let (gap, _) = gap_and_contacts(v);
+            prop_assert!(gap > 0.0, "min gap {gap}: {v}");
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn self_contact_pairs_are_forwarded_as_the_results_list_them() {
+    // Two cables crossing 8 mm apart, the upper one sagging onto the lower one (the page
+    // test's scene). Where the core's results list the touching segment pairs, the view
+    // carries them unchanged; where they do not, the view has none either.
+    let scene: Scene = toml::from_str(include_str!(
+        "../../../../tests/page/scenes/crossing_cables.toml"
+    ))
+    .expect("the crossing scene parses");
+    let mut s = Session::new(scene).expect("the crossing scene compiles");
+    let (v, _) = exchange(&mut s, r#"{"op": "state"}"#);
+    assert_eq!(v["geometry"]["self_contact"], json!(true));
+    assert_eq!(v["geometry"]["obstacles"], json!([]));
+    let step = serde_json::to_value(s.results(0, None, 1.0, 1)).unwrap();
+    assert_eq!(v["view"]["segment_contacts"], step["segment_contacts"]);
+    assert_eq!(v["view"]["min_segment_gap"], step["min_segment_gap"]);
+    if let Some(pairs) = step["segment_contacts"].as_array() {
+        assert!(!pairs.is_empty(), "the cables touch: {step}");
+    }
+    // Without self-contact nothing is forwarded.
+    let (v, _) = exchange(&mut contact_session(), r#"{"op": "state"}"#);
+    assert!(v["view"].get("segment_contacts").is_none());
+    assert_eq!(v["geometry"]["self_contact"], json!(false));
 }

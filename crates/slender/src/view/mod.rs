@@ -1,8 +1,8 @@
 //! `slender view SCENE`: the interactive cable-editing page. A local HTTP server owns one
-//! [`Session`] (the physics runs natively in this process, every model); the page (plain HTML
-//! + ES modules + vendored three.js, embedded in the binary) draws the equilibria and sends
-//! edits: drag a support, add a clip, delete a support, change gravity, snap to the stable
-//! branch, save the scene, export glTF.
+//! [`Session`] (the physics runs natively in this process, every model); the page (plain
+//! HTML, ES modules and vendored three.js, embedded in the binary) draws the equilibria, the
+//! obstacles and their contacts, and sends edits: drag a support, add a clip, delete a
+//! support, change gravity, snap to the stable branch, save the scene, export glTF.
 //!
 //! Layout: [`protocol`] (the messages and their handler, socket-free), [`state`] (what the
 //! page draws), [`server`] (HTTP), `page/` (the page and `vendor/three`).

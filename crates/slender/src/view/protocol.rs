@@ -15,7 +15,7 @@ use slender_core::geometry::Vec3;
 use slender_core::scene::spec::{SupportKind, SupportSpec, UnstablePolicy};
 use slender_core::scene::{EditReport, SceneError, Session, SupportPose};
 
-use super::state::{view_state, ViewState};
+use super::state::{scene_geometry, view_state, SceneGeometry, ViewState};
 use crate::solve::gltf;
 
 /// Largest request the server reads (bytes).
@@ -30,7 +30,8 @@ pub const MAX_REQUEST_BYTES: usize = 1 << 20;
 // internally tagged unit variants ignore unknown keys even with `deny_unknown_fields`.
 #[serde(tag = "op", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Request {
-    /// The current equilibria (no change).
+    /// The current equilibria (no change), and the obstacles' shapes (`geometry`): what the
+    /// page asks first.
     State {},
     /// Move a support to an absolute pose (what a drag sends).
     Move {
@@ -166,6 +167,9 @@ pub struct OkReply {
     pub solve_seconds: f64,
     /// The equilibria now.
     pub view: ViewState,
+    /// `state`: the obstacles' shapes (they never move, so only this reply carries them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub geometry: Option<SceneGeometry>,
     /// `save`: the scene as TOML.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub toml: Option<String>,
@@ -375,12 +379,15 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             gltf::scene_up(scene.gravity),
         ));
     }
+    let geometry =
+        matches!(request, Request::State {}).then(|| scene_geometry(session, &step));
     Ok(OkReply {
         ok: true,
         op: op_name(request),
         edit: edit.map(EditView::from),
         solve_seconds,
         view: view_state(session, &step),
+        geometry,
         toml: toml_text,
         gltf: gltf_value,
     })

@@ -1,13 +1,16 @@
 //! What the page draws after every update ([`ViewState`]): per rod its centerline, material
 //! directors and colour fields (twist rate, curvature, bending stress), its bend radius
 //! against the allowed one, its supports with their poses and reactions; per structure its
-//! solve and stability; the shell strips as surfaces with their clamps as handles.
+//! solve and stability; the shell strips as surfaces with their clamps as handles; every
+//! obstacle's active contacts and the scene's smallest gap. The obstacles' shapes do not change
+//! in a session: [`SceneGeometry`] is sent once, with the reply to `state`.
 
 use serde::Serialize;
+use serde_json::Value;
 use slender_core::bspline_shell::StripEnd;
 use slender_core::geometry::Vec3;
-use slender_core::scene::spec::{SectionSpec, SupportKind, UnstablePolicy};
-use slender_core::scene::{CompiledRod, SceneStep, Session};
+use slender_core::scene::spec::{ObstacleShapeSpec, SectionSpec, SupportKind, UnstablePolicy};
+use slender_core::scene::{CompiledRod, ObstacleResult, SceneStep, Session};
 use slender_core::solver::SolveStatus;
 
 /// Everything the page shows of the current equilibria.
@@ -27,6 +30,24 @@ pub struct ViewState {
     pub structures: Vec<StructureView>,
     /// Every shell strip (its clamps can be dragged).
     pub shells: Vec<ShellView>,
+    /// Every obstacle, in the scene's order (the order of [`SceneGeometry::obstacles`]): its
+    /// friction coefficient, the resultant force it applies to the rods (N) and its active
+    /// contacts (position, gap, normal, normal and friction force, sticking) as `slender solve`
+    /// reports them. Empty without obstacles.
+    pub obstacles: Vec<ObstacleResult>,
+    /// Smallest gap (m) between a rod's surface and an obstacle over the scene; `None` without
+    /// obstacles.
+    pub min_gap: Option<f64>,
+    /// With self-contact (`contact.self_contact`): every active contact between two segments
+    /// of the centerlines, as the core's results list them (`segment_contacts`: kind, the two
+    /// sides' rods, edges or vertex, closest points and forces, gap); absent without
+    /// self-contact, or from a core whose results do not list them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub segment_contacts: Option<Value>,
+    /// With self-contact: the smallest gap (m) between two segments that may touch, as the
+    /// core's results give it (`min_segment_gap`); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_segment_gap: Option<Value>,
 }
 
 /// One rod as drawn.
@@ -71,6 +92,10 @@ pub struct RodView {
     pub structures: Vec<usize>,
     /// Supports, in the rod's order (the index is the one edits name).
     pub supports: Vec<SupportView>,
+    /// Radius (m) its centerline keeps from obstacles (its structure's contact radius: a
+    /// contact's surface point is its vertex minus the normal times this radius plus the
+    /// gap); `None` in a scene without contact.
+    pub contact_radius: Option<f64>,
 }
 
 /// One support as drawn: a handle where it is, its reaction as an arrow.
@@ -193,6 +218,12 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 .collect();
             let mut structures: Vec<usize> = rod.parts.iter().map(|p| p.structure).collect();
             structures.dedup();
+            let contact_radius = scene.contact.as_ref().and_then(|c| {
+                structures
+                    .iter()
+                    .filter_map(|&k| c.params.get(k).map(|p| p.radius))
+                    .reduce(f64::max)
+            });
             RodView {
                 name: res.name.clone(),
                 display_radius: rod.display_radius,
@@ -219,6 +250,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 stable: res.stable,
                 structures,
                 supports,
+                contact_radius,
             }
         })
         .collect();
@@ -276,6 +308,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 .collect(),
         })
         .collect();
+    let (segment_contacts, min_segment_gap) = segment_contacts(session, step);
     ViewState {
         gravity: session.spec().gravity,
         unstable_policy: session.spec().unstable,
@@ -284,6 +317,239 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
         rods,
         structures,
         shells,
+        obstacles: step.obstacles.clone(),
+        min_gap: step.min_gap,
+        segment_contacts,
+        min_segment_gap,
+    }
+}
+
+/// The results' `segment_contacts` and `min_segment_gap` (self-contact), read by name from
+/// the serialized step: the view forwards them where the core reports them and needs no
+/// change of its own when they appear or change. Only scenes with self-contact pay for the
+/// serialization.
+fn segment_contacts(session: &Session, step: &SceneStep) -> (Option<Value>, Option<Value>) {
+    let self_contact = session
+        .compiled()
+        .contact
+        .as_ref()
+        .is_some_and(|c| c.params.iter().any(|p| p.self_contact));
+    if !self_contact {
+        return (None, None);
+    }
+    match serde_json::to_value(step) {
+        Ok(Value::Object(mut m)) => (
+            m.remove("segment_contacts").filter(|v| !v.is_null()),
+            m.remove("min_segment_gap").filter(|v| !v.is_null()),
+        ),
+        _ => (None, None),
+    }
+}
+
+/// The scene's obstacles as the page draws them (sent once: they do not move), with what the
+/// page needs to read the contacts.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneGeometry {
+    /// Every obstacle, in the scene's order (the order of [`ViewState::obstacles`]).
+    pub obstacles: Vec<ObstacleGeometry>,
+    /// Activation distance ĝ (m): every contact rests within it of the surface; `None` without
+    /// contact.
+    pub activation: Option<f64>,
+    /// True if the structures' cables are in contact with themselves and each other.
+    pub self_contact: bool,
+    /// The box (min and max corners, m) of the cables at rest and now, the strips and the
+    /// bounded obstacles: what the unbounded shapes are drawn over.
+    pub extent: [[f64; 3]; 2],
+}
+
+/// One obstacle as drawn.
+#[derive(Clone, Debug, Serialize)]
+pub struct ObstacleGeometry {
+    /// Its name (as in its contacts' results).
+    pub name: String,
+    /// Coulomb coefficient μ.
+    pub friction: f64,
+    /// Its shape, at its pose.
+    pub shape: ShapeGeometry,
+}
+
+/// An obstacle's shape (m). Planes and cylinders are unbounded: they are given as the finite
+/// piece that covers the scene's extent.
+#[derive(Clone, Debug, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ShapeGeometry {
+    /// A square piece of the plane, of side `size`, centred on the extent's centre projected
+    /// onto it; `normal` is the outward unit normal (the solid is below).
+    Plane {
+        /// Centre of the drawn square (a point of the plane).
+        center: [f64; 3],
+        /// Outward unit normal.
+        normal: [f64; 3],
+        /// Side of the drawn square (1.5 × the extent's diagonal).
+        size: f64,
+    },
+    /// A ball.
+    Sphere {
+        /// Centre.
+        center: [f64; 3],
+        /// Radius.
+        radius: f64,
+    },
+    /// A piece of the infinite round bar: centred on the extent's centre projected onto the
+    /// axis, as long as the extent along the axis plus half its diagonal.
+    Cylinder {
+        /// Centre of the drawn piece (a point of the axis).
+        center: [f64; 3],
+        /// Unit axis.
+        axis: [f64; 3],
+        /// Radius.
+        radius: f64,
+        /// Length of the drawn piece.
+        length: f64,
+    },
+    /// A box of edge lengths `size` along its axes, turned by `rotation` about its centre.
+    Box {
+        /// Centre.
+        center: [f64; 3],
+        /// Edge lengths along the box's axes.
+        size: [f64; 3],
+        /// Rotation vector (axis × angle, rad) of the box's axes from the global ones.
+        rotation: [f64; 3],
+    },
+    /// A triangle mesh (a mesh file's triangles, as read into the scene).
+    Mesh {
+        /// Vertex positions.
+        vertices: Vec<[f64; 3]>,
+        /// Vertex index triples.
+        triangles: Vec<[usize; 3]>,
+    },
+}
+
+/// Smallest diagonal (m) of the extent the unbounded shapes are drawn over.
+const MIN_EXTENT: f64 = 1e-3;
+
+/// The obstacles of the session's scene as drawn; `step` is `session.results(..)`.
+pub fn scene_geometry(session: &Session, step: &SceneStep) -> SceneGeometry {
+    let scene = session.compiled();
+    let mut lo = Vec3::repeat(f64::INFINITY);
+    let mut hi = Vec3::repeat(f64::NEG_INFINITY);
+    let mut grow = |p: Vec3| {
+        if p.iter().all(|c| c.is_finite()) {
+            lo = lo.inf(&p);
+            hi = hi.sup(&p);
+        }
+    };
+    for r in 0..scene.rods.len() {
+        scene.rest_positions(r).into_iter().for_each(&mut grow);
+    }
+    for p in step.rods.iter().flat_map(|r| &r.positions) {
+        grow(Vec3::from(*p));
+    }
+    for p in step.shells.iter().flat_map(|s| &s.positions) {
+        grow(Vec3::from(*p));
+    }
+    if let Some(c) = &scene.contact {
+        for o in &c.obstacles {
+            let (a, b) = o.bounds();
+            if a.iter().chain(b.iter()).all(|c| c.is_finite()) {
+                grow(a);
+                grow(b);
+            }
+        }
+    }
+    if lo.x > hi.x {
+        // Nothing bounded (cannot happen: every scene has a rod or a strip).
+        lo = Vec3::zeros();
+        hi = Vec3::zeros();
+    }
+    let centre = 0.5 * (lo + hi);
+    let diagonal = (hi - lo).norm().max(MIN_EXTENT);
+    let corners: Vec<Vec3> = (0..8)
+        .map(|k| {
+            Vec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect();
+    let unit = |v: [f64; 3]| {
+        let v = Vec3::from(v);
+        v / v.norm()
+    };
+    let names = scene.contact.as_ref().map(|c| c.names.clone());
+    let obstacles = session
+        .spec()
+        .obstacles
+        .iter()
+        .enumerate()
+        .map(|(i, o)| {
+            let shape = match &o.shape {
+                ObstacleShapeSpec::Plane { point, normal } => {
+                    let n = unit(*normal);
+                    let p = Vec3::from(*point);
+                    ShapeGeometry::Plane {
+                        center: arr(centre - n * (centre - p).dot(&n)),
+                        normal: arr(n),
+                        size: 1.5 * diagonal,
+                    }
+                }
+                ObstacleShapeSpec::Sphere { center, radius } => ShapeGeometry::Sphere {
+                    center: *center,
+                    radius: *radius,
+                },
+                ObstacleShapeSpec::Cylinder {
+                    point,
+                    axis,
+                    radius,
+                } => {
+                    let a = unit(*axis);
+                    let p = Vec3::from(*point);
+                    let along = corners.iter().map(|c| (c - p).dot(&a));
+                    let (smin, smax) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), s| {
+                        (l.min(s), h.max(s))
+                    });
+                    ShapeGeometry::Cylinder {
+                        center: arr(p + a * (0.5 * (smin + smax))),
+                        axis: arr(a),
+                        radius: *radius,
+                        length: (smax - smin) + 0.5 * diagonal,
+                    }
+                }
+                ObstacleShapeSpec::Box {
+                    center,
+                    size,
+                    rotate,
+                } => ShapeGeometry::Box {
+                    center: *center,
+                    size: *size,
+                    rotation: *rotate,
+                },
+                ObstacleShapeSpec::Mesh {
+                    vertices,
+                    triangles,
+                    ..
+                } => ShapeGeometry::Mesh {
+                    vertices: vertices.clone(),
+                    triangles: triangles.clone(),
+                },
+            };
+            ObstacleGeometry {
+                name: names
+                    .as_ref()
+                    .and_then(|n| n.get(i).cloned())
+                    .unwrap_or_else(|| format!("obstacle{i}")),
+                friction: o.friction,
+                shape,
+            }
+        })
+        .collect();
+    let params = scene.contact.as_ref().map(|c| &c.params[..]).unwrap_or(&[]);
+    SceneGeometry {
+        obstacles,
+        activation: params.iter().map(|p| p.activation).reduce(f64::max),
+        self_contact: params.iter().any(|p| p.self_contact),
+        extent: [arr(lo), arr(hi)],
     }
 }
 

@@ -63,6 +63,7 @@ const world = new THREE.Group(); // rods, shells, handles, arrows
 scene3.add(world);
 
 let view = null; // the last ViewState
+let geometry = null; // the obstacles' shapes (the first `state` reply's `geometry`)
 let sceneSize = 1; // diagonal of the first equilibrium's bounding box (m)
 const rods = []; // per rod: { mesh, outline, tight, colours }
 const shells = [];
@@ -401,6 +402,7 @@ function updateArrows() {
 }
 
 function fmtForce(n) {
+  if (n === 0) return "0 N";
   return Math.abs(n) >= 1e3 || Math.abs(n) < 1e-3 ? `${n.toExponential(2)} N` : `${n.toPrecision(3)} N`;
 }
 
@@ -419,6 +421,271 @@ function updateLabels() {
     d.style.left = `${((p.x + 1) / 2) * box.width}px`;
     d.style.top = `${((1 - p.y) / 2) * box.height}px`;
   });
+}
+
+// ---------- obstacles and contacts ----------
+
+const OBSTACLE_COLOUR = 0x90a4ae;
+const OBSTACLE_EDGES = 0x546e7a;
+const CONTACT_COLOURS = { sticking: 0x2e7d32, sliding: 0xe65100, frictionless: 0x8e24aa };
+const NORMAL_ARROW = 0x1565c0;
+const FRICTION_ARROW = 0x5d4037;
+const PAIR_COLOUR = 0x00838f; // a cable touching itself or another cable
+const obstacleGroup = new THREE.Group(); // one Mesh per obstacle, userData { obstacle, kind, name }
+obstacleGroup.name = "obstacles";
+scene3.add(obstacleGroup);
+const contactGroup = new THREE.Group(); // markers and force arrows
+contactGroup.name = "contacts";
+scene3.add(contactGroup);
+const markerGeometry = new THREE.SphereGeometry(1, 16, 10);
+const markerMaterials = Object.fromEntries(Object.entries(CONTACT_COLOURS).map(([k, c]) =>
+  [k, new THREE.MeshStandardMaterial({ color: c, roughness: 0.4 })]));
+let markers = []; // pooled: Mesh with userData { contactMarker: true, contact }
+let normalArrows = []; // pooled ArrowHelpers, userData { contactArrow: "normal", force (N) }
+let frictionArrows = [];
+let contactScale = 0; // arrow length per newton (m/N) of the last update
+let contacts = []; // the last update's contacts, flat: { obstacle, index, name, state, c, surface }
+const pairMaterial = new THREE.MeshStandardMaterial({ color: PAIR_COLOUR, roughness: 0.4 });
+let pairMarkers = []; // pooled: Mesh with userData { pairMarker: true, pair }
+let pairArrows = []; // pooled: [ArrowHelper on side a, on side b]
+
+function quaternionFromTo(from, to) {
+  return new THREE.Quaternion().setFromUnitVectors(from, v3(to).normalize());
+}
+
+/** The three.js geometry and pose of one obstacle's shape (see state.rs: ShapeGeometry). */
+function obstacleMesh(shape) {
+  let g;
+  let position = new THREE.Vector3();
+  let quaternion = new THREE.Quaternion();
+  if (shape.kind === "plane") {
+    g = new THREE.PlaneGeometry(shape.size, shape.size);
+    position = v3(shape.center);
+    quaternion = quaternionFromTo(new THREE.Vector3(0, 0, 1), shape.normal);
+  } else if (shape.kind === "sphere") {
+    g = new THREE.SphereGeometry(shape.radius, 48, 24);
+    position = v3(shape.center);
+  } else if (shape.kind === "cylinder") {
+    // Unbounded: the piece over the scene, open-ended.
+    g = new THREE.CylinderGeometry(shape.radius, shape.radius, shape.length, 48, 1, true);
+    position = v3(shape.center);
+    quaternion = quaternionFromTo(new THREE.Vector3(0, 1, 0), shape.axis);
+  } else if (shape.kind === "box") {
+    g = new THREE.BoxGeometry(...shape.size);
+    position = v3(shape.center);
+    quaternion = rotationToQuaternion(shape.rotation);
+  } else {
+    const idx = new Uint32Array(shape.triangles.flat());
+    g = new THREE.BufferGeometry();
+    g.setAttribute("position", new THREE.BufferAttribute(new Float32Array(shape.vertices.flat()), 3));
+    g.setIndex(new THREE.BufferAttribute(idx, 1));
+    g = g.toNonIndexed(); // flat shading: one normal per triangle
+    g.computeVertexNormals();
+  }
+  const mesh = new THREE.Mesh(g, new THREE.MeshStandardMaterial({
+    color: OBSTACLE_COLOUR, roughness: 0.9, metalness: 0, transparent: true, opacity: 0.3,
+    depthWrite: false, side: THREE.DoubleSide,
+  }));
+  mesh.add(new THREE.LineSegments(new THREE.EdgesGeometry(g, 30),
+    new THREE.LineBasicMaterial({ color: OBSTACLE_EDGES, transparent: true, opacity: 0.55 })));
+  mesh.position.copy(position);
+  mesh.quaternion.copy(quaternion);
+  return mesh;
+}
+
+/** Draws every obstacle once (they do not move). */
+function buildObstacles() {
+  for (const o of [...obstacleGroup.children]) disposeObject(o);
+  geometry.obstacles.forEach((ob, i) => {
+    const mesh = obstacleMesh(ob.shape);
+    mesh.name = `obstacle:${ob.name}`;
+    mesh.userData = { obstacle: i, kind: ob.shape.kind, name: ob.name };
+    obstacleGroup.add(mesh);
+  });
+  const any = geometry.obstacles.length > 0 || geometry.self_contact;
+  $("contacts-box").hidden = !any;
+  $("pair-legend").hidden = !geometry.self_contact;
+  const obstacles = geometry.obstacles.length > 0;
+  $("min-gap-row").hidden = !obstacles;
+  $("show-obstacles-row").hidden = !obstacles;
+  const unbounded = geometry.obstacles.some((o) => o.shape.kind === "plane" || o.shape.kind === "cylinder");
+  $("gap-note").textContent = geometry.activation
+    ? `Contacts rest within the activation distance ĝ = ${fmtGap(geometry.activation)} of a surface; a negative gap would be a penetration.${unbounded ? " Planes and round bars are unbounded: drawn over the scene." : ""}`
+    : "";
+}
+
+function fmtGap(g) {
+  if (g === null || g === undefined) return "–";
+  if (g >= 1e-3) return `${(g * 1e3).toPrecision(3)} mm`;
+  if (g >= 1e-6) return `${(g * 1e6).toPrecision(3)} µm`;
+  return `${g.toExponential(2)} m`;
+}
+
+/** Sticking, sliding, or frictionless (μ = 0: nothing to stick with). */
+const contactState = (ob, c) => (ob.friction === 0 ? "frictionless" : c.sticking ? "sticking" : "sliding");
+
+function newArrow(colour, kind) {
+  const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, colour);
+  // Drawn over the cable and the obstacles: a force at a contact is always visible.
+  for (const part of [a.line, a.cone]) { part.material.depthTest = false; part.renderOrder = 5; }
+  a.userData = { contactArrow: kind, force: 0 };
+  contactGroup.add(a);
+  return a;
+}
+
+function placeArrow(a, origin, f, show) {
+  const n = f.length();
+  const len = n * contactScale;
+  a.userData.force = n;
+  a.visible = show && len > 1e-4 * sceneSize;
+  if (!a.visible) return;
+  const head = Math.min(0.3 * len, 0.02 * sceneSize);
+  a.position.copy(origin);
+  a.setDirection(f.clone().multiplyScalar(1 / n));
+  a.setLength(len, head, 0.5 * head);
+}
+
+/** Markers at the active contacts and their force arrows (pooled, updated in place). */
+function updateContacts() {
+  contacts = [];
+  const radius = new Map(view.rods.map((r) => [r.name, r.contact_radius ?? r.display_radius]));
+  view.obstacles.forEach((ob, i) => ob.contacts.forEach((c, k) => {
+    // The contact point on the surface: the vertex minus the normal × (contact radius + gap).
+    const surface = v3(c.position).addScaledVector(v3(c.normal), -((radius.get(c.rod) ?? 0) + c.gap));
+    contacts.push({ obstacle: i, index: k, name: ob.name, friction: ob.friction, state: contactState(ob, c), c, surface });
+  }));
+  while (markers.length < contacts.length) {
+    const m = new THREE.Mesh(markerGeometry, markerMaterials.sticking);
+    m.userData = { contactMarker: true };
+    contactGroup.add(m);
+    markers.push(m);
+    normalArrows.push(newArrow(NORMAL_ARROW, "normal"));
+    frictionArrows.push(newArrow(FRICTION_ARROW, "friction"));
+  }
+  const pairs = view.segment_contacts ?? [];
+  let fmax = 0;
+  for (const { c } of contacts) fmax = Math.max(fmax, Math.hypot(...c.normal_force), Math.hypot(...c.friction_force));
+  for (const p of pairs) fmax = Math.max(fmax, Math.hypot(...p.force_a));
+  contactScale = fmax > 0 ? (0.12 * sceneSize) / fmax : 0;
+  const show = $("show-contacts").checked;
+  contactGroup.visible = show;
+  let rmax = 0;
+  for (const r of view.rods) rmax = Math.max(rmax, r.display_radius);
+  const size = Math.max(0.8 * rmax, 0.004 * sceneSize);
+  markers.forEach((m, j) => {
+    const hit = contacts[j];
+    m.visible = j < contacts.length;
+    normalArrows[j].visible = false;
+    frictionArrows[j].visible = false;
+    if (!hit) { m.userData.contact = null; return; }
+    m.userData.contact = { obstacle: hit.obstacle, index: hit.index };
+    m.material = markerMaterials[hit.state];
+    m.position.copy(hit.surface);
+    m.scale.setScalar(size);
+    placeArrow(normalArrows[j], hit.surface, v3(hit.c.normal_force), true);
+    placeArrow(frictionArrows[j], hit.surface, v3(hit.c.friction_force), true);
+    normalArrows[j].userData.contact = m.userData.contact;
+    frictionArrows[j].userData.contact = m.userData.contact;
+  });
+  // Segment pairs (self-contact): a marker where the surfaces touch (between the closest
+  // points of the centerlines), the force on each side from there.
+  while (pairMarkers.length < pairs.length) {
+    const m = new THREE.Mesh(markerGeometry, pairMaterial);
+    m.userData = { pairMarker: true };
+    contactGroup.add(m);
+    pairMarkers.push(m);
+    pairArrows.push([newArrow(NORMAL_ARROW, "pair"), newArrow(NORMAL_ARROW, "pair")]);
+  }
+  pairMarkers.forEach((m, j) => {
+    const p = pairs[j];
+    m.visible = j < pairs.length;
+    pairArrows[j].forEach((a) => { a.visible = false; });
+    if (!p) { m.userData.pair = null; return; }
+    const at = v3(p.point_a).lerp(v3(p.point_b), 0.5);
+    m.userData.pair = j;
+    m.position.copy(at);
+    m.scale.setScalar(size);
+    placeArrow(pairArrows[j][0], at, v3(p.force_a), true);
+    placeArrow(pairArrows[j][1], at, v3(p.force_b), true);
+    pairArrows[j].forEach((a) => { a.userData.pair = j; });
+  });
+  // A label at each obstacle's strongest contact.
+  if (!show) return;
+  view.obstacles.forEach((ob, i) => {
+    let best = null;
+    for (const h of contacts) if (h.obstacle === i && (!best || Math.hypot(...h.c.normal_force) > Math.hypot(...best.c.normal_force))) best = h;
+    if (!best) return;
+    const fn = v3(best.c.normal_force);
+    labelSpecs.push({ at: best.surface.clone().addScaledVector(fn, contactScale), text: `${ob.name}: ${fmtForce(fn.length())}`, cls: "label contact" });
+  });
+}
+
+function contactText(h) {
+  const c = h.c;
+  const fn = Math.hypot(...c.normal_force), ft = Math.hypot(...c.friction_force);
+  const friction = h.state === "frictionless" ? "frictionless"
+    : `friction ${fmtForce(ft)} (${fn > 0 ? (ft / fn).toPrecision(2) : "–"} of the normal force, μ = ${h.friction}; ${h.state})`;
+  return `${h.name} · ${c.rod} vertex ${c.vertex}: normal force ${fmtForce(fn)}, ${friction}, gap ${fmtGap(c.gap)}`;
+}
+
+function pairText(p) {
+  const side = (rod, edge, vertex) => (vertex !== null && vertex !== undefined ? `${rod} vertex ${vertex}` : `${rod} edge ${edge}`);
+  return `${side(p.rod_a, p.edge_a, p.vertex_a)} – ${side(p.rod_b, p.edge_b, null)} (${p.kind.replace("_", "–")}): force ${fmtForce(Math.hypot(...p.force_a))} on each side, gap ${fmtGap(p.gap)}`;
+}
+
+/** The obstacles' part of the panel: the min gap, per obstacle its resultant and contacts. */
+function updateContactPanel() {
+  const any = view.obstacles.length > 0 || geometry?.self_contact;
+  document.body.dataset.minGap = view.min_gap ?? "";
+  if (!any) return;
+  const gap = view.min_gap;
+  $("min-gap").textContent = fmtGap(gap);
+  $("min-gap").className = gap === null || gap >= 0 ? "ok" : "bad";
+  const pairs = view.segment_contacts;
+  $("pairs-row").hidden = !geometry?.self_contact;
+  $("pairs").textContent = pairs === undefined
+    ? "not reported"
+    : `${pairs.length} touching segment pair${pairs.length === 1 ? "" : "s"}; min gap ${fmtGap(view.min_segment_gap ?? null)}`;
+  $("contact-scale").textContent = contactScale > 0
+    ? `an arrow of ${fmtLength(0.12 * sceneSize)} is ${fmtForce(0.12 * sceneSize / contactScale)}`
+    : "no active contact";
+  const open = new Set([...document.querySelectorAll("#obstacle-table details[open]")].map((d) => d.dataset.obstacle));
+  $("obstacle-table").innerHTML = view.obstacles.map((ob, i) => {
+    const mine = contacts.filter((h) => h.obstacle === i);
+    const counts = ["sticking", "sliding", "frictionless"].map((k) => [k, mine.filter((h) => h.state === k).length]).filter(([, n]) => n > 0);
+    const kind = geometry?.obstacles[i]?.shape.kind ?? "";
+    const f = ob.force;
+    const where = (c) => (view.rods.length > 1 ? `${c.rod} v ${c.vertex}` : `v ${c.vertex}`);
+    const rows = mine.slice(0, 200).map((h) => `<tr class="contact-row"><td>${where(h.c)}</td><td>${fmtGap(h.c.gap)}</td><td>${fmtForce(Math.hypot(...h.c.normal_force))}</td><td>${h.state === "frictionless" ? "–" : fmtForce(Math.hypot(...h.c.friction_force))}</td><td><span class="swatch" title="${h.state}" style="background:#${CONTACT_COLOURS[h.state].toString(16).padStart(6, "0")}"></span>${{ sticking: "stick", sliding: "slide", frictionless: "" }[h.state]}</td></tr>`).join("");
+    return `<div class="obstacle" data-obstacle="${i}"><b>${ob.name}</b> <span class="muted">${kind}, μ = ${ob.friction}</span><br>
+      ${mine.length} contact${mine.length === 1 ? "" : "s"}${counts.length ? ` (${counts.map(([k, n]) => `${n} ${k}`).join(", ")})` : ""};
+      resultant <b class="resultant">${fmtForce(Math.hypot(...f))}</b> <span class="muted">[${f.map((x) => x.toExponential(2)).join(", ")}] N</span>
+      ${mine.length ? `<details data-obstacle="${i}"${open.has(String(i)) ? " open" : ""}><summary>contacts</summary><table><tr><td>at</td><td>gap</td><td>|normal|</td><td>|friction|</td><td></td></tr>${rows}</table>${mine.length > 200 ? `<div class="note">the first 200 of ${mine.length}</div>` : ""}</details>` : ""}</div>`;
+  }).join("");
+}
+
+// Values on hover: the contact under the pointer.
+let hoverEvent = null;
+canvas.addEventListener("pointermove", (ev) => {
+  if (ev.buttons) { $("tooltip").hidden = true; return; }
+  if (!hoverEvent) requestAnimationFrame(() => { hover(hoverEvent); hoverEvent = null; });
+  hoverEvent = ev;
+});
+canvas.addEventListener("pointerleave", () => { $("tooltip").hidden = true; });
+function hover(ev) {
+  const tip = $("tooltip");
+  if (!view || !contactGroup.visible) { tip.hidden = true; return; }
+  const hit = pick(ev, [...markers, ...pairMarkers].filter((m) => m.visible))[0];
+  const u = hit?.object.userData;
+  const c = u?.contact && contacts.find((h) => h.obstacle === u.contact.obstacle && h.index === u.contact.index);
+  const p = u?.pairMarker && view.segment_contacts?.[u.pair];
+  if (!c && !p) { tip.hidden = true; return; }
+  const box = canvas.getBoundingClientRect();
+  tip.hidden = false;
+  tip.textContent = c ? contactText(c) : pairText(p);
+  tip.classList.toggle("left", ev.clientX - box.left > 0.5 * box.width);
+  tip.style.left = `${ev.clientX - box.left}px`;
+  tip.style.top = `${ev.clientY - box.top}px`;
 }
 
 // ---------- the panel ----------
@@ -504,12 +771,15 @@ function updateSelectionPanel() {
 function applyView(reply) {
   const first = view === null;
   view = reply.view;
+  if (reply.geometry && !geometry) { geometry = reply.geometry; buildObstacles(); }
   if (first) frameCamera();
   updateRods();
   updateShells();
   if (supportKey() !== handlesKey) buildHandles(); else syncHandles();
   updateArrows();
+  updateContacts();
   updatePanel(reply);
+  updateContactPanel();
 }
 
 function applyReply(reply) {
@@ -520,6 +790,7 @@ function applyReply(reply) {
     return false;
   }
   showError(null);
+  slender.lastReply = reply;
   const t0 = performance.now();
   applyView(reply);
   const t1 = performance.now();
@@ -678,6 +949,8 @@ function frameCamera() {
   const box = new THREE.Box3();
   for (const r of view.rods) for (const p of r.positions) box.expandByPoint(v3(p));
   for (const s of view.shells) for (const p of s.positions) box.expandByPoint(v3(p));
+  // The cables at rest and the bounded obstacles.
+  if (geometry) for (const p of geometry.extent) box.expandByPoint(v3(p));
   const size = box.getSize(new THREE.Vector3());
   sceneSize = Math.max(size.length(), 1e-3);
   const center = box.getCenter(new THREE.Vector3());
@@ -702,6 +975,14 @@ function frameCamera() {
   grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), up);
   const low = box.min.clone();
   grid.position.copy(center).addScaledVector(up, low.clone().sub(center).dot(up) - 0.05 * sceneSize);
+  // A floor (a plane obstacle facing up, under the scene): the grid lies on it.
+  for (const ob of geometry?.obstacles ?? []) {
+    const s = ob.shape;
+    if (s.kind !== "plane" || v3(s.normal).dot(up) < 0.999) continue;
+    const height = v3(s.center).sub(center).dot(up);
+    if (height <= low.clone().sub(center).dot(up) + 1e-9 * sceneSize)
+      grid.position.copy(center).addScaledVector(up, height - 1e-4 * sceneSize);
+  }
   scene3.add(grid);
   gizmo.size = 0.8;
 }
@@ -713,7 +994,9 @@ document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListe
   $("hint").textContent = el.value === "add-clip" && el.checked ? "Click a cable to add a clip there." : "";
 }));
 $("colour").addEventListener("change", () => { if (view) { updateRods(); render(); } });
-$("arrows").addEventListener("change", () => { if (view) { updateArrows(); render(); } });
+$("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateContacts(); render(); } });
+$("show-obstacles").addEventListener("change", () => { obstacleGroup.visible = $("show-obstacles").checked; render(); });
+$("show-contacts").addEventListener("change", () => { if (view) { updateArrows(); updateContacts(); render(); } });
 $("snap").addEventListener("click", () => edit({ op: "follow_stable" }));
 $("policy").addEventListener("change", () => edit({ op: "unstable_policy", policy: $("policy").value }));
 $("gravity-apply").addEventListener("click", () =>
@@ -830,6 +1113,23 @@ const slender = {
     el.checked = true;
     el.dispatchEvent(new Event("change"));
   },
+  /** Screen point (CSS px, page coordinates) of a point of the scene (m). */
+  screenPointOf(x) {
+    const p = v3(x).project(camera);
+    const box = canvas.getBoundingClientRect();
+    return { x: box.left + ((p.x + 1) / 2) * box.width, y: box.top + ((1 - p.y) / 2) * box.height };
+  },
+  /** Looks at `target` from `position` (m; the README screenshot's framing). */
+  setCamera(position, target) {
+    camera.position.copy(v3(position));
+    orbit.target.copy(v3(target));
+    orbit.update();
+    render();
+  },
+  /** The three.js scene (the tests count what is drawn in it). */
+  scene: scene3,
+  /** Arrow length per newton (m/N) of the contact forces now. */
+  contactScale: () => contactScale,
   save,
   exportGltf,
   edit,
