@@ -31,7 +31,8 @@ use super::broad_phase::{overlapping_pairs, Aabb, SweepBuffers};
 use super::friction::{Friction, FrictionUpdate};
 use super::obstacle::Obstacle;
 use super::segment_distance::{
-    edge_edge_mollifier, point_segment_distance_squared, segment_distance_squared,
+    closest_parameters, edge_edge_mollifier, point_segment_distance_squared,
+    segment_distance_squared,
 };
 use super::sites::{ContactSite, ContactSites, SiteDof};
 use crate::shell::dual::Dual2;
@@ -121,6 +122,44 @@ pub struct ContactForce {
     pub sticking: bool,
 }
 
+/// One side of a [`SegmentContact`]: an edge of the centerline, or a vertex of it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SegmentSide {
+    /// Member (0 for a single rod).
+    pub member: usize,
+    /// The edge (the member's own numbering), for an edge side.
+    pub edge: Option<usize>,
+    /// The vertex (the member's own numbering), for a vertex side.
+    pub vertex: Option<usize>,
+    /// The closest point of this side to the other (m).
+    pub point: Vector3<f64>,
+    /// The contact's force (N) on each site of the side (index in
+    /// [`ContactProblem::sites`]): two sites for an edge, one for a vertex.
+    pub forces: Vec<(usize, Vector3<f64>)>,
+}
+
+impl SegmentSide {
+    /// The resultant force (N) the other side applies to this one.
+    pub fn force(&self) -> Vector3<f64> {
+        self.forces.iter().map(|(_, f)| f).sum()
+    }
+}
+
+/// One active self-contact or cable–cable contact: two edges of the structure's centerline
+/// (or a vertex and an edge) closer than the activation distance, pushed apart by the
+/// barrier. The forces are minus the gradient of the pair's energy (mollifier included), so
+/// the two sides' resultants are equal and opposite and each site's share is the one the
+/// solve balanced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SegmentContact {
+    /// First side: an edge (edge–edge pair) or a vertex (vertex–edge pair).
+    pub a: SegmentSide,
+    /// Second side: always an edge.
+    pub b: SegmentSide,
+    /// Gap (m) between the surfaces: distance of the closest points minus twice the radius.
+    pub gap: f64,
+}
+
 /// `model` in contact with `obstacles` (see the module docs).
 #[derive(Debug)]
 pub struct ContactProblem<'m, P: ContactSites> {
@@ -151,6 +190,8 @@ struct EdgeSites {
     /// Member and rest arc length (m) of its ends along it.
     member: usize,
     arc: [f64; 2],
+    /// Its index among the member's edges.
+    index: usize,
 }
 
 /// One self-contact primitive with its coordinates.
@@ -654,6 +695,106 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         out
     }
 
+    /// Every active self-contact and cable–cable contact of `state` with its forces (empty
+    /// without self-contact; see [`SegmentContact`]).
+    pub fn segment_contacts(&self, state: &P::State) -> Vec<SegmentContact> {
+        let mut out = Vec::new();
+        let point = |x: &[f64], k: usize| Vector3::new(x[3 * k], x[3 * k + 1], x[3 * k + 2]);
+        self.for_each_primitive(state, 0.0, |prim| {
+            let gap = prim.gap(self.params.radius);
+            if gap >= self.params.activation {
+                return;
+            }
+            let length = self.primitive_length(prim);
+            let side = |member: usize,
+                        edge: Option<usize>,
+                        vertex: Option<usize>,
+                        point: Vector3<f64>,
+                        sites: &[usize],
+                        grad: &[f64],
+                        first: usize| SegmentSide {
+                member,
+                edge,
+                vertex,
+                point,
+                forces: sites
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &s)| (s, -point3(grad, first + k)))
+                    .collect(),
+            };
+            match prim {
+                Primitive::EdgeEdge { a, b, x } => {
+                    let m = edge_edge_mollifier(x, self.mollifier_scale(*a, *b));
+                    let Some(e) =
+                        self.primitive_energy(segment_distance_squared(x), Some(m), length)
+                    else {
+                        return;
+                    };
+                    let (s, t) = closest_parameters(x);
+                    let (ea, eb) = (&self.edges[*a], &self.edges[*b]);
+                    let pa = point(x, 0) + (point(x, 1) - point(x, 0)) * s;
+                    let pb = point(x, 2) + (point(x, 3) - point(x, 2)) * t;
+                    out.push(SegmentContact {
+                        a: side(
+                            ea.member,
+                            Some(ea.index),
+                            None,
+                            pa,
+                            &ea.sites,
+                            e.g.as_slice(),
+                            0,
+                        ),
+                        b: side(
+                            eb.member,
+                            Some(eb.index),
+                            None,
+                            pb,
+                            &eb.sites,
+                            e.g.as_slice(),
+                            2,
+                        ),
+                        gap,
+                    });
+                }
+                Primitive::VertexEdge { v, e: edge, x } => {
+                    let Some(e) =
+                        self.primitive_energy(point_segment_distance_squared(x), None, length)
+                    else {
+                        return;
+                    };
+                    let (p, q0, q1) = (point(x, 0), point(x, 1), point(x, 2));
+                    let d = q1 - q0;
+                    let t = ((p - q0).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+                    let site = &self.sites[*v];
+                    let eb = &self.edges[*edge];
+                    out.push(SegmentContact {
+                        a: side(
+                            site.member,
+                            None,
+                            Some(site.vertex),
+                            p,
+                            &[*v],
+                            e.g.as_slice(),
+                            0,
+                        ),
+                        b: side(
+                            eb.member,
+                            Some(eb.index),
+                            None,
+                            q0 + d * t,
+                            &eb.sites,
+                            e.g.as_slice(),
+                            1,
+                        ),
+                        gap,
+                    });
+                }
+            }
+        });
+        out
+    }
+
     /// The contact and friction energy (J) of `state`.
     fn contact_energy(&self, state: &P::State) -> f64 {
         let mut e = 0.0;
@@ -893,6 +1034,11 @@ impl<P: ContactSites + crate::dynamics::FlatDofs> crate::dynamics::FlatDofs
     }
 }
 
+/// The three coordinates of point `k` of a gradient over point triples.
+fn point3(g: &[f64], k: usize) -> Vector3<f64> {
+    Vector3::new(g[3 * k], g[3 * k + 1], g[3 * k + 2])
+}
+
 /// The edges of `model` as site pairs, and the edge pairs that never interact: those sharing a
 /// site, and those of one member closer along it than π r + ĝ.
 fn self_contact_edges<P: ContactSites>(
@@ -917,6 +1063,7 @@ fn self_contact_edges<P: ContactSites>(
             length: e.arc[1] - e.arc[0],
             member: e.member,
             arc: e.arc,
+            index: e.vertices[0],
         })
         .collect();
     // Each site's arc length along its own member, from the edges that start or end there.
