@@ -329,6 +329,18 @@ impl<'a> TimeRun<'a> {
     }
 }
 
+/// Newton iterations allowed per time step of a structure in contact. An impact's steps are
+/// capped by the time of impact (a tenth of each closing gap kept, for every DOF at once),
+/// so the step that lands needs more iterations than a free motion's.
+pub const CONTACT_STEP_ITERATIONS: usize = 300;
+
+/// The time parameters of a structure in contact: [`CONTACT_STEP_ITERATIONS`] at least.
+fn contact_params(time: &CompiledTime) -> crate::dynamics::DynamicsParams {
+    let mut p = time.params;
+    p.solver.max_iterations = p.solver.max_iterations.max(CONTACT_STEP_ITERATIONS);
+    p
+}
+
 /// One time step of structure `k` in `motion` (left unchanged if the step fails).
 fn step_structure(
     scene: &CompiledScene,
@@ -356,11 +368,15 @@ fn step_structure(
                 Some(Err(e)) => return failed(e),
                 None => return failed("contact: the scene has no contact".into()),
             };
-            let mut stepper =
-                match TimeStepper::new(&problem, state.clone(), velocity.clone(), time.params) {
-                    Ok(s) => s,
-                    Err(e) => return failed(format!("time: {e}")),
-                };
+            let mut stepper = match TimeStepper::new(
+                &problem,
+                state.clone(),
+                velocity.clone(),
+                contact_params(time),
+            ) {
+                Ok(s) => s,
+                Err(e) => return failed(format!("time: {e}")),
+            };
             let r = step_with_friction(&mut stepper, &problem);
             if r.converged {
                 velocity.copy_from_slice(stepper.velocity());
