@@ -39,21 +39,18 @@ pub fn step_with_friction<P: ContactSites + FlatDofs>(
             return report;
         }
         let before = problem.friction_state();
-        let mut update = problem.update_friction(stepper.state(), Some(start.state()));
-        let mut after = problem.friction_state();
-        slipped.resize(after.len(), false);
-        for ((old, new), slipped) in before.iter().zip(after.iter_mut()).zip(&mut slipped) {
-            match (*old, *new) {
-                (Friction::Stick { .. }, Friction::Slide { .. }) => *slipped = true,
-                (Friction::Slide { .. }, Friction::Stick { .. }) if *slipped => {
-                    // Keeps sliding for this step, against the force it was solved with.
-                    *new = *old;
-                    update.stuck -= 1;
-                }
-                _ => {}
+        let update =
+            problem.update_friction_keeping(stepper.state(), Some(start.state()), &slipped);
+        slipped.resize(before.len(), false);
+        for ((old, new), slipped) in before
+            .iter()
+            .zip(problem.friction_state())
+            .zip(&mut slipped)
+        {
+            if matches!((old, new), (Friction::Stick { .. }, Friction::Slide { .. })) {
+                *slipped = true;
             }
         }
-        problem.set_friction_state(&after);
         if !update.changed() {
             return report;
         }

@@ -540,6 +540,20 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     /// Sliding forces are refreshed to μ times the current normal force. When the update says
     /// [`changed`](FrictionUpdate::changed), solve again from `previous`.
     pub fn update_friction(&self, state: &P::State, previous: Option<&P::State>) -> FrictionUpdate {
+        self.update_friction_keeping(state, previous, &[])
+    }
+
+    /// As [`Self::update_friction`], except that a sliding contact flagged in `keep_sliding`
+    /// (index as in [`Self::friction_state`]; missing entries are false) keeps sliding —
+    /// against μ times its current normal force — even if its slip runs along its force:
+    /// within one time step, a contact that slipped stays sliding
+    /// ([`step_with_friction`](super::step_with_friction)).
+    pub fn update_friction_keeping(
+        &self,
+        state: &P::State,
+        previous: Option<&P::State>,
+        keep_sliding: &[bool],
+    ) -> FrictionUpdate {
         let mut update = FrictionUpdate::default();
         let mut friction = self.friction.borrow_mut();
         let n_obstacles = self.obstacles.len();
@@ -580,7 +594,8 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                             let d = x - self.model.site_position(p, site);
                             d - normal * normal.dot(&d)
                         });
-                        if previous.is_some() && slip.dot(&direction) >= 0.0 {
+                        let keep = keep_sliding.get(k * n_obstacles + o) == Some(&true);
+                        if previous.is_some() && slip.dot(&direction) >= 0.0 && !keep {
                             // Kinetic friction opposes the slip: a slip along the force means
                             // the contact stopped (or reversed) within the solve.
                             update.stuck += 1;
