@@ -1031,6 +1031,9 @@ fn a_swinging_cable_conserves_energy_and_writes_its_frames() {
     assert!(out.join("step_100/shape.vtp").exists() && out.join("step_100/shape.vtk").exists());
     let rows = std::fs::read_to_string(out.join("frames.csv")).unwrap();
     assert_eq!(rows.lines().count(), frames + 1);
+    // The animated glTF of the swing.
+    let worst = check_animated_gltf(&out, frames);
+    println!("swinging cable: frames.gltf centerlines within {worst:.2e} m of the frames'");
 }
 
 #[test]
@@ -1232,4 +1235,215 @@ fn a_cable_over_a_bracket_rests_on_its_obstacles_and_balances() {
         assert!(err <= 1e-6, "step {k}: imbalance {err:e}");
         assert!(r["rods"][0]["relative_force_imbalance"].as_f64().unwrap() < 1e-9);
     }
+}
+
+/// The floats of accessor `a` of an embedded-buffer glTF (checked: its view and count fit the
+/// buffer; FLOAT components only).
+fn accessor_floats(g: &Value, bin: &[u8], a: usize) -> Vec<f32> {
+    let acc = &g["accessors"][a];
+    assert_eq!(acc["componentType"], 5126, "accessor {a}: {acc}");
+    let width = match acc["type"].as_str().unwrap() {
+        "SCALAR" => 1,
+        "VEC3" => 3,
+        t => panic!("accessor {a}: type {t}"),
+    };
+    let count = acc["count"].as_u64().unwrap() as usize;
+    let view = &g["bufferViews"][acc["bufferView"].as_u64().unwrap() as usize];
+    let offset = view["byteOffset"].as_u64().unwrap() as usize;
+    let length = view["byteLength"].as_u64().unwrap() as usize;
+    assert_eq!(offset % 4, 0);
+    assert_eq!(length, 4 * width * count, "accessor {a}");
+    assert!(offset + length <= bin.len(), "accessor {a} past the buffer");
+    let v: Vec<f32> = bin[offset..offset + length]
+        .chunks(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
+    // min/max, where given, are those of the data.
+    if let (Some(min), Some(max)) = (acc["min"].as_array(), acc["max"].as_array()) {
+        for k in 0..width {
+            let (lo, hi) = v
+                .iter()
+                .skip(k)
+                .step_by(width)
+                .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &x| {
+                    (lo.min(x), hi.max(x))
+                });
+            assert_eq!(min[k].as_f64().unwrap() as f32, lo, "accessor {a} min");
+            assert_eq!(max[k].as_f64().unwrap() as f32, hi, "accessor {a} max");
+        }
+    }
+    v
+}
+
+/// Checks `frames.gltf` of a time run in `out` with `frames` frames: a glTF 2.0 document whose
+/// accessors fit its embedded buffer with their bounds, one morph target per frame after the
+/// first on every mesh, an animation of the weights with the frames' times (s) as keyframes
+/// and one-hot LINEAR weights, and each rod's centerline mesh + its target reproducing the
+/// frame's centerline (result.json) within 1e-6 m. Returns the largest such error (m).
+fn check_animated_gltf(out: &Path, frames: usize) -> f64 {
+    use base64::Engine;
+    let g: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("frames.gltf")).unwrap()).unwrap();
+    assert_eq!(g["asset"]["version"], "2.0");
+    let uri = g["buffers"][0]["uri"].as_str().unwrap();
+    let data = uri
+        .strip_prefix("data:application/octet-stream;base64,")
+        .expect("an embedded buffer");
+    let bin = base64::engine::general_purpose::STANDARD
+        .decode(data)
+        .unwrap();
+    assert_eq!(
+        g["buffers"][0]["byteLength"].as_u64().unwrap() as usize,
+        bin.len()
+    );
+    for a in 0..g["accessors"].as_array().unwrap().len() {
+        if g["accessors"][a]["componentType"] == 5126 {
+            accessor_floats(&g, &bin, a);
+        }
+    }
+    let targets = frames - 1;
+    let meshes = g["meshes"].as_array().unwrap();
+    for m in meshes {
+        let prim = &m["primitives"][0];
+        let base = prim["attributes"]["POSITION"].as_u64().unwrap() as usize;
+        let count = &g["accessors"][base]["count"];
+        let t = prim["targets"].as_array().unwrap();
+        assert_eq!(t.len(), targets, "{}", m["name"]);
+        assert_eq!(m["weights"].as_array().unwrap().len(), targets);
+        for target in t {
+            let p = target["POSITION"].as_u64().unwrap() as usize;
+            assert_eq!(&g["accessors"][p]["count"], count);
+        }
+    }
+    // The animation: every node with a mesh is driven; keyframes at the frames' times.
+    let anim = &g["animations"][0];
+    let times: Vec<f64> = (0..frames)
+        .map(|k| step(out, k)["time"]["t"].as_f64().unwrap())
+        .collect();
+    let channels = anim["channels"].as_array().unwrap();
+    let with_mesh = g["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|n| n.get("mesh").is_some())
+        .count();
+    assert_eq!(channels.len(), with_mesh);
+    for c in channels {
+        assert_eq!(c["target"]["path"], "weights");
+        let node = &g["nodes"][c["target"]["node"].as_u64().unwrap() as usize];
+        assert!(node.get("mesh").is_some());
+        let sampler = &anim["samplers"][c["sampler"].as_u64().unwrap() as usize];
+        assert_eq!(sampler["interpolation"], "LINEAR");
+        let input = accessor_floats(&g, &bin, sampler["input"].as_u64().unwrap() as usize);
+        assert_eq!(input.len(), frames);
+        for (a, b) in input.iter().zip(&times) {
+            assert_eq!(*a, *b as f32, "keyframe time");
+        }
+        let w = accessor_floats(&g, &bin, sampler["output"].as_u64().unwrap() as usize);
+        assert_eq!(w.len(), frames * targets);
+        for k in 0..frames {
+            for j in 0..targets {
+                let one = if k >= 1 && j == k - 1 { 1.0 } else { 0.0 };
+                assert_eq!(w[k * targets + j], one, "keyframe {k}, target {j}");
+            }
+        }
+    }
+    // Each rod's centerline: base + target of frame k = frame k's centerline.
+    let mut worst: f64 = 0.0;
+    for m in meshes
+        .iter()
+        .filter(|m| m["name"].as_str().unwrap().ends_with("centerline"))
+    {
+        let rod = m["name"].as_str().unwrap().trim_end_matches(" centerline");
+        let prim = &m["primitives"][0];
+        let base = accessor_floats(
+            &g,
+            &bin,
+            prim["attributes"]["POSITION"].as_u64().unwrap() as usize,
+        );
+        for k in [1, frames / 2, frames - 1] {
+            let target = &prim["targets"][k - 1]["POSITION"];
+            let d = accessor_floats(&g, &bin, target.as_u64().unwrap() as usize);
+            let r = step(out, k);
+            let rr = r["rods"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|x| x["name"] == rod)
+                .unwrap();
+            for (i, p) in positions(rr).iter().enumerate() {
+                for c in 0..3 {
+                    let x = base[3 * i + c] as f64 + d[3 * i + c] as f64;
+                    worst = worst.max((x - p[c]).abs());
+                }
+            }
+        }
+    }
+    assert!(worst <= 1e-6, "morph targets off by {worst:e} m");
+    worst
+}
+
+#[test]
+fn a_cable_dropped_on_a_bracket_comes_to_rest_on_it_and_balances() {
+    let out = solve("cable_dropped_on_bracket");
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["converged"], Value::Bool(true));
+    let frames = report["time"]["frames"].as_u64().unwrap() as usize;
+    // The scene's data: a 1.4 m cable, d = 8 mm, ρ = 1500 kg/m³, clamped at (0, 0, 0.3);
+    // ĝ = 1e-4 m; the tray's μ = 0.4.
+    let (length, d, rho, g, activation) = (1.4, 0.008, 1500.0, 9.81, 1e-4);
+    let weight = rho * circle_area(d) * length * g;
+    let mut lowest = f64::INFINITY;
+    let mut first_touch = None;
+    for k in 0..frames {
+        let r = step(&out, k);
+        let min_gap = r["min_gap"].as_f64().unwrap();
+        assert!(min_gap > 0.0, "frame {k}: gap {min_gap}");
+        lowest = lowest.min(min_gap);
+        let p = positions(&r["rods"][0]);
+        assert!(norm(sub(p[0], [0.0, 0.0, 0.3])) < 1e-12, "the clamp moved");
+        for o in r["obstacles"].as_array().unwrap() {
+            let mu = o["friction"].as_f64().unwrap();
+            for c in o["contacts"].as_array().unwrap() {
+                first_touch.get_or_insert(k);
+                let gap = c["gap"].as_f64().unwrap();
+                assert!(gap > 0.0 && gap < activation, "frame {k}: gap {gap}");
+                let (f_n, f_t) = (v3(&c["normal_force"]), v3(&c["friction_force"]));
+                assert!(
+                    norm(f_t) <= mu * norm(f_n) * (1.0 + 1e-5) + 1e-15,
+                    "frame {k}: friction {} > μ {mu} × {}",
+                    norm(f_t),
+                    norm(f_n)
+                );
+            }
+        }
+    }
+    // It fell: nothing touched at the start.
+    assert!(first_touch.is_some_and(|k| k > 0), "{first_touch:?}");
+    let last = step(&out, frames - 1);
+    let kinetic = last["time"]["energy"]["kinetic"].as_f64().unwrap();
+    let mut total = [0.0, 0.0, -weight];
+    let mut counts = Vec::new();
+    for o in last["obstacles"].as_array().unwrap() {
+        let contacts = o["contacts"].as_array().unwrap();
+        counts.push(contacts.len());
+        for c in contacts {
+            total = add(total, add(v3(&c["normal_force"]), v3(&c["friction_force"])));
+        }
+    }
+    for s in last["rods"][0]["supports"].as_array().unwrap() {
+        total = add(total, v3(&s["force"]));
+    }
+    let err = norm(total) / weight;
+    let gltf = check_animated_gltf(&out, frames);
+    println!(
+        "cable dropped on a bracket: {frames} frames, first contact in frame {first_touch:?}, smallest gap {lowest:.3e} m, at rest: kinetic {kinetic:.2e} J, contacts (bracket, tray) {counts:?}, |clamp + contacts + weight| / weight = {err:.2e}; frames.gltf centerlines within {gltf:.2e} m"
+    );
+    assert!(counts[0] >= 1 && counts[1] >= 3, "{counts:?}");
+    assert!(
+        kinetic < 1e-12 * weight * length,
+        "still moving: {kinetic:e} J"
+    );
+    assert!(err <= 1e-6, "imbalance {err:e}");
 }

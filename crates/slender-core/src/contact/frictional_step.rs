@@ -2,14 +2,22 @@
 //! stick/slide set, the set is updated from the result ([`ContactProblem::update_friction`]),
 //! and while a contact changed between sticking and sliding the step is solved again from
 //! its start with the new set — so every accepted step satisfies Coulomb's law at its end.
+//!
+//! Within one step the set only moves forward: a contact that slipped in one of the step's
+//! solves keeps sliding (against the same kinetic force) for the rest of the step, even if
+//! its slip then runs along that force. Without this, a contact landing on a rough surface
+//! can cycle — stuck at touchdown, slipping, stuck again where the slide ended, slipping
+//! again — and never settle; it may stick again at the next step's update. Each contact then
+//! changes at most twice per step (free → stick → slide), which bounds the re-solves.
 
 use crate::dynamics::{FlatDofs, StepReport, TimeStepper};
 
+use super::friction::Friction;
 use super::problem::ContactProblem;
 use super::sites::ContactSites;
 
 /// Times a step may be re-solved with a new stick/slide set before it is reported as failed.
-const MAX_SET_CHANGES: usize = 8;
+const MAX_SET_CHANGES: usize = 12;
 
 /// Advances `stepper` (stepping `problem`) by one step with friction (see the module docs).
 /// A step whose stick/slide set does not settle is reported as not converged, and the
@@ -20,6 +28,8 @@ pub fn step_with_friction<P: ContactSites + FlatDofs>(
 ) -> StepReport {
     let start = stepper.clone();
     let mut iterations = 0;
+    // Per contact: slipped in an earlier solve of this step.
+    let mut slipped: Vec<bool> = Vec::new();
     for _ in 0..=MAX_SET_CHANGES {
         let mut report = stepper.step();
         iterations += report.iterations;
@@ -28,7 +38,19 @@ pub fn step_with_friction<P: ContactSites + FlatDofs>(
             *stepper = start;
             return report;
         }
-        let update = problem.update_friction(stepper.state(), Some(start.state()));
+        let before = problem.friction_state();
+        let update =
+            problem.update_friction_keeping(stepper.state(), Some(start.state()), &slipped);
+        slipped.resize(before.len(), false);
+        for ((old, new), slipped) in before
+            .iter()
+            .zip(problem.friction_state())
+            .zip(&mut slipped)
+        {
+            if matches!((old, new), (Friction::Stick { .. }, Friction::Slide { .. })) {
+                *slipped = true;
+            }
+        }
         if !update.changed() {
             return report;
         }

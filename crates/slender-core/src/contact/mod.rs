@@ -28,7 +28,9 @@ pub use frictional_step::step_with_friction;
 pub use mesh::TriangleMesh;
 pub use obstacle::{Obstacle, SurfacePoint};
 pub use plane::Plane;
-pub use problem::{ContactForce, ContactParams, ContactProblem, CONTACT, FRICTION};
+pub use problem::{
+    ContactForce, ContactParams, ContactProblem, SegmentContact, SegmentSide, CONTACT, FRICTION,
+};
 pub use sites::{ContactEdge, ContactSite, ContactSites, SiteDof};
 pub use sphere::Sphere;
 

@@ -31,7 +31,8 @@ use super::broad_phase::{overlapping_pairs, Aabb, SweepBuffers};
 use super::friction::{Friction, FrictionUpdate};
 use super::obstacle::Obstacle;
 use super::segment_distance::{
-    edge_edge_mollifier, point_segment_distance_squared, segment_distance_squared,
+    closest_parameters, edge_edge_mollifier, point_segment_distance,
+    point_segment_distance_squared, segment_distance, segment_distance_squared,
 };
 use super::sites::{ContactSite, ContactSites, SiteDof};
 use crate::shell::dual::Dual2;
@@ -121,6 +122,44 @@ pub struct ContactForce {
     pub sticking: bool,
 }
 
+/// One side of a [`SegmentContact`]: an edge of the centerline, or a vertex of it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SegmentSide {
+    /// Member (0 for a single rod).
+    pub member: usize,
+    /// The edge (the member's own numbering), for an edge side.
+    pub edge: Option<usize>,
+    /// The vertex (the member's own numbering), for a vertex side.
+    pub vertex: Option<usize>,
+    /// The closest point of this side to the other (m).
+    pub point: Vector3<f64>,
+    /// The contact's force (N) on each site of the side (index in
+    /// [`ContactProblem::sites`]): two sites for an edge, one for a vertex.
+    pub forces: Vec<(usize, Vector3<f64>)>,
+}
+
+impl SegmentSide {
+    /// The resultant force (N) the other side applies to this one.
+    pub fn force(&self) -> Vector3<f64> {
+        self.forces.iter().map(|(_, f)| f).sum()
+    }
+}
+
+/// One active self-contact or cable–cable contact: two edges of the structure's centerline
+/// (or a vertex and an edge) closer than the activation distance, pushed apart by the
+/// barrier. The forces are minus the gradient of the pair's energy (mollifier included), so
+/// the two sides' resultants are equal and opposite and each site's share is the one the
+/// solve balanced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SegmentContact {
+    /// First side: an edge (edge–edge pair) or a vertex (vertex–edge pair).
+    pub a: SegmentSide,
+    /// Second side: always an edge.
+    pub b: SegmentSide,
+    /// Gap (m) between the surfaces: distance of the closest points minus twice the radius.
+    pub gap: f64,
+}
+
 /// `model` in contact with `obstacles` (see the module docs).
 #[derive(Debug)]
 pub struct ContactProblem<'m, P: ContactSites> {
@@ -137,7 +176,7 @@ pub struct ContactProblem<'m, P: ContactSites> {
     edges: Vec<EdgeSites>,
     /// Edge pairs that never interact (neighbours along a member, or sharing a site), sorted.
     excluded: Vec<(usize, usize)>,
-    /// Per site: its member and rest arc length (m) along it.
+    /// Per site: its chain and rest arc length (m) along it (see [`ContactProblem::with_chains`]).
     site_arcs: Vec<(usize, f64)>,
     scratch: RefCell<SelfScratch>,
 }
@@ -148,8 +187,11 @@ struct EdgeSites {
     sites: [usize; 2],
     /// Rest length (m).
     length: f64,
-    /// Member and rest arc length (m) of its ends along it.
+    /// Member, and its index among the member's edges.
     member: usize,
+    index: usize,
+    /// Chain, and rest arc length (m) of its ends along the chain.
+    chain: usize,
     arc: [f64; 2],
 }
 
@@ -169,17 +211,6 @@ impl Primitive {
             Primitive::VertexEdge { x, .. } => point_segment_distance_squared(x).v,
         };
         d2.sqrt() - 2.0 * radius
-    }
-
-    /// The sites of each side.
-    fn sides<P: ContactSites>(&self, problem: &ContactProblem<'_, P>) -> [Vec<usize>; 2] {
-        match *self {
-            Primitive::EdgeEdge { a, b, .. } => [
-                problem.edges[a].sites.to_vec(),
-                problem.edges[b].sites.to_vec(),
-            ],
-            Primitive::VertexEdge { v, e, .. } => [vec![v], problem.edges[e].sites.to_vec()],
-        }
     }
 
     /// The first site of each side.
@@ -227,6 +258,22 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         params: ContactParams,
         start: &P::State,
     ) -> Result<Self, ModelError> {
+        Self::with_chains(model, obstacles, params, start, &[])
+    }
+
+    /// As [`Self::new`], with the members laid along chains for self-contact: `chains[m]` =
+    /// (chain, arc length (m) of member m's first vertex along it). Edges closer than π r + ĝ
+    /// along one chain are not paired. A chain is a cable cut into several members (a scene's
+    /// rod split at interior clamps: the two members meeting at the clamp hold one point
+    /// twice, and must not be seen as touching there). Members missing from `chains` (all,
+    /// for [`Self::new`]) are chains of their own.
+    pub fn with_chains(
+        model: &'m P,
+        obstacles: Vec<Arc<dyn Obstacle>>,
+        params: ContactParams,
+        start: &P::State,
+        chains: &[(usize, f64)],
+    ) -> Result<Self, ModelError> {
         params.validate()?;
         if model.term_groups().iter().any(|g| g.bit == CONTACT.bit) {
             return Err(ModelError::structure(
@@ -261,7 +308,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         groups.push(FRICTION);
         let pairs = sites.len() * obstacles.len();
         let (edges, excluded, site_arcs) = if params.self_contact {
-            self_contact_edges(model, &sites, &params)
+            self_contact_edges(model, &sites, &params, chains)
         } else {
             (Vec::new(), Vec::new(), Vec::new())
         };
@@ -384,8 +431,8 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         if edge.sites.contains(&v) {
             return false;
         }
-        let (member, arc) = self.site_arcs[v];
-        !(member == edge.member
+        let (chain, arc) = self.site_arcs[v];
+        !(chain == edge.chain
             && (arc - arc.clamp(edge.arc[0], edge.arc[1])).abs()
                 < std::f64::consts::PI * self.params.radius + self.params.activation)
     }
@@ -493,6 +540,20 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     /// Sliding forces are refreshed to μ times the current normal force. When the update says
     /// [`changed`](FrictionUpdate::changed), solve again from `previous`.
     pub fn update_friction(&self, state: &P::State, previous: Option<&P::State>) -> FrictionUpdate {
+        self.update_friction_keeping(state, previous, &[])
+    }
+
+    /// As [`Self::update_friction`], except that a sliding contact flagged in `keep_sliding`
+    /// (index as in [`Self::friction_state`]; missing entries are false) keeps sliding —
+    /// against μ times its current normal force — even if its slip runs along its force:
+    /// within one time step, a contact that slipped stays sliding
+    /// ([`step_with_friction`](super::step_with_friction)).
+    pub fn update_friction_keeping(
+        &self,
+        state: &P::State,
+        previous: Option<&P::State>,
+        keep_sliding: &[bool],
+    ) -> FrictionUpdate {
         let mut update = FrictionUpdate::default();
         let mut friction = self.friction.borrow_mut();
         let n_obstacles = self.obstacles.len();
@@ -533,7 +594,8 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                             let d = x - self.model.site_position(p, site);
                             d - normal * normal.dot(&d)
                         });
-                        if previous.is_some() && slip.dot(&direction) >= 0.0 {
+                        let keep = keep_sliding.get(k * n_obstacles + o) == Some(&true);
+                        if previous.is_some() && slip.dot(&direction) >= 0.0 && !keep {
                             // Kinetic friction opposes the slip: a slip along the force means
                             // the contact stopped (or reversed) within the solve.
                             update.stuck += 1;
@@ -649,6 +711,106 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                 let (sa, sb) = prim.first_sites(self);
                 let at = |k: usize| (self.sites[k].member, self.sites[k].vertex);
                 out.push((at(sa), at(sb), gap, force));
+            }
+        });
+        out
+    }
+
+    /// Every active self-contact and cable–cable contact of `state` with its forces (empty
+    /// without self-contact; see [`SegmentContact`]).
+    pub fn segment_contacts(&self, state: &P::State) -> Vec<SegmentContact> {
+        let mut out = Vec::new();
+        let point = |x: &[f64], k: usize| Vector3::new(x[3 * k], x[3 * k + 1], x[3 * k + 2]);
+        self.for_each_primitive(state, 0.0, |prim| {
+            let gap = prim.gap(self.params.radius);
+            if gap >= self.params.activation {
+                return;
+            }
+            let length = self.primitive_length(prim);
+            let side = |member: usize,
+                        edge: Option<usize>,
+                        vertex: Option<usize>,
+                        point: Vector3<f64>,
+                        sites: &[usize],
+                        grad: &[f64],
+                        first: usize| SegmentSide {
+                member,
+                edge,
+                vertex,
+                point,
+                forces: sites
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &s)| (s, -point3(grad, first + k)))
+                    .collect(),
+            };
+            match prim {
+                Primitive::EdgeEdge { a, b, x } => {
+                    let m = edge_edge_mollifier(x, self.mollifier_scale(*a, *b));
+                    let Some(e) =
+                        self.primitive_energy(segment_distance_squared(x), Some(m), length)
+                    else {
+                        return;
+                    };
+                    let (s, t) = closest_parameters(x);
+                    let (ea, eb) = (&self.edges[*a], &self.edges[*b]);
+                    let pa = point(x, 0) + (point(x, 1) - point(x, 0)) * s;
+                    let pb = point(x, 2) + (point(x, 3) - point(x, 2)) * t;
+                    out.push(SegmentContact {
+                        a: side(
+                            ea.member,
+                            Some(ea.index),
+                            None,
+                            pa,
+                            &ea.sites,
+                            e.g.as_slice(),
+                            0,
+                        ),
+                        b: side(
+                            eb.member,
+                            Some(eb.index),
+                            None,
+                            pb,
+                            &eb.sites,
+                            e.g.as_slice(),
+                            2,
+                        ),
+                        gap,
+                    });
+                }
+                Primitive::VertexEdge { v, e: edge, x } => {
+                    let Some(e) =
+                        self.primitive_energy(point_segment_distance_squared(x), None, length)
+                    else {
+                        return;
+                    };
+                    let (p, q0, q1) = (point(x, 0), point(x, 1), point(x, 2));
+                    let d = q1 - q0;
+                    let t = ((p - q0).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+                    let site = &self.sites[*v];
+                    let eb = &self.edges[*edge];
+                    out.push(SegmentContact {
+                        a: side(
+                            site.member,
+                            None,
+                            Some(site.vertex),
+                            p,
+                            &[*v],
+                            e.g.as_slice(),
+                            0,
+                        ),
+                        b: side(
+                            eb.member,
+                            Some(eb.index),
+                            None,
+                            q0 + d * t,
+                            &eb.sites,
+                            e.g.as_slice(),
+                            1,
+                        ),
+                        gap,
+                    });
+                }
             }
         });
         out
@@ -844,29 +1006,43 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
             }
         }
         if !self.edges.is_empty() {
-            // Conservative advancement: two segments whose end points move by at most Δ_a and
-            // Δ_b come closer by at most Δ_a + Δ_b, so a step α with α (Δ_a + Δ_b) ≤
-            // (1 − KEEP_GAP)·gap leaves a tenth of the gap open.
-            let moved = |site: usize| -> f64 {
+            // Additive conservative advancement (Li et al. 2021): two segments whose end
+            // points move by at most Δ_a and Δ_b come closer by at most Δ_a + Δ_b, so the
+            // motion can be advanced by (1 − KEEP_GAP)·gap / (Δ_a + Δ_b) and the gap measured
+            // again there. Repeating it lets a pressed contact slide along the other segment
+            // (its gap stays, its motion is mostly tangential) where one such bound would cap
+            // the step at gap / motion. The gap stays above a tenth of a tenth of its start
+            // along the whole capped motion.
+            let moved = |site: usize| -> Vector3<f64> {
                 let mut dp = Vector3::zeros();
                 for (c, d) in self.sites[site].dofs.iter().enumerate() {
                     if d.dof != crate::assembly::FIXED {
                         dp[c] = d.coef * dx[d.dof];
                     }
                 }
-                dp.norm()
+                dp
             };
-            let largest = (0..self.sites.len()).map(moved).fold(0.0, f64::max);
+            let largest = (0..self.sites.len())
+                .map(|k| moved(k).norm())
+                .fold(0.0, f64::max);
+            let radius = self.params.radius;
             self.for_each_primitive(state, 2.0 * alpha * largest, |prim| {
-                let gap = prim.gap(self.params.radius);
-                let approach: f64 = prim
-                    .sides(self)
-                    .iter()
-                    .map(|side| side.iter().map(|&k| moved(k)).fold(0.0, f64::max))
-                    .sum();
-                if approach * alpha > (1.0 - KEEP_GAP) * gap {
-                    alpha = (1.0 - KEEP_GAP) * gap.max(0.0) / approach;
-                }
+                let t = match prim {
+                    Primitive::EdgeEdge { a, b, x } => {
+                        let sites = [self.edges[*a].sites, self.edges[*b].sites].concat();
+                        let dp: [f64; 12] =
+                            std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
+                        additive_ccd(x, &dp, 2, |y| segment_distance(y) - 2.0 * radius)
+                    }
+                    Primitive::VertexEdge { v, e, x } => {
+                        let [e0, e1] = self.edges[*e].sites;
+                        let sites = [*v, e0, e1];
+                        let dp: [f64; 9] =
+                            std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
+                        additive_ccd(x, &dp, 1, |y| point_segment_distance(y) - 2.0 * radius)
+                    }
+                };
+                alpha *= t;
             });
         }
         alpha
@@ -893,13 +1069,62 @@ impl<P: ContactSites + crate::dynamics::FlatDofs> crate::dynamics::FlatDofs
     }
 }
 
+/// Sub-steps of one additive conservative advancement before it settles for the motion
+/// reached (still a safe step).
+const MAX_CCD_STEPS: usize = 1000;
+
+/// The largest fraction t ∈ [0, 1] of the motion `dp` of the points `x` (coordinate triples;
+/// the first `first_side` points are one side, the others the other) that additive
+/// conservative advancement certifies: `gap` (m) of the positions stays positive along
+/// x + [0, t]·dp, above a tenth of a tenth of its start. 0 if the start's gap is not positive.
+fn additive_ccd<const N: usize>(
+    x: &[f64; N],
+    dp: &[f64; N],
+    first_side: usize,
+    gap: impl Fn(&[f64; N]) -> f64,
+) -> f64 {
+    let g0 = gap(x);
+    if !(g0 > 0.0) {
+        return 0.0;
+    }
+    let side_motion =
+        |points: std::ops::Range<usize>| points.map(|k| point3(dp, k).norm()).fold(0.0, f64::max);
+    let bound = side_motion(0..first_side) + side_motion(first_side..N / 3);
+    if bound == 0.0 {
+        return 1.0;
+    }
+    let (mut t, mut g) = (0.0, g0);
+    for _ in 0..MAX_CCD_STEPS {
+        let next = t + (1.0 - KEEP_GAP) * g / bound;
+        if next >= 1.0 {
+            return 1.0;
+        }
+        t = next;
+        g = gap(&std::array::from_fn(|i| x[i] + t * dp[i]));
+        if g < KEEP_GAP * g0 {
+            break;
+        }
+    }
+    t
+}
+
+/// The three coordinates of point `k` of a gradient over point triples.
+fn point3(g: &[f64], k: usize) -> Vector3<f64> {
+    Vector3::new(g[3 * k], g[3 * k + 1], g[3 * k + 2])
+}
+
 /// The edges of `model` as site pairs, and the edge pairs that never interact: those sharing a
-/// site, and those of one member closer along it than π r + ĝ.
+/// site, and those of one chain closer along it than π r + ĝ (see
+/// [`ContactProblem::with_chains`]); with each site's chain and arc length.
 fn self_contact_edges<P: ContactSites>(
     model: &P,
     sites: &[ContactSite],
     params: &ContactParams,
+    chains: &[(usize, f64)],
 ) -> (Vec<EdgeSites>, Vec<(usize, usize)>, Vec<(usize, f64)>) {
+    // A member not in `chains` is its own chain, numbered past every given one.
+    let first_own = chains.iter().map(|c| c.0 + 1).max().unwrap_or(0);
+    let chain_of = |m: usize| chains.get(m).copied().unwrap_or((first_own + m, 0.0));
     let index: std::collections::HashMap<(usize, usize), usize> = sites
         .iter()
         .enumerate()
@@ -916,15 +1141,18 @@ fn self_contact_edges<P: ContactSites>(
             ],
             length: e.arc[1] - e.arc[0],
             member: e.member,
-            arc: e.arc,
+            index: e.vertices[0],
+            chain: chain_of(e.member).0,
+            arc: e.arc.map(|s| s + chain_of(e.member).1),
         })
         .collect();
-    // Each site's arc length along its own member, from the edges that start or end there.
-    let mut site_arcs: Vec<(usize, f64)> = sites.iter().map(|s| (s.member, 0.0)).collect();
-    for e in &raw {
+    // Each site's arc length along its chain, from the edges that start or end there.
+    let mut site_arcs: Vec<(usize, f64)> =
+        sites.iter().map(|s| (chain_of(s.member).0, 0.0)).collect();
+    for (e, edge) in raw.iter().zip(&edges) {
         for (k, &v) in e.vertices.iter().enumerate() {
             if let Some(&i) = index.get(&(e.member, v)) {
-                site_arcs[i] = (e.member, e.arc[k]);
+                site_arcs[i] = (edge.chain, edge.arc[k]);
             }
         }
     }
@@ -933,13 +1161,47 @@ fn self_contact_edges<P: ContactSites>(
     for a in 0..raw.len() {
         for b in a + 1..raw.len() {
             let shares = edges[a].sites.iter().any(|s| edges[b].sites.contains(s));
-            let (ea, eb) = (&raw[a], &raw[b]);
-            let near = ea.member == eb.member
-                && ea.arc[0].max(eb.arc[0]) - ea.arc[1].min(eb.arc[1]) < reach;
+            let (ea, eb) = (&edges[a], &edges[b]);
+            let near =
+                ea.chain == eb.chain && ea.arc[0].max(eb.arc[0]) - ea.arc[1].min(eb.arc[1]) < reach;
             if shares || near {
                 excluded.push((a, b));
             }
         }
     }
     (edges, excluded, site_arcs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two crossing segments 1 mm apart (radius 0): edge a along x at z = 1 mm, edge b along
+    /// y at z = 0.
+    fn crossing() -> [f64; 12] {
+        [
+            -0.1, 0.0, 1e-3, 0.1, 0.0, 1e-3, 0.0, -0.1, 0.0, 0.0, 0.1, 0.0,
+        ]
+    }
+
+    #[test]
+    fn additive_ccd_lets_a_pressed_contact_slide_and_stops_an_approach_short() {
+        let x = crossing();
+        let gap = |y: &[f64; 12]| segment_distance(y);
+        // Sliding 5 cm along its own axis at 1 mm: the gap stays, the whole motion is safe
+        // (one bound of the motion against the gap would allow 2 % of it).
+        let slide: [f64; 12] =
+            std::array::from_fn(|i| if i % 3 == 0 && i < 6 { 0.05 } else { 0.0 });
+        assert_eq!(additive_ccd(&x, &slide, 2, gap), 1.0);
+        // Moving 3 mm down through the other: stopped with the gap still open.
+        let through: [f64; 12] =
+            std::array::from_fn(|i| if i % 3 == 2 && i < 6 { -3e-3 } else { 0.0 });
+        let t = additive_ccd(&x, &through, 2, gap);
+        let end: [f64; 12] = std::array::from_fn(|i| x[i] + t * through[i]);
+        assert!(t > 0.0 && t < 1.0 / 3.0, "{t}");
+        assert!(gap(&end) > 0.01 * 1e-3, "{}", gap(&end));
+        // Nothing moves: no cap; a closed start: no motion at all.
+        assert_eq!(additive_ccd(&x, &[0.0; 12], 2, gap), 1.0);
+        assert_eq!(additive_ccd(&x, &through, 2, |y| gap(y) - 2e-3), 0.0);
+    }
 }

@@ -42,6 +42,25 @@ pub fn closest_parameters(x: &[f64; 12]) -> (f64, f64) {
     (s, t)
 }
 
+/// Distance (m) between segments a₀a₁ and b₀b₁ (coordinates as in [`SegmentPairDual`]),
+/// without derivatives: for step caps, which evaluate it many times.
+pub fn segment_distance(x: &[f64; 12]) -> f64 {
+    let p = |k: usize| nalgebra::Vector3::new(x[3 * k], x[3 * k + 1], x[3 * k + 2]);
+    let (s, t) = closest_parameters(x);
+    let pa = p(0) + (p(1) - p(0)) * s;
+    let pb = p(2) + (p(3) - p(2)) * t;
+    (pa - pb).norm()
+}
+
+/// Distance (m) from point p to segment ab (coordinates p, a, b), without derivatives.
+pub fn point_segment_distance(x: &[f64; 9]) -> f64 {
+    let p = |k: usize| nalgebra::Vector3::new(x[3 * k], x[3 * k + 1], x[3 * k + 2]);
+    let (q, a, b) = (p(0), p(1), p(2));
+    let e = b - a;
+    let t = ((q - a).dot(&e) / e.norm_squared()).clamp(0.0, 1.0);
+    (q - a - e * t).norm()
+}
+
 /// |p − q|² for points p, q given as variable triples `i` and `j`.
 fn point_point(x: &[f64; 12], i: usize, j: usize) -> SegmentPairDual {
     let d = sub3(&point::<12>(x, i), &point::<12>(x, j));

@@ -201,7 +201,18 @@ impl<'m, P: FlatDofs> TimeStepper<'m, P> {
     pub fn step(&mut self) -> StepReport {
         let model = self.problem.model();
         let tau = self.problem.stage();
-        model.displace(&self.state, &self.velocity, tau, &mut self.stage);
+        if model.caps_predictor() {
+            // A contact model's step caps hold for the first guess too: the inertial target
+            // of a cable falling onto an obstacle lies beyond its surface (where the barrier
+            // is infinite) or, past a thin part, on its far side. `increment` is scratch here.
+            for (d, v) in self.increment.iter_mut().zip(&self.velocity) {
+                *d = tau * v;
+            }
+            let alpha = model.max_step(&self.state, &self.increment);
+            model.displace(&self.state, &self.increment, alpha, &mut self.stage);
+        } else {
+            model.displace(&self.state, &self.velocity, tau, &mut self.stage);
+        }
         let outcome = newton(
             &self.problem,
             &mut self.stage,

@@ -7,6 +7,7 @@
 
 mod carry;
 pub mod compile;
+mod contact_report;
 pub mod error;
 pub mod magnitudes;
 pub mod result;
@@ -20,8 +21,8 @@ pub mod time_run;
 pub use compile::{CompiledRod, CompiledScene, CompiledSupport, RodPart};
 pub use error::SceneError;
 pub use result::{
-    ContactResult, FrameEnergy, ObstacleResult, RodResult, SceneStep, StabilityResult,
-    StructureResult, SupportResult, TimeFrame,
+    ContactResult, FrameEnergy, ObstacleResult, RodResult, SceneStep, SegmentContactKind,
+    SegmentContactResult, StabilityResult, StructureResult, SupportResult, TimeFrame,
 };
 pub use session::{EditReport, Session, SupportPose};
 pub use shell_run::ShellRun;

@@ -161,6 +161,60 @@ pub struct SceneStep {
     /// obstacles; negative would be a penetration, which the barrier prevents).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_gap: Option<f64>,
+    /// With self-contact (`contact.self_contact`): every active contact between segments of
+    /// the centerlines — a cable touching itself or another cable — with the force on each
+    /// side (absent without self-contact; empty when nothing touches).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub segment_contacts: Option<Vec<SegmentContactResult>>,
+    /// With self-contact: the smallest gap (m) between the surfaces of two segments that may
+    /// touch (absent without self-contact, or when no two segments are near each other).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_segment_gap: Option<f64>,
+}
+
+/// What touches in a [`SegmentContactResult`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SegmentContactKind {
+    /// Two edges crossing (side a and side b are edges).
+    EdgeEdge,
+    /// A vertex against an edge (side a is a vertex, side b an edge): where edges run
+    /// parallel, the edge–edge contact fades out and these carry the load.
+    VertexEdge,
+}
+
+/// One contact between two segments of the centerlines (self-contact of a cable, or two
+/// cables of one structure pressing on each other). The forces are those the barrier applies
+/// at the segments' vertices, summed per side: equal and opposite, and together with the
+/// supports, the obstacles' contacts and the loads they balance each rod. The share acting
+/// on a vertex held by a support goes to that support (as for obstacle contacts) and is left
+/// out of the side's force.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SegmentContactResult {
+    /// Edge–edge or vertex–edge.
+    pub kind: SegmentContactKind,
+    /// Side a: the rod (name).
+    pub rod_a: String,
+    /// Side a's edge (the rod's numbering; edge i joins vertices i and i + 1), for an
+    /// edge–edge contact.
+    pub edge_a: Option<usize>,
+    /// Side a's vertex, for a vertex–edge contact.
+    pub vertex_a: Option<usize>,
+    /// Side a's closest point to side b (m).
+    pub point_a: [f64; 3],
+    /// Force (N) side b applies to side a.
+    pub force_a: [f64; 3],
+    /// Side b: the rod (name).
+    pub rod_b: String,
+    /// Side b's edge.
+    pub edge_b: usize,
+    /// Side b's closest point to side a (m).
+    pub point_b: [f64; 3],
+    /// Force (N) side a applies to side b.
+    pub force_b: [f64; 3],
+    /// Gap (m) between the two surfaces: distance of the closest points minus twice the
+    /// contact radius, in (0, activation).
+    pub gap: f64,
 }
 
 /// An obstacle and the forces it applies.

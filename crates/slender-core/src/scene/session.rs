@@ -13,7 +13,7 @@
 
 use nalgebra::Rotation3;
 
-use crate::contact::{ContactProblem, ContactSites, Friction};
+use crate::contact::{ContactProblem, Friction};
 use crate::geometry::Vec3;
 use crate::linalg::AdaptiveMatrix;
 use crate::rod::{ClampHold, RodSnapshot};
@@ -22,10 +22,9 @@ use crate::structure::{MemberState, Structure, StructureState};
 
 use super::carry::FramedSnapshot;
 use super::compile::{CompiledScene, MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
+use super::contact_report::{contact_problem, contact_report};
 use super::error::SceneError;
-use super::result::{
-    scene_results_with, ContactResult, ObstacleResult, SceneStep, StabilityResult,
-};
+use super::result::{scene_results_with, SceneStep, StabilityResult};
 use super::shell_run::{move_steps, pose_change, ShellRun, MAX_MOVE_STEPS};
 use super::shells::ShellResult;
 use super::spec::{
@@ -144,23 +143,6 @@ fn unsolved(reason: String) -> SolveReport {
 
 /// Re-solves allowed for the stick/slide set of the contacts to settle after a solve.
 pub const MAX_FRICTION_SOLVES: usize = 20;
-
-/// The contact problem of structure `k` of `scene` starting at `state`, with `friction` (if the
-/// scene has contact).
-fn contact_problem<'a>(
-    scene: &'a CompiledScene,
-    k: usize,
-    state: &StructureState,
-    friction: &[Friction],
-) -> Option<Result<ContactProblem<'a, Structure>, String>> {
-    let c = scene.contact.as_ref()?;
-    let s = &scene.structures[k];
-    Some(
-        ContactProblem::new(s, c.obstacles.clone(), c.params[k], state)
-            .inspect(|p| p.set_friction_state(friction))
-            .map_err(|e| format!("contact: {e}")),
-    )
-}
 
 /// A new solver for structure `k` (from its contact problem with contact: with self-contact
 /// its Hessian pattern is dense).
@@ -430,9 +412,15 @@ impl Session {
         let reports: Vec<SolveReport> = self.runs.iter().map(|r| r.report.clone()).collect();
         let stability: Vec<StabilityResult> =
             self.runs.iter().map(|r| r.stability.clone()).collect();
-        let (obstacles, min_gap, external) = self.contact_results();
-        let (rods, structures) =
-            scene_results_with(&self.scene, &states, &reports, &stability, &external);
+        let friction: Vec<&[Friction]> = self.runs.iter().map(|r| r.friction.as_slice()).collect();
+        let contacts = contact_report(&self.scene, &states, &friction);
+        let (rods, structures) = scene_results_with(
+            &self.scene,
+            &states,
+            &reports,
+            &stability,
+            &contacts.external,
+        );
         let shells: Vec<ShellResult> = self
             .shells
             .iter()
@@ -453,78 +441,11 @@ impl Session {
             converged,
             stable,
             time: None,
-            obstacles,
-            min_gap,
+            obstacles: contacts.obstacles,
+            min_gap: contacts.min_gap,
+            segment_contacts: contacts.segment_contacts,
+            min_segment_gap: contacts.min_segment_gap,
         }
-    }
-
-    /// The obstacles with their contacts, the smallest gap and, per structure, its contact
-    /// forces (position, normal + friction force) for the balance.
-    #[allow(clippy::type_complexity)]
-    fn contact_results(&self) -> (Vec<ObstacleResult>, Option<f64>, Vec<Vec<(Vec3, Vec3)>>) {
-        let Some(c) = &self.scene.contact else {
-            return (Vec::new(), None, Vec::new());
-        };
-        let mut obstacles: Vec<ObstacleResult> = c
-            .names
-            .iter()
-            .zip(&c.obstacles)
-            .map(|(name, o)| ObstacleResult {
-                name: name.clone(),
-                friction: o.friction(),
-                force: [0.0; 3],
-                contacts: Vec::new(),
-            })
-            .collect();
-        let mut external = vec![Vec::new(); self.runs.len()];
-        let mut min_gap = f64::INFINITY;
-        for (k, run) in self.runs.iter().enumerate() {
-            let Some(Ok(p)) = contact_problem(&self.scene, k, &run.state, &run.friction) else {
-                continue;
-            };
-            if !c.obstacles.is_empty() {
-                min_gap = min_gap.min(p.min_gap(&run.state));
-            }
-            for f in p.contact_forces(&run.state) {
-                let site = p.sites()[f.site];
-                if site.dofs.iter().all(|d| d.dof == crate::assembly::FIXED) {
-                    // A held vertex: its support takes the contact force.
-                    continue;
-                }
-                let x = p.model().site_position(&run.state, &site);
-                let total = f.force + f.friction;
-                external[k].push((x, total));
-                let (rod, vertex) = self
-                    .scene
-                    .rods
-                    .iter()
-                    .find_map(|r| {
-                        r.parts
-                            .iter()
-                            .find(|part| part.structure == k && part.member == site.member)
-                            .map(|part| (r.name.clone(), part.first_vertex + site.vertex))
-                    })
-                    .unwrap_or_else(|| {
-                        (format!("structure{k}.member{}", site.member), site.vertex)
-                    });
-                let o = &mut obstacles[f.obstacle];
-                for i in 0..3 {
-                    o.force[i] += total[i];
-                }
-                o.contacts.push(ContactResult {
-                    rod,
-                    vertex,
-                    position: x.into(),
-                    gap: f.gap,
-                    normal: f.normal.into(),
-                    normal_force: f.force.into(),
-                    friction_force: f.friction.into(),
-                    sticking: f.sticking,
-                });
-            }
-        }
-        let min_gap = (!c.obstacles.is_empty()).then_some(min_gap);
-        (obstacles, min_gap, external)
     }
 
     /// Follows an unstable equilibrium of structure `k` to a stable one when the policy says

@@ -135,8 +135,9 @@ pub struct ContactSpec {
     /// position tolerance of contacts). Default 1e-6 × the longest rod's length.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub activation: Option<f64>,
-    /// Contact of the rods with themselves and with each other (in one structure). Default
-    /// false.
+    /// Contact of the rods with themselves and with each other: every rod of the scene is then
+    /// solved in one structure (so separate cables touch), whose contact radius is the largest
+    /// of its rods'. Default false.
     #[serde(default)]
     pub self_contact: bool,
     /// Barrier stiffness κ (N/m², > 0). Default: the stiffness at which the heaviest rod's
@@ -149,7 +150,8 @@ pub struct ContactSpec {
 
 /// The `[time]` table: implicit time stepping of the scene's rods (discrete elastic rods
 /// only), starting from the rest state at rest (velocity 0) with gravity and the loads acting
-/// from t = 0 — a cable released from its rest shape.
+/// from t = 0 — a cable released from its rest shape —, in contact with the obstacles, with
+/// itself and with the other rods (self-contact) when the scene has them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
@@ -160,8 +162,9 @@ pub struct TimeSpec {
     /// ends at that many times `dt`.
     pub duration: f64,
     /// `"energy_conserving"` (average-vector-field, second order, conserves energy; the
-    /// default), `"midpoint"` (implicit midpoint rule, second order, symplectic) or
-    /// `"backward_euler"` (first order, dissipative, robust).
+    /// default), `"midpoint"` (implicit midpoint rule, second order, symplectic; refused with
+    /// obstacles or self-contact) or `"backward_euler"` (first order, dissipative, robust; the
+    /// choice for impacts and friction).
     #[serde(default)]
     pub scheme: TimeSchemeSpec,
     /// Mass-proportional Rayleigh damping α (1/s), finite and ≥ 0: force α M v. Default 0.

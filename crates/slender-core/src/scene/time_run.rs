@@ -2,18 +2,29 @@
 //! own [`TimeStepper`] from the rest state at rest, with gravity and the loads acting from
 //! t = 0. No I/O: the caller (`slender solve`) writes the frames.
 //!
+//! In a scene with contact (obstacles or self-contact) each structure is stepped as a
+//! [`ContactProblem`](crate::contact::ContactProblem) built around it for each step (as the
+//! [`Session`](super::Session) builds one per solve), with Coulomb friction by
+//! [`step_with_friction`]: a step is solved with the current stick/slide set and re-solved
+//! while a contact changes, so every accepted step satisfies Coulomb's law at its end. The
+//! barrier and the time-of-impact step caps (which bound the stepper's first guess too) keep
+//! every gap positive. Contacts within the activation distance of a rough surface at the
+//! start stick where they are.
+//!
 //! Supports stay at their rest pose, so a time-stepped scene has no prescribed motion (it is
 //! refused when compiling), and shells are refused too (see
 //! [`compile::time`](super::compile::time)). Cosserat rods and SE(3) beams are stepped like
 //! discrete elastic rods: the stepper takes their frames' rotary inertia from the structure.
 
-use crate::dynamics::TimeStepper;
+use crate::contact::{step_with_friction, Friction};
+use crate::dynamics::{LumpedMass, StepReport, TimeStepper};
 use crate::solver::{EquilibriumProblem, SolveReport, SolveStatus};
 use crate::structure::{Structure, StructureState};
 
 use super::compile::{CompiledScene, CompiledTime};
+use super::contact_report::{contact_problem, contact_report};
 use super::error::SceneError;
-use super::result::{scene_results, FrameEnergy, SceneStep, StabilityResult, TimeFrame};
+use super::result::{scene_results_with, FrameEnergy, SceneStep, StabilityResult, TimeFrame};
 
 /// The outcome of one time step of the whole scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,11 +41,59 @@ pub struct TimeStepOutcome {
     pub failure: Option<String>,
 }
 
+/// How one structure moves.
+enum Motion<'a> {
+    /// Without contact: its stepper, kept from step to step.
+    Free(TimeStepper<'a, Structure>),
+    /// With contact: its state, velocity (per free DOF, m/s and rad/s) and friction state;
+    /// the contact problem and its stepper are built around them for each step (a stepper
+    /// borrows its problem, which borrows the structure).
+    Contact {
+        state: StructureState,
+        velocity: Vec<f64>,
+        friction: Vec<Friction>,
+        mass: LumpedMass,
+    },
+}
+
+impl Motion<'_> {
+    fn state(&self) -> &StructureState {
+        match self {
+            Motion::Free(s) => s.state(),
+            Motion::Contact { state, .. } => state,
+        }
+    }
+
+    fn friction(&self) -> &[Friction] {
+        match self {
+            Motion::Free(_) => &[],
+            Motion::Contact { friction, .. } => friction,
+        }
+    }
+
+    /// Kinetic energy (J) and the structure's potential energy at load `load` (J): elastic
+    /// and loads, without the contact barrier and friction terms.
+    fn energy(&self, s: &Structure, load: f64) -> (f64, f64) {
+        match self {
+            Motion::Free(st) => {
+                let m = st.energy();
+                (m.kinetic, m.potential)
+            }
+            Motion::Contact {
+                state,
+                velocity,
+                mass,
+                ..
+            } => (mass.kinetic_energy(velocity), s.energy(state, load)),
+        }
+    }
+}
+
 /// A scene being stepped in time (see the module docs).
 pub struct TimeRun<'a> {
     scene: &'a CompiledScene,
     time: CompiledTime,
-    steppers: Vec<TimeStepper<'a, Structure>>,
+    motions: Vec<Motion<'a>>,
     /// Per structure: the report of its last step.
     reports: Vec<SolveReport>,
     step: usize,
@@ -75,23 +134,41 @@ impl<'a> TimeRun<'a> {
                 "the scene has no [time] table: nothing to step",
             ));
         };
-        let mut steppers = Vec::with_capacity(scene.structures.len());
+        let mut motions = Vec::with_capacity(scene.structures.len());
         let mut reports = Vec::with_capacity(scene.structures.len());
-        for s in &scene.structures {
-            let stepper = TimeStepper::at_rest(s, s.rest_state().clone(), time.params)
-                .map_err(|e| SceneError::model("time", e))?;
+        for (k, s) in scene.structures.iter().enumerate() {
+            let rest = s.rest_state();
+            let motion = match contact_problem(scene, k, rest, &[]) {
+                None => Motion::Free(
+                    TimeStepper::at_rest(s, rest.clone(), time.params)
+                        .map_err(|e| SceneError::model("time", e))?,
+                ),
+                Some(Err(e)) => return Err(SceneError::new("contact", e)),
+                Some(Ok(problem)) => {
+                    // Checks what a stepper refuses, once.
+                    TimeStepper::at_rest(&problem, rest.clone(), time.params)
+                        .map_err(|e| SceneError::model("time", e))?;
+                    problem.update_friction(rest, None);
+                    Motion::Contact {
+                        state: rest.clone(),
+                        velocity: vec![0.0; s.n_free()],
+                        friction: problem.friction_state(),
+                        mass: LumpedMass::of(s).map_err(|e| SceneError::model("time", e))?,
+                    }
+                }
+            };
             reports.push(report(
                 SolveStatus::Converged,
                 0,
                 f64::NAN,
-                stepper.energy().potential,
+                motion.energy(s, time.params.load).1,
             ));
-            steppers.push(stepper);
+            motions.push(motion);
         }
         Ok(Self {
             scene,
             time,
-            steppers,
+            motions,
             reports,
             step: 0,
             iterations: 0,
@@ -121,19 +198,20 @@ impl<'a> TimeRun<'a> {
 
     /// The state of structure `k`.
     pub fn state(&self, k: usize) -> &StructureState {
-        self.steppers[k].state()
+        self.motions[k].state()
     }
 
-    /// Energies of the current state (J), summed over the structures.
+    /// Energies of the current state (J), summed over the structures. With contact, the
+    /// barrier's and the friction terms' energies are not included (friction dissipates).
     pub fn energy(&self) -> FrameEnergy {
         let mut e = FrameEnergy::default();
-        for (s, st) in self.scene.structures.iter().zip(&self.steppers) {
-            let m = st.energy();
-            let elastic = s.energy(st.state(), 0.0);
-            e.kinetic += m.kinetic;
+        for (s, m) in self.scene.structures.iter().zip(&self.motions) {
+            let (kinetic, potential) = m.energy(s, self.time.params.load);
+            let elastic = s.energy(m.state(), 0.0);
+            e.kinetic += kinetic;
             e.elastic += elastic;
-            e.gravity_and_loads += m.potential - elastic;
-            e.potential += m.potential;
+            e.gravity_and_loads += potential - elastic;
+            e.potential += potential;
         }
         e.total = e.kinetic + e.potential;
         e
@@ -156,8 +234,8 @@ impl<'a> TimeRun<'a> {
             time: target,
             failure: None,
         };
-        for (k, stepper) in self.steppers.iter_mut().enumerate() {
-            let r = stepper.step();
+        for k in 0..self.motions.len() {
+            let r = step_structure(self.scene, k, &mut self.motions[k], &self.time);
             out.iterations += r.iterations;
             out.residual = out.residual.max(r.residual);
             let status = if r.converged {
@@ -185,7 +263,10 @@ impl<'a> TimeRun<'a> {
                 out.failure = Some(reason.clone());
                 SolveStatus::NotConverged { reason }
             };
-            self.reports[k] = report(status, r.iterations, r.residual, stepper.energy().potential);
+            let potential = self.motions[k]
+                .energy(&self.scene.structures[k], self.time.params.load)
+                .1;
+            self.reports[k] = report(status, r.iterations, r.residual, potential);
             if !r.converged {
                 self.failed = true;
                 return out;
@@ -198,7 +279,7 @@ impl<'a> TimeRun<'a> {
 
     /// The current state as a frame (allocates: for output). `frame` numbers it.
     pub fn frame(&self, frame: usize) -> SceneStep {
-        let states: Vec<StructureState> = self.steppers.iter().map(|s| s.state().clone()).collect();
+        let states: Vec<StructureState> = self.motions.iter().map(|m| m.state().clone()).collect();
         let stability: Vec<StabilityResult> = self
             .reports
             .iter()
@@ -211,7 +292,15 @@ impl<'a> TimeRun<'a> {
                 energy_drop: 0.0,
             })
             .collect();
-        let (rods, structures) = scene_results(self.scene, &states, &self.reports, &stability);
+        let friction: Vec<&[Friction]> = self.motions.iter().map(|m| m.friction()).collect();
+        let contacts = contact_report(self.scene, &states, &friction);
+        let (rods, structures) = scene_results_with(
+            self.scene,
+            &states,
+            &self.reports,
+            &stability,
+            &contacts.external,
+        );
         let converged = !self.failed;
         let t = self.time();
         SceneStep {
@@ -225,8 +314,10 @@ impl<'a> TimeRun<'a> {
             shells: Vec::new(),
             converged,
             stable: true,
-            obstacles: Vec::new(),
-            min_gap: None,
+            obstacles: contacts.obstacles,
+            min_gap: contacts.min_gap,
+            segment_contacts: contacts.segment_contacts,
+            min_segment_gap: contacts.min_segment_gap,
             time: Some(TimeFrame {
                 t,
                 frame,
@@ -235,6 +326,65 @@ impl<'a> TimeRun<'a> {
                 iterations: if self.step == 0 { 0 } else { self.iterations },
                 converged,
             }),
+        }
+    }
+}
+
+/// Newton iterations allowed per time step of a structure in contact. An impact's steps are
+/// capped by the time of impact (a tenth of each closing gap kept, for every DOF at once),
+/// so the step that lands needs more iterations than a free motion's.
+pub const CONTACT_STEP_ITERATIONS: usize = 300;
+
+/// The time parameters of a structure in contact: [`CONTACT_STEP_ITERATIONS`] at least.
+fn contact_params(time: &CompiledTime) -> crate::dynamics::DynamicsParams {
+    let mut p = time.params;
+    p.solver.max_iterations = p.solver.max_iterations.max(CONTACT_STEP_ITERATIONS);
+    p
+}
+
+/// One time step of structure `k` in `motion` (left unchanged if the step fails).
+fn step_structure(
+    scene: &CompiledScene,
+    k: usize,
+    motion: &mut Motion<'_>,
+    time: &CompiledTime,
+) -> StepReport {
+    let failed = |why: String| StepReport {
+        converged: false,
+        iterations: 0,
+        residual: f64::NAN,
+        time: 0.0,
+        failure: Some(why),
+    };
+    match motion {
+        Motion::Free(stepper) => stepper.step(),
+        Motion::Contact {
+            state,
+            velocity,
+            friction,
+            ..
+        } => {
+            let problem = match contact_problem(scene, k, state, friction) {
+                Some(Ok(p)) => p,
+                Some(Err(e)) => return failed(e),
+                None => return failed("contact: the scene has no contact".into()),
+            };
+            let mut stepper = match TimeStepper::new(
+                &problem,
+                state.clone(),
+                velocity.clone(),
+                contact_params(time),
+            ) {
+                Ok(s) => s,
+                Err(e) => return failed(format!("time: {e}")),
+            };
+            let r = step_with_friction(&mut stepper, &problem);
+            if r.converged {
+                velocity.copy_from_slice(stepper.velocity());
+                state.clone_from(stepper.state());
+                *friction = problem.friction_state();
+            }
+            r
         }
     }
 }

@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 18] = [
+pub const EXAMPLES: [(&str, &str); 19] = [
     (
         "rod_models_cantilever",
         include_str!("../../../../examples/rod_models_cantilever.toml"),
@@ -84,6 +84,10 @@ pub const EXAMPLES: [(&str, &str); 18] = [
         "cable_over_bracket",
         include_str!("../../../../examples/cable_over_bracket.toml"),
     ),
+    (
+        "cable_dropped_on_bracket",
+        include_str!("../../../../examples/cable_dropped_on_bracket.toml"),
+    ),
 ];
 
 fn check(description: String, measured: f64, target: &str, passed: bool) -> Check {
@@ -112,7 +116,11 @@ pub fn scene_checks() -> Result<Vec<Check>> {
             Err(e) => bail!("{name}: {e}"),
         };
         if compiled.time.is_some() {
-            checks.push(time_check(name, &compiled)?);
+            checks.push(if compiled.contact.is_some() {
+                contact_time_check(name, &compiled)?
+            } else {
+                time_check(name, &compiled)?
+            });
             continue;
         }
         let (mut solver, first) = SceneSolver::new(&spec, &compiled);
@@ -228,6 +236,65 @@ fn time_check(name: &str, compiled: &slender_core::scene::CompiledScene) -> Resu
         "≤ 1e-5",
         measured <= 1e-5,
     ))
+}
+
+/// A time-stepped example with contact (damped, so that it comes to rest): no penetration —
+/// every gap to an obstacle and between segments positive after every step — and, at the end,
+/// the supports' reactions and the contact forces balancing the loads: |Σ| / Σ|applied|,
+/// target ≤ 1e-6 (the time steps' Newton tolerance, 1e-10 of a force scale that includes the
+/// inertial forces, limits it; NaN if a step did not converge or a gap closed).
+fn contact_time_check(name: &str, compiled: &slender_core::scene::CompiledScene) -> Result<Check> {
+    use slender_core::scene::TimeRun;
+    let mut run = TimeRun::new(compiled).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+    let mut ok = true;
+    let mut lowest = f64::INFINITY;
+    while !run.finished() {
+        if !run.step().converged {
+            ok = false;
+            break;
+        }
+        let f = run.frame(run.steps_taken());
+        for g in [f.min_gap, f.min_segment_gap].into_iter().flatten() {
+            lowest = lowest.min(g);
+        }
+    }
+    let last = run.frame(run.steps_taken());
+    let mut total = [0.0; 3];
+    let mut applied = 0.0;
+    for r in &last.rods {
+        applied += norm(r.applied_force);
+        add(&mut total, r.applied_force);
+        for s in &r.supports {
+            add(&mut total, s.force);
+        }
+    }
+    for o in &last.obstacles {
+        add(&mut total, o.force);
+    }
+    let measured = if ok && lowest > 0.0 {
+        norm(total) / applied
+    } else {
+        f64::NAN
+    };
+    Ok(check(
+        format!(
+            "{name}: time stepping with contact ({} steps): no gap closed (smallest {lowest:.2e} m), at rest |supports + contacts + loads| / |loads|",
+            run.steps_taken()
+        ),
+        measured,
+        "≤ 1e-6",
+        measured <= 1e-6,
+    ))
+}
+
+fn add(a: &mut [f64; 3], b: [f64; 3]) {
+    for k in 0..3 {
+        a[k] += b[k];
+    }
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 /// The shell-strip example against the heavy-elastica master curve: relative error of the

@@ -11,37 +11,78 @@ use slender_core::geometry::Vec3;
 use slender_core::scene::{CompiledRod, RodResult, ShellResult};
 
 /// Sides of the tube around each rod.
-const TUBE_SIDES: usize = 12;
+pub(super) const TUBE_SIDES: usize = 12;
 
-const FLOAT: u32 = 5126;
+pub(super) const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
-const ARRAY_BUFFER: u32 = 34962;
+pub(super) const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
-const TRIANGLES: u32 = 4;
-const LINE_STRIP: u32 = 3;
+pub(super) const TRIANGLES: u32 = 4;
+pub(super) const LINE_STRIP: u32 = 3;
 
 /// Collects the binary buffer, its views and accessors.
-struct Builder {
-    bin: Vec<u8>,
-    views: Vec<Value>,
-    accessors: Vec<Value>,
+pub(super) struct Builder {
+    pub(super) bin: Vec<u8>,
+    pub(super) views: Vec<Value>,
+    pub(super) accessors: Vec<Value>,
 }
 
 impl Builder {
-    fn push_view(&mut self, bytes: &[u8], target: u32) -> usize {
+    pub(super) fn new() -> Self {
+        Self {
+            bin: Vec::new(),
+            views: Vec::new(),
+            accessors: Vec::new(),
+        }
+    }
+
+    /// The buffer as a base64 data URI.
+    pub(super) fn uri(&self) -> String {
+        format!(
+            "data:application/octet-stream;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(&self.bin)
+        )
+    }
+
+    /// A buffer view of `bytes`; `target` None for data that is not vertex or index data
+    /// (animation keyframes).
+    fn push_view_for(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let offset = self.bin.len();
         self.bin.extend_from_slice(bytes);
-        self.views.push(json!({
-            "buffer": 0, "byteOffset": offset, "byteLength": bytes.len(), "target": target
-        }));
+        let mut view = json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len()});
+        if let Some(t) = target {
+            view["target"] = json!(t);
+        }
+        self.views.push(view);
         self.views.len() - 1
     }
 
+    /// A SCALAR float accessor (animation times with their min/max, or keyframe values).
+    pub(super) fn scalars(&mut self, v: &[f32], bounds: bool) -> usize {
+        let bytes: Vec<u8> = v.iter().flat_map(|c| c.to_le_bytes()).collect();
+        let view = self.push_view_for(&bytes, None);
+        let mut a = json!({
+            "bufferView": view, "componentType": FLOAT, "count": v.len(), "type": "SCALAR"
+        });
+        if bounds {
+            let min = v.iter().copied().fold(f32::INFINITY, f32::min);
+            let max = v.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+            a["min"] = json!([min]);
+            a["max"] = json!([max]);
+        }
+        self.accessors.push(a);
+        self.accessors.len() - 1
+    }
+
+    fn push_view(&mut self, bytes: &[u8], target: u32) -> usize {
+        self.push_view_for(bytes, Some(target))
+    }
+
     /// A VEC3 float accessor with min/max (required for POSITION).
-    fn vec3(&mut self, v: &[[f32; 3]]) -> usize {
+    pub(super) fn vec3(&mut self, v: &[[f32; 3]]) -> usize {
         let bytes: Vec<u8> = v.iter().flatten().flat_map(|c| c.to_le_bytes()).collect();
         let view = self.push_view(&bytes, ARRAY_BUFFER);
         let mut min = [f32::INFINITY; 3];
@@ -59,7 +100,7 @@ impl Builder {
         self.accessors.len() - 1
     }
 
-    fn indices(&mut self, idx: &[u32]) -> usize {
+    pub(super) fn indices(&mut self, idx: &[u32]) -> usize {
         let bytes: Vec<u8> = idx.iter().flat_map(|c| c.to_le_bytes()).collect();
         let view = self.push_view(&bytes, ELEMENT_ARRAY_BUFFER);
         self.accessors.push(json!({
@@ -69,7 +110,7 @@ impl Builder {
     }
 }
 
-fn f32x3(v: Vec3) -> [f32; 3] {
+pub(super) fn f32x3(v: Vec3) -> [f32; 3] {
     [v.x as f32, v.y as f32, v.z as f32]
 }
 
@@ -101,8 +142,42 @@ fn ring_frame(r: &RodResult, i: usize) -> (Vec3, Vec3) {
     (n1, t.cross(&n1))
 }
 
+/// The tube around rod result `r` (of `rod`): its vertices and unit normals (m), ring after
+/// ring ([`TUBE_SIDES`] per centerline vertex).
+pub(super) fn tube_vertices(rod: &CompiledRod, r: &RodResult) -> (Vec<Vec3>, Vec<Vec3>) {
+    let nv = r.positions.len();
+    let mut pos = Vec::with_capacity(nv * TUBE_SIDES);
+    let mut nrm = Vec::with_capacity(nv * TUBE_SIDES);
+    for i in 0..nv {
+        let (n1, n2) = ring_frame(r, i);
+        let c = Vec3::from(r.positions[i]);
+        for k in 0..TUBE_SIDES {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / TUBE_SIDES as f64;
+            let n = n1 * a.cos() + n2 * a.sin();
+            pos.push(c + n * rod.display_radius);
+            nrm.push(n);
+        }
+    }
+    (pos, nrm)
+}
+
+/// The triangles of a tube of `nv` rings.
+pub(super) fn tube_indices(nv: usize) -> Vec<u32> {
+    let mut idx = Vec::with_capacity(nv.saturating_sub(1) * TUBE_SIDES * 6);
+    for i in 0..nv.saturating_sub(1) {
+        for k in 0..TUBE_SIDES {
+            let a = (i * TUBE_SIDES + k) as u32;
+            let b2 = (i * TUBE_SIDES + (k + 1) % TUBE_SIDES) as u32;
+            let c = a + TUBE_SIDES as u32;
+            let d = b2 + TUBE_SIDES as u32;
+            idx.extend_from_slice(&[a, b2, d, a, d, c]);
+        }
+    }
+    idx
+}
+
 /// Unit quaternion [x, y, z, w] of the rotation that takes `up` (unit) onto +y.
-fn up_to_y(up: Vec3) -> [f64; 4] {
+pub(super) fn up_to_y(up: Vec3) -> [f64; 4] {
     let y = Vec3::y();
     let c = up.dot(&y);
     if c < -1.0 + 1e-12 {
@@ -132,39 +207,17 @@ pub fn rods_to_gltf(
     shells: &[ShellResult],
     up: Vec3,
 ) -> Value {
-    let mut b = Builder {
-        bin: Vec::new(),
-        views: Vec::new(),
-        accessors: Vec::new(),
-    };
+    let mut b = Builder::new();
     let mut meshes = Vec::new();
     let mut nodes = Vec::new();
     for (rod, r) in rods.iter().zip(results) {
         let nv = r.positions.len();
         let centerline: Vec<[f32; 3]> = r.positions.iter().map(|p| f32x3(Vec3::from(*p))).collect();
         let line = b.vec3(&centerline);
-        let mut ring_pos = Vec::with_capacity(nv * TUBE_SIDES);
-        let mut ring_nrm = Vec::with_capacity(nv * TUBE_SIDES);
-        for i in 0..nv {
-            let (n1, n2) = ring_frame(r, i);
-            let c = Vec3::from(r.positions[i]);
-            for k in 0..TUBE_SIDES {
-                let a = 2.0 * std::f64::consts::PI * k as f64 / TUBE_SIDES as f64;
-                let n = n1 * a.cos() + n2 * a.sin();
-                ring_pos.push(f32x3(c + n * rod.display_radius));
-                ring_nrm.push(f32x3(n));
-            }
-        }
-        let mut idx = Vec::with_capacity((nv - 1) * TUBE_SIDES * 6);
-        for i in 0..nv - 1 {
-            for k in 0..TUBE_SIDES {
-                let a = (i * TUBE_SIDES + k) as u32;
-                let b2 = (i * TUBE_SIDES + (k + 1) % TUBE_SIDES) as u32;
-                let c = a + TUBE_SIDES as u32;
-                let d = b2 + TUBE_SIDES as u32;
-                idx.extend_from_slice(&[a, b2, d, a, d, c]);
-            }
-        }
+        let (ring_pos, ring_nrm) = tube_vertices(rod, r);
+        let ring_pos: Vec<[f32; 3]> = ring_pos.into_iter().map(f32x3).collect();
+        let ring_nrm: Vec<[f32; 3]> = ring_nrm.into_iter().map(f32x3).collect();
+        let idx = tube_indices(nv);
         let tube_pos = b.vec3(&ring_pos);
         let tube_nrm = b.vec3(&ring_nrm);
         let tube_idx = b.indices(&idx);
@@ -195,10 +248,7 @@ pub fn rods_to_gltf(
         }));
         nodes.push(json!({"name": sh.name.clone(), "mesh": meshes.len() - 1}));
     }
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&b.bin)
-    );
+    let uri = b.uri();
     json!({
         "asset": {"version": "2.0", "generator": "slender solve"},
         "scene": 0,

@@ -5,6 +5,7 @@
 
 pub mod checks;
 pub mod gltf;
+pub mod gltf_animation;
 pub mod mesh_file;
 pub mod preview;
 pub mod scene_io;

@@ -1,8 +1,11 @@
 //! `slender solve` on a scene with a `[time]` table: the rods stepped in time by the core's
 //! [`TimeRun`], every `output_every` steps a frame written like an equilibrium step
-//! (`step_NNN/`: result.json with the frame's time and energies, CSV, VTK, glTF, plus a
-//! `shape.vtp`), a ParaView collection `frames.pvd` of the frames' `shape.vtp` with their
-//! times, and `frames.csv` (time, energies, tip and centroid of every rod, convergence).
+//! (`step_NNN/`: result.json with the frame's time and energies — and, with contact, its
+//! contacts —, CSV, VTK, glTF, plus a `shape.vtp`), a ParaView collection `frames.pvd` of
+//! the frames' `shape.vtp` with their times, `frames.gltf` (every frame as one animated glTF:
+//! morph targets at the frames' times, [`super::gltf_animation`]) and `frames.csv` (time,
+//! energies, tip and centroid of every rod, convergence; with contact the smallest gaps and
+//! the number of active contacts).
 //!
 //! A time step that does not converge stops the run: no frame is written for it, its row in
 //! `frames.csv` says `converged = false` with the reason, `report.json` says so, and the
@@ -61,15 +64,16 @@ pub(super) fn solve_time_into(
     let mut run = TimeRun::new(scene).map_err(|e| anyhow::anyhow!("{e}"))?;
     let time = *run.time_params();
     let names: Vec<String> = scene.rods.iter().map(|r| r.name.clone()).collect();
+    let contact = scene.contact.is_some();
     let mut frames: Vec<SceneStep> = Vec::new();
-    let mut csv = frames_header(&names);
+    let mut csv = frames_header(&names, contact);
     let mut failure = None;
     let mut t_frame = Instant::now();
     let mut write_frame = |run: &TimeRun, frames: &mut Vec<SceneStep>, csv: &mut String| {
         let mut f = run.frame(frames.len());
         f.seconds = t_frame.elapsed().as_secs_f64();
         t_frame = Instant::now();
-        frames_row(csv, &f, None);
+        frames_row(csv, &f, None, contact);
         write_step(scene, dir, &f)?;
         write_atomic(
             &step_dir(dir, f.step).join("shape.vtp"),
@@ -89,7 +93,7 @@ pub(super) fn solve_time_into(
                 run.steps_taken() + 1,
                 out.time,
                 out.iterations,
-                &names,
+                6 * names.len() + if contact { 3 } else { 0 },
                 &reason,
             );
             failure = Some(reason);
@@ -104,6 +108,14 @@ pub(super) fn solve_time_into(
     write_atomic(
         &dir.join("frames.pvd"),
         pvd(&frames, failure.as_deref()).as_bytes(),
+    )?;
+    write_atomic(
+        &dir.join("frames.gltf"),
+        &serde_json::to_vec(&super::gltf_animation::frames_to_gltf(
+            &scene.rods,
+            &frames,
+            super::gltf::scene_up(scene.gravity),
+        ))?,
     )?;
     let energies: Vec<_> = frames
         .iter()
@@ -152,10 +164,13 @@ pub(super) fn solve_time_into(
     })
 }
 
-fn frames_header(names: &[String]) -> String {
+fn frames_header(names: &[String], contact: bool) -> String {
     let mut s = String::from(
         "frame,time_step,t,kinetic,elastic,gravity_and_loads,potential,total,converged,iterations",
     );
+    if contact {
+        s.push_str(",min_gap,min_segment_gap,contacts");
+    }
     for n in names {
         for what in ["tip", "centroid"] {
             for c in ["x", "y", "z"] {
@@ -167,7 +182,7 @@ fn frames_header(names: &[String]) -> String {
     s
 }
 
-fn frames_row(s: &mut String, f: &SceneStep, failure: Option<&str>) {
+fn frames_row(s: &mut String, f: &SceneStep, failure: Option<&str>, contact: bool) {
     let t = f.time.as_ref().expect("a time frame");
     let e = &t.energy;
     let _ = write!(
@@ -184,6 +199,12 @@ fn frames_row(s: &mut String, f: &SceneStep, failure: Option<&str>) {
         t.converged,
         t.iterations
     );
+    if contact {
+        let cell = |v: Option<f64>| v.map_or(String::new(), |g| format!("{g:e}"));
+        let n = f.obstacles.iter().map(|o| o.contacts.len()).sum::<usize>()
+            + f.segment_contacts.as_ref().map_or(0, Vec::len);
+        let _ = write!(s, ",{},{},{n}", cell(f.min_gap), cell(f.min_segment_gap));
+    }
     for r in &f.rods {
         let tip = r.positions.last().copied().unwrap_or([f64::NAN; 3]);
         let n = r.positions.len() as f64;
@@ -206,13 +227,13 @@ fn failed_row(
     time_step: usize,
     t: f64,
     iterations: usize,
-    names: &[String],
+    empty: usize,
     reason: &str,
 ) {
-    // No state to report: the energies and positions are left empty.
+    // No state to report: the energies, contacts and positions are left empty.
     let _ = write!(s, "{frame},{time_step},{t:e},,,,,,false,{iterations}");
-    for _ in names {
-        s.push_str(",,,,,,");
+    for _ in 0..empty {
+        s.push(',');
     }
     let _ = writeln!(s, ",{}", quote(reason));
 }

@@ -30,6 +30,10 @@ pub struct CompiledContact {
     pub names: Vec<String>,
     /// Contact parameters per structure (its radius is the largest of its rods').
     pub params: Vec<ContactParams>,
+    /// Per structure, per member: its rod (index) and the arc length (m) of its first vertex
+    /// along the rod — the chains of [`ContactProblem::with_chains`], so that self-contact
+    /// measures "near along the cable" by rod (across interior clamps).
+    pub chains: Vec<Vec<(usize, f64)>>,
 }
 
 fn finite3(path: String, v: [f64; 3]) -> Result<Vector3<f64>, SceneError> {
@@ -256,7 +260,21 @@ pub(crate) fn compile_contact(
         radii.push(rod_radius(scene, i)?);
     }
     let mut params = Vec::with_capacity(structures.len());
+    let mut chains = Vec::with_capacity(structures.len());
     for (k, s) in structures.iter().enumerate() {
+        let chain: Vec<(usize, f64)> = (0..s.members().len())
+            .map(|m| {
+                rods.iter()
+                    .enumerate()
+                    .find_map(|(r, rod)| {
+                        rod.parts
+                            .iter()
+                            .find(|p| p.structure == k && p.member == m)
+                            .map(|p| (r, rod.node_arclengths[p.first_vertex]))
+                    })
+                    .unwrap_or((rods.len() + m, 0.0))
+            })
+            .collect();
         let radius = rods
             .iter()
             .zip(&radii)
@@ -296,30 +314,34 @@ pub(crate) fn compile_contact(
                 }
             }
         }
-        ContactProblem::new(s, obstacles.clone(), p, s.rest_state()).map_err(|e| match e {
-            ModelError::InvalidStructure { field, reason } => {
-                let path = if field == "self_contact" {
-                    "contact.self_contact".to_string()
-                } else {
-                    field
-                };
-                let rods_of: Vec<&str> = rods
-                    .iter()
-                    .filter(|r| r.parts.iter().any(|p| p.structure == k))
-                    .map(|r| r.name.as_str())
-                    .collect();
-                SceneError::new(
-                    path,
-                    format!("{reason} (structure of rods {})", rods_of.join(", ")),
-                )
-            }
-            e => SceneError::model("contact", e),
-        })?;
+        ContactProblem::with_chains(s, obstacles.clone(), p, s.rest_state(), &chain).map_err(
+            |e| match e {
+                ModelError::InvalidStructure { field, reason } => {
+                    let path = if field == "self_contact" {
+                        "contact.self_contact".to_string()
+                    } else {
+                        field
+                    };
+                    let rods_of: Vec<&str> = rods
+                        .iter()
+                        .filter(|r| r.parts.iter().any(|p| p.structure == k))
+                        .map(|r| r.name.as_str())
+                        .collect();
+                    SceneError::new(
+                        path,
+                        format!("{reason} (structure of rods {})", rods_of.join(", ")),
+                    )
+                }
+                e => SceneError::model("contact", e),
+            },
+        )?;
         params.push(p);
+        chains.push(chain);
     }
     Ok(Some(CompiledContact {
         obstacles,
         names,
         params,
+        chains,
     }))
 }

@@ -123,7 +123,11 @@ impl Scene {
         // A cable may rest on obstacles without supports of its own: the rigid-body check is
         // left to the solve (a cable held by neither supports nor contacts does not converge).
         let free = time.is_some() || !self.obstacles.is_empty();
-        let structures = structures::build_structures(&mut drafts, &self.joints, free)?;
+        // With self-contact every rod is part of one structure, so that separate cables touch
+        // each other (contact acts within a structure).
+        let one_structure = self.contact.as_ref().is_some_and(|c| c.self_contact);
+        let structures =
+            structures::build_structures(&mut drafts, &self.joints, free, one_structure)?;
         let shortest: Vec<f64> = drafts
             .iter()
             .map(|d| {

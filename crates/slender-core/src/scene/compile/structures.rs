@@ -13,11 +13,13 @@ use super::rod::RodDraft;
 type PartJoint = Vec<(usize, usize, usize)>;
 
 /// Groups every part of `drafts` into structures (setting each part's structure and member
-/// index) and returns them.
+/// index) and returns them; `one_structure`: all parts into one (self-contact: cables touch
+/// only within a structure).
 pub(super) fn build_structures(
     drafts: &mut [RodDraft],
     joints: &[JointSpec],
     allow_free_motion: bool,
+    one_structure: bool,
 ) -> Result<Vec<Structure>, SceneError> {
     // Parts numbered globally.
     let mut part_ids: Vec<Vec<usize>> = Vec::new();
@@ -108,6 +110,12 @@ pub(super) fn build_structures(
         for &(r, p, _) in &ends[1..] {
             let b = part_ids[r][p];
             let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+            parent[rb] = ra;
+        }
+    }
+    if one_structure {
+        for p in 1..n_parts {
+            let (ra, rb) = (find(&mut parent, 0), find(&mut parent, p));
             parent[rb] = ra;
         }
     }

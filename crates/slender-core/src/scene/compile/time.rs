@@ -1,11 +1,11 @@
 //! The `[time]` table: validated into the parameters of a time integration, and the scene
 //! checked for what time stepping covers (rods of every model, conservative loads, fixed
-//! supports).
+//! supports; obstacles, self-contact and friction with discrete elastic rods).
 
 use crate::dynamics::DynamicsParams;
 
 use super::super::error::SceneError;
-use super::super::spec::{Scene, TimeSpec};
+use super::super::spec::{RodModelSpec, Scene, TimeSchemeSpec, TimeSpec};
 
 /// Largest number of time steps a scene may ask for.
 pub const MAX_TIME_STEPS: usize = 10_000_000;
@@ -129,16 +129,33 @@ pub(crate) fn check_time(scene: &Scene, time: &TimeSpec) -> Result<CompiledTime,
              [time] (remove one of them)",
         ));
     }
-    if !scene.obstacles.is_empty() || scene.contact.as_ref().is_some_and(|c| c.self_contact) {
+    let contact =
+        !scene.obstacles.is_empty() || scene.contact.as_ref().is_some_and(|c| c.self_contact);
+    if contact {
+        if let Some(i) = scene
+            .rods
+            .iter()
+            .position(|r| r.model != RodModelSpec::Der)
+        {
+            // The contact problem hides the frames' rotary inertia from the stepper.
+            return Err(SceneError::new(
+                format!("rods[{i}].model"),
+                "time stepping with contact (obstacles or self-contact) covers discrete \
+                 elastic rods (model = \"der\") only; Cosserat rods and SE(3) beams are \
+                 stepped without contact, or solved for equilibria with it",
+            ));
+        }
+    }
+    if contact && time.scheme == TimeSchemeSpec::Midpoint {
+        // The solve's unknown is the midpoint y, kept outside every obstacle by the barrier
+        // and the step caps; x_{n+1} = 2y − xₙ is extrapolated past it and, at an impact,
+        // ends inside the obstacle.
         return Err(SceneError::new(
-            if scene.obstacles.is_empty() {
-                "contact.self_contact"
-            } else {
-                "obstacles"
-            },
-            "contact (obstacles or self-contact) is solved for equilibria only: time stepping \
-             ([time]) with contact is not supported in scenes yet (remove [time] to solve the \
-             equilibria, or the contact)",
+            "time.scheme",
+            "\"midpoint\" cannot step a scene with contact (obstacles or self-contact): its \
+             new state 2y − xₙ is extrapolated past the solved midpoint y and can end inside \
+             an obstacle; use \"backward_euler\" (dissipative, robust at impacts) or \
+             \"energy_conserving\"",
         ));
     }
     if !scene.motion.is_empty() {
