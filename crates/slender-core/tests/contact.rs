@@ -367,9 +367,10 @@ fn coil_pressed_against_itself_stops_at_its_solid_length() {
     // rate G d⁴/(8 D³ n) ≈ 800 N/m) clamped at one end and pushed along its axis at the other
     // by 10 N, which shortens the free spring by ≈ 19 mm (it also tilts): its coils close
     // (3 mm per turn, 9 mm in all) and press on each other instead, touching without crossing.
-    // (At 20 N the continuation stalls at 57 % of the load: the conservative step cap of
-    // sliding coils, see `ContactProblem::max_step`, allows only small steps; it also caps the
-    // continuation's predictor, which makes this solve take about a minute.)
+    // (With the earlier step cap — one conservative bound of the coils' motion against their
+    // gap — sliding coils took only small steps: this solve took about a minute and 20 N
+    // stalled at 57 % of the load. The additive advancement of `ContactProblem::max_step`
+    // lets them slide: about 3 s; 20 N not re-measured.)
     let d = 0.002;
     let r = 0.5 * d;
     let section = slender_core::rod::CrossSection::Circle { diameter: d };

@@ -179,7 +179,7 @@ fn time_stepping_with_contact_refuses_the_midpoint_rule() {
         "",
         "dt = 0.001\nduration = 0.1\nscheme = \"midpoint\"",
     );
-    let e = scene(&text).compile().err().expect("refused");
+    let e = scene(&text).compile().expect_err("refused");
     println!("{}: {}", e.path, e.message);
     assert_eq!(e.path, "time.scheme");
     assert!(e.message.contains("backward_euler"), "{}", e.message);

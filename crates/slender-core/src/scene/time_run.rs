@@ -43,8 +43,9 @@ pub struct TimeStepOutcome {
 
 /// How one structure moves.
 enum Motion<'a> {
-    /// Without contact: its stepper, kept from step to step.
-    Free(TimeStepper<'a, Structure>),
+    /// Without contact: its stepper, kept from step to step (boxed: it holds the Newton
+    /// workspace, far larger than the other variant).
+    Free(Box<TimeStepper<'a, Structure>>),
     /// With contact: its state, velocity (per free DOF, m/s and rad/s) and friction state;
     /// the contact problem and its stepper are built around them for each step (a stepper
     /// borrows its problem, which borrows the structure).
@@ -139,10 +140,10 @@ impl<'a> TimeRun<'a> {
         for (k, s) in scene.structures.iter().enumerate() {
             let rest = s.rest_state();
             let motion = match contact_problem(scene, k, rest, &[]) {
-                None => Motion::Free(
+                None => Motion::Free(Box::new(
                     TimeStepper::at_rest(s, rest.clone(), time.params)
                         .map_err(|e| SceneError::model("time", e))?,
-                ),
+                )),
                 Some(Err(e)) => return Err(SceneError::new("contact", e)),
                 Some(Ok(problem)) => {
                     // Checks what a stepper refuses, once.
