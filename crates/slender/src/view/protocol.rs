@@ -379,8 +379,7 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             gltf::scene_up(scene.gravity),
         ));
     }
-    let geometry =
-        matches!(request, Request::State {}).then(|| scene_geometry(session, &step));
+    let geometry = matches!(request, Request::State {}).then(|| scene_geometry(session, &step));
     Ok(OkReply {
         ok: true,
         op: op_name(request),

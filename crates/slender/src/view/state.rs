@@ -506,9 +506,10 @@ pub fn scene_geometry(session: &Session, step: &SceneStep) -> SceneGeometry {
                     let a = unit(*axis);
                     let p = Vec3::from(*point);
                     let along = corners.iter().map(|c| (c - p).dot(&a));
-                    let (smin, smax) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), s| {
-                        (l.min(s), h.max(s))
-                    });
+                    let (smin, smax) = along
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), s| {
+                            (l.min(s), h.max(s))
+                        });
                     ShapeGeometry::Cylinder {
                         center: arr(p + a * (0.5 * (smin + smax))),
                         axis: arr(a),
