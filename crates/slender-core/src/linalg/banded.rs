@@ -446,35 +446,16 @@ impl SymmetricMatrix for SymmetricBandMatrix {
         }
         if hi >= self.n || hi - lo > self.bw {
             // Outside the matrix or the band: the checked path poisons the diagonal.
-            for (a, &i) in dofs.iter().enumerate() {
-                if i == crate::assembly::FIXED {
-                    continue;
-                }
-                for (b, &j) in dofs.iter().enumerate().take(a + 1) {
-                    if j == crate::assembly::FIXED {
-                        continue;
-                    }
-                    let v = value(a, b);
-                    self.add(i, j, if i == j && a != b { 2.0 * v } else { v });
-                }
-            }
+            super::symmetric::lower_block_entries(dofs, value, |i, j, v| self.add(i, j, v));
             return;
         }
         // Entry (r, c), c ≤ r ≤ c + bw, sits at r·(bw + 1) + c + bw − r = r·bw + c + bw.
         let bw = self.bw;
-        for (a, &i) in dofs.iter().enumerate() {
-            if i == crate::assembly::FIXED {
-                continue;
-            }
-            for (b, &j) in dofs.iter().enumerate().take(a + 1) {
-                if j == crate::assembly::FIXED {
-                    continue;
-                }
-                let v = value(a, b);
-                let (r, c) = if i >= j { (i, j) } else { (j, i) };
-                self.data[r * bw + c + bw] += if i == j && a != b { 2.0 * v } else { v };
-            }
-        }
+        let data = &mut self.data;
+        super::symmetric::lower_block_entries(dofs, value, |i, j, v| {
+            let (r, c) = if i >= j { (i, j) } else { (j, i) };
+            data[r * bw + c + bw] += v;
+        });
     }
 
     fn diagonal(&self, i: usize) -> f64 {

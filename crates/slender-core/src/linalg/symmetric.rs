@@ -31,22 +31,7 @@ pub trait SymmetricMatrix: Clone + std::fmt::Debug {
         dofs: &[usize; D],
         value: impl Fn(usize, usize) -> f64,
     ) {
-        for (a, &i) in dofs.iter().enumerate() {
-            if i == crate::assembly::FIXED {
-                continue;
-            }
-            for (b, &j) in dofs.iter().enumerate().take(a + 1) {
-                if j == crate::assembly::FIXED {
-                    continue;
-                }
-                let v = value(a, b);
-                if i == j && a != b {
-                    self.add(i, j, 2.0 * v);
-                } else {
-                    self.add(i, j, v);
-                }
-            }
-        }
+        lower_block_entries(dofs, value, |i, j, v| self.add(i, j, v));
     }
 
     /// Diagonal entry a_ii.
@@ -173,4 +158,29 @@ pub enum FactorError {
         /// What the sparse library reported.
         reason: String,
     },
+}
+
+/// Visits the lower triangle of a stencil block (slot pairs b ≤ a, [`FIXED`] slots skipped)
+/// in the order every storage adds it: `add(i, j, v)` for DOFs i, j, with the value doubled
+/// where two different slots name the same DOF (the pair and its mirror both land there).
+///
+/// [`FIXED`]: crate::assembly::FIXED
+#[inline]
+pub(crate) fn lower_block_entries<const D: usize>(
+    dofs: &[usize; D],
+    value: impl Fn(usize, usize) -> f64,
+    mut add: impl FnMut(usize, usize, f64),
+) {
+    for (a, &i) in dofs.iter().enumerate() {
+        if i == crate::assembly::FIXED {
+            continue;
+        }
+        for (b, &j) in dofs.iter().enumerate().take(a + 1) {
+            if j == crate::assembly::FIXED {
+                continue;
+            }
+            let v = value(a, b);
+            add(i, j, if i == j && a != b { 2.0 * v } else { v });
+        }
+    }
 }

@@ -355,18 +355,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         if failure.is_none() && params.compute_lambda_min {
             // On convergence the workspace still holds the unshifted factorization of the
             // final Hessian; if it is positive definite, inverse iteration can reuse it.
-            let positive_definite = last.inertia.is_some_and(|i| is_stable(&i));
-            self.mode_valid = lowest_mode_with(
-                problem,
-                &self.ws.hess,
-                positive_definite,
-                &mut self.scaled,
-                &mut self.ws.ldlt,
-                EIGEN_TOLERANCE,
-                &mut self.eigen,
-                &mut self.mode,
-            )
-            .is_ok();
+            self.update_lowest_mode(problem, &last);
         }
         if failure.is_none()
             && params.follow_stable
@@ -383,18 +372,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             };
             last = newton(problem, state, to, &p, &mut self.ws).last;
             if params.compute_lambda_min {
-                let positive_definite = last.inertia.is_some_and(|i| is_stable(&i));
-                self.mode_valid = lowest_mode_with(
-                    problem,
-                    &self.ws.hess,
-                    positive_definite,
-                    &mut self.scaled,
-                    &mut self.ws.ldlt,
-                    EIGEN_TOLERANCE,
-                    &mut self.eigen,
-                    &mut self.mode,
-                )
-                .is_ok();
+                self.update_lowest_mode(problem, &last);
             }
         }
         self.factor_at_equilibrium =
@@ -436,6 +414,28 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             lambda_min_normalized: lowest.map(|m| m.normalized),
             modes,
         }
+    }
+
+    /// The lowest mode of the Hessian in the workspace (measured as `last`), to
+    /// [`EIGEN_TOLERANCE`]; with a positive definite factorization in the workspace, inverse
+    /// iteration reuses it.
+    fn update_lowest_mode<P: EquilibriumProblem<State = S, Hessian = M>>(
+        &mut self,
+        problem: &P,
+        last: &IterateMeasures,
+    ) {
+        let positive_definite = last.inertia.is_some_and(|i| is_stable(&i));
+        self.mode_valid = lowest_mode_with(
+            problem,
+            &self.ws.hess,
+            positive_definite,
+            &mut self.scaled,
+            &mut self.ws.ldlt,
+            EIGEN_TOLERANCE,
+            &mut self.eigen,
+            &mut self.mode,
+        )
+        .is_ok();
     }
 
     /// At the unstable equilibrium in `self.candidate` (load factor `load`), just past a

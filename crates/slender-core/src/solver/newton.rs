@@ -311,6 +311,38 @@ fn measure<P: EquilibriumProblem>(
     )
 }
 
+/// Takes the full step `ws.dx` from `state` into `ws.trial` and assembles the gradient there
+/// (into `ws.trial_grad`, its round-off scale into `ws.abs_grad`; no Hessian). Returns the
+/// assembly's measures, the residual and its round-off floor (with the workspace Hessian's
+/// diagonal standing in for the trial's).
+fn full_step_trial<P: EquilibriumProblem>(
+    problem: &P,
+    state: &P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+) -> (crate::solver::AssemblyInfo, f64, f64) {
+    problem.displace(state, &ws.dx, 1.0, &mut ws.trial);
+    let mut asm = Assembler::<P::Hessian>::new(
+        TermSet::ALL,
+        Some(&mut ws.trial_grad),
+        None,
+        Some(&mut ws.abs_grad),
+    );
+    problem.assemble_selected(&ws.trial, load, &mut asm);
+    let info = asm.finish();
+    let hess = &ws.hess;
+    let (residual, floor) = residual_and_floor(
+        problem,
+        &ws.trial,
+        params,
+        &ws.trial_grad,
+        &ws.abs_grad,
+        |i| hess.diagonal(i),
+    );
+    (info, residual, floor)
+}
+
 /// The outcome of [`chord_final_check`].
 enum ChordCheck {
     /// The full Newton step reached an equilibrium; the state is there.
@@ -361,24 +393,7 @@ fn chord_final_check<P: EquilibriumProblem>(
     if !(problem.max_step(state, &ws.dx) >= 1.0) {
         return ChordCheck::Rejected;
     }
-    problem.displace(state, &ws.dx, 1.0, &mut ws.trial);
-    let mut asm = Assembler::<P::Hessian>::new(
-        TermSet::ALL,
-        Some(&mut ws.trial_grad),
-        None,
-        Some(&mut ws.abs_grad),
-    );
-    problem.assemble_selected(&ws.trial, load, &mut asm);
-    let info = asm.finish();
-    let hess = &ws.hess;
-    let (residual, floor) = residual_and_floor(
-        problem,
-        &ws.trial,
-        params,
-        &ws.trial_grad,
-        &ws.abs_grad,
-        |i| hess.diagonal(i),
-    );
+    let (info, residual, floor) = full_step_trial(problem, state, load, params, ws);
     if !(residual < last.residual) {
         return ChordCheck::Rejected;
     }
@@ -506,24 +521,7 @@ fn polish<P: EquilibriumProblem>(
         {
             return;
         }
-        problem.displace(state, &ws.dx, 1.0, &mut ws.trial);
-        let mut asm = Assembler::<P::Hessian>::new(
-            TermSet::ALL,
-            Some(&mut ws.trial_grad),
-            None,
-            Some(&mut ws.abs_grad),
-        );
-        problem.assemble_selected(&ws.trial, load, &mut asm);
-        let info = asm.finish();
-        let hess = &ws.hess;
-        let (r, floor) = residual_and_floor(
-            problem,
-            &ws.trial,
-            params,
-            &ws.trial_grad,
-            &ws.abs_grad,
-            |i| hess.diagonal(i),
-        );
+        let (info, r, floor) = full_step_trial(problem, state, load, params, ws);
         if !(r < last.residual) {
             if last.hessian_lags {
                 // A chord step from a lagging factorization can be worse than the state: the
