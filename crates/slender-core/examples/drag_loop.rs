@@ -10,8 +10,13 @@ use slender_core::geometry::Vec3;
 use slender_core::scene::{Scene, Session};
 fn main() {
     let clips = std::env::args().nth(1).is_some_and(|s| s == "clips");
-    let mut supports = String::from(r#"{ kind = "clamp", vertex = "start" }, { kind = "clamp", vertex = "end" }"#);
-    if clips { for v in [25, 50, 75] { supports.push_str(&format!(r#", {{ kind = "clip", vertex = {v} }}"#)); } }
+    let mut supports =
+        String::from(r#"{ kind = "clamp", vertex = "start" }, { kind = "clamp", vertex = "end" }"#);
+    if clips {
+        for v in [25, 50, 75] {
+            supports.push_str(&format!(r#", {{ kind = "clip", vertex = {v} }}"#));
+        }
+    }
     let scene: Scene = toml::from_str(&format!(r#"
 gravity = [0.0, 0.0, -9.81]
 [[rods]]
@@ -24,14 +29,23 @@ supports = [ {supports} ]
 "#)).unwrap();
     let mut session = Session::new(scene).unwrap();
     let mut sign = 1.0;
-    let n: usize = std::env::var("N").ok().and_then(|s| s.parse().ok()).unwrap_or(20000);
+    let n: usize = std::env::var("N")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20000);
     let t = std::time::Instant::now();
     let mut its = 0;
     for _ in 0..n {
-        let r = session.move_support_by(0, 1, Vec3::zeros(), Vec3::new(0.0, 0.01 * sign, 0.0)).unwrap();
+        let r = session
+            .move_support_by(0, 1, Vec3::zeros(), Vec3::new(0.0, 0.01 * sign, 0.0))
+            .unwrap();
         assert!(r.converged);
         its += r.iterations;
         sign = -sign;
     }
-    println!("{:.1} us per drag, {:.2} iterations", t.elapsed().as_secs_f64() / n as f64 * 1e6, its as f64 / n as f64);
+    println!(
+        "{:.1} us per drag, {:.2} iterations",
+        t.elapsed().as_secs_f64() / n as f64 * 1e6,
+        its as f64 / n as f64
+    );
 }

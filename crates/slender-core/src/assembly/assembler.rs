@@ -254,7 +254,11 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         }
         if let Some(hm) = self.hess.as_deref_mut() {
             // Unit coefficients (every DOF but a slider's) multiply exactly: skip them.
-            if coefs.iter().zip(&dofs).all(|(&c, &d)| c == 1.0 || d == FIXED) {
+            if coefs
+                .iter()
+                .zip(&dofs)
+                .all(|(&c, &d)| c == 1.0 || d == FIXED)
+            {
                 hm.add_lower_block(&dofs, |a, b| hw * h[(a, b)]);
             } else {
                 hm.add_lower_block(&dofs, |a, b| hw * coefs[a] * coefs[b] * h[(a, b)]);

@@ -370,8 +370,7 @@ fn next_decrement_passes(
     };
     let bound = params.energy_tolerance * scale;
     let d = last.decrement;
-    d <= bound
-        || previous.is_some_and(|p| p > 0.0 && d < p && d * (d / p) * (d / p) <= bound)
+    d <= bound || previous.is_some_and(|p| p > 0.0 && d < p && d * (d / p) * (d / p) <= bound)
 }
 
 /// At an iterate whose decrement passes but whose residual does not, with `ws.dx` its Newton

@@ -132,11 +132,7 @@ pub(crate) fn check_time(scene: &Scene, time: &TimeSpec) -> Result<CompiledTime,
     let contact =
         !scene.obstacles.is_empty() || scene.contact.as_ref().is_some_and(|c| c.self_contact);
     if contact {
-        if let Some(i) = scene
-            .rods
-            .iter()
-            .position(|r| r.model != RodModelSpec::Der)
-        {
+        if let Some(i) = scene.rods.iter().position(|r| r.model != RodModelSpec::Der) {
             // The contact problem hides the frames' rotary inertia from the stepper.
             return Err(SceneError::new(
                 format!("rods[{i}].model"),
