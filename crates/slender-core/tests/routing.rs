@@ -406,3 +406,35 @@ supports = [ { kind = "clamp", vertex = "start" }, { kind = "pin", vertex = "end
         .fold(0.0, f64::max);
     assert!(worst < 1e-9 * 0.6, "saved scene differs by {worst:e} m");
 }
+
+/// A drag that does not converge leaves the support and the equilibrium where they were; the
+/// edit's report has the failed solve's figures, and the structure's report stays that of the
+/// equilibrium it shows.
+#[test]
+fn a_drag_that_fails_keeps_the_last_equilibrium_and_its_report() {
+    let text = format!("{PUSH}\n[solver]\nmax_iterations = 1\nmin_load_step = 0.25\n");
+    let mut s = Session::new(scene(&text)).unwrap();
+    assert!(s.report(0).converged());
+    let before_state = s.state(0).clone();
+    let before_residual = s.report(0).relative_residual;
+    let before_pose = s.pose(0, 1).unwrap();
+    let r = s
+        .move_support_by(0, 1, Vector3::zeros(), Vector3::new(0.0, 0.2, 0.0))
+        .unwrap();
+    assert!(!r.converged, "{r:?}");
+    assert!(r.reason.is_some());
+    // The failed solve's residual is in the edit's report, far above the kept equilibrium's.
+    assert!(
+        r.relative_residual > 1e3 * before_residual.max(1e-15),
+        "{} vs {before_residual}",
+        r.relative_residual
+    );
+    assert_eq!(s.state(0), &before_state);
+    assert_eq!(s.pose(0, 1).unwrap(), before_pose);
+    let kept = s.report(0);
+    assert!(
+        !kept.converged(),
+        "the structure's report says the edit failed"
+    );
+    assert_eq!(kept.relative_residual, before_residual);
+}

@@ -81,6 +81,8 @@ struct Run {
     friction: Vec<Friction>,
     /// The friction state of `backup`.
     backup_friction: Vec<Friction>,
+    /// The report of `backup`'s solve.
+    backup_report: SolveReport,
 }
 
 impl Run {
@@ -88,12 +90,15 @@ impl Run {
     fn save(&mut self) {
         self.backup.clone_from(&self.state);
         self.backup_friction.clone_from(&self.friction);
+        self.backup_report.clone_from(&self.report);
     }
 
-    /// Back to the remembered equilibrium.
+    /// Back to the remembered equilibrium, and to the report of its solve (its residual and
+    /// stability, not those of the solve that failed: the edit's own report has those).
     fn restore(&mut self) {
         self.state.clone_from(&self.backup);
         self.friction.clone_from(&self.backup_friction);
+        self.report.clone_from(&self.backup_report);
     }
 }
 
@@ -352,6 +357,7 @@ impl Session {
                 solver,
                 report: unsolved(String::new()),
                 backup_friction: friction.clone(),
+                backup_report: unsolved(String::new()),
                 friction,
             };
             run.report = solve_structure(&scene, k, &mut run, 0.0, 1.0);
@@ -708,7 +714,9 @@ impl Session {
             structure.clear_paths();
         }
         if reason.is_some() {
-            // Back to the last equilibrium: the support stays where it was.
+            // The edit's report has the failed solves' figures; then back to the last
+            // equilibrium: the support stays where it was.
+            let summary = self.summary(&affected, reason.clone());
             for &k in &affected {
                 let run = &mut self.runs[k];
                 run.restore();
@@ -719,7 +727,7 @@ impl Session {
                     ),
                 };
             }
-            return Ok(self.summary(&affected, reason));
+            return Ok(summary);
         }
         self.poses[rod][support] = target;
         let mut followed = false;
@@ -820,10 +828,11 @@ impl Session {
                     s.member_mut(m).set_gravity(old);
                 }
             }
+            let summary = self.summary(&ks, reason);
             for run in self.runs.iter_mut() {
                 run.restore();
             }
-            return Ok(self.summary(&ks, reason));
+            return Ok(summary);
         }
         self.spec.gravity = [g.x, g.y, g.z];
         self.scene.gravity = self.spec.gravity;
@@ -1011,6 +1020,7 @@ impl Session {
                 solver,
                 report: unsolved(String::new()),
                 backup_friction: friction.clone(),
+                backup_report: unsolved(String::new()),
                 friction,
             };
             run.report = solve_structure(&scene, k, &mut run, 1.0, 1.0);
