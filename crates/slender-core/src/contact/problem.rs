@@ -1061,11 +1061,28 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
     }
 }
 
+/// The wrapped model's DOFs, unchanged: the contact terms act on site positions only
+/// (coordinates of every model), so the frames whose rotations are DOFs, their rotary inertia
+/// and their orientations are the model's. Forwarding them is what lets the time stepper give
+/// a Cosserat rod's or an SE(3) beam's frames their inertia (and the log chart's dexp⁻¹) in
+/// contact; without them the rotation DOFs would have no mass at all.
 impl<P: ContactSites + crate::dynamics::FlatDofs> crate::dynamics::FlatDofs
     for ContactProblem<'_, P>
 {
     fn has_flat_dofs(&self) -> bool {
         self.model.has_flat_dofs()
+    }
+
+    fn frames(&self) -> Vec<crate::dynamics::FrameInertia> {
+        self.model.frames()
+    }
+
+    fn frame_orientations(
+        &self,
+        state: &P::State,
+        out: &mut Vec<nalgebra::UnitQuaternion<f64>>,
+    ) {
+        self.model.frame_orientations(state, out);
     }
 }
 
