@@ -452,3 +452,55 @@ fn a_framed_rod_dropped_across_two_others_comes_to_rest_on_them() {
         assert!(kinetic < 1e-12 * weight() * L, "{model}: still moving ({kinetic:e} J)");
     }
 }
+
+/// tests/scenes/cosserat_cable_dropped_on_bracket.toml.
+const DROPPED_CABLE: &str = include_str!("scenes/cosserat_cable_dropped_on_bracket.toml");
+
+#[test]
+fn the_cosserat_cable_dropped_on_a_bracket_scene_comes_to_rest_balanced_on_both_obstacles() {
+    // The scene's data: L = 0.8 m, d = 8 mm, ρ = 1500 kg/m³, radius 4 mm, tray μ = 0.4.
+    let (length, d, rho, mu) = (0.8_f64, 0.008_f64, 1500.0, 0.4);
+    let weight = rho * std::f64::consts::PI * d * d / 4.0 * length * G;
+    for model in MODELS {
+        let text = DROPPED_CABLE.replace("model = \"cosserat\"", &format!("model = \"{model}\""));
+        let compiled = scene(&text).compile().expect("compiles");
+        let mut run = TimeRun::new(&compiled).expect("starts");
+        let mut lowest: f64 = f64::INFINITY;
+        while !run.finished() {
+            let r = run.step();
+            assert!(r.converged, "{model}: {r:?}");
+            lowest = lowest.min(run.frame(0).min_gap.unwrap_or(f64::INFINITY));
+        }
+        let last = run.frame(1);
+        let rod = &last.rods[0];
+        let clamp = Vector3::from(rod.supports[0].force);
+        let obstacles: Vector3<f64> = last
+            .obstacles
+            .iter()
+            .map(|o| Vector3::from(o.force))
+            .sum();
+        let imbalance = (clamp + obstacles + Vector3::new(0.0, 0.0, -weight)).norm();
+        let mut cone: f64 = 0.0;
+        for c in &last.obstacles[1].contacts {
+            let (n, f) = (Vector3::from(c.normal_force), Vector3::from(c.friction_force));
+            cone = cone.max(f.norm() / (mu * n.norm()));
+        }
+        let kinetic = last.time.as_ref().unwrap().energy.kinetic;
+        println!(
+            "{model} cable on bracket and tray at t = 2 s: {} + {} contacts, clamp {:.4} N, bracket {:.4} N, tray {:.4} N of weight {weight:.4} N, imbalance {:.2e} of it, largest |friction|/(μ f_n) {cone:.4}, lowest gap over the run {lowest:.3e} m, kinetic {kinetic:.2e} J",
+            last.obstacles[0].contacts.len(),
+            last.obstacles[1].contacts.len(),
+            clamp.z,
+            last.obstacles[0].force[2],
+            last.obstacles[1].force[2],
+            imbalance / weight
+        );
+        assert!(lowest > 0.0, "{model}: a gap closed ({lowest:e} m)");
+        assert!(
+            last.obstacles.iter().all(|o| !o.contacts.is_empty()),
+            "{model}: the cable does not rest on both obstacles"
+        );
+        assert!(imbalance <= 1e-6 * weight, "{model}: imbalance {imbalance:e} N");
+        assert!(cone <= 1.0 + 1e-9, "{model}: friction outside the cone ({cone})");
+    }
+}
