@@ -148,8 +148,9 @@ pub struct ContactSpec {
     pub stiffness: Option<f64>,
 }
 
-/// The `[time]` table: implicit time stepping of the scene's rods (discrete elastic rods
-/// only), starting from the rest state at rest (velocity 0) with gravity and the loads acting
+/// The `[time]` table: implicit time stepping of the scene's rods (every model; the Cosserat
+/// rods' and SE(3) beams' frames carry the sections' rotary inertia), starting from the rest
+/// state at rest (velocity 0) with gravity and the loads acting
 /// from t = 0 — a cable released from its rest shape —, in contact with the obstacles, with
 /// itself and with the other rods (self-contact) when the scene has them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -14,7 +14,8 @@
 //! Supports stay at their rest pose, so a time-stepped scene has no prescribed motion (it is
 //! refused when compiling), and shells are refused too (see
 //! [`compile::time`](super::compile::time)). Cosserat rods and SE(3) beams are stepped like
-//! discrete elastic rods: the stepper takes their frames' rotary inertia from the structure.
+//! discrete elastic rods, with contact or without: the stepper takes their frames' rotary
+//! inertia from the structure, through the contact problem when there is one.
 
 use crate::contact::{step_with_friction, Friction};
 use crate::dynamics::{FlatDofs, LumpedMass, StepReport, TimeStepper};
