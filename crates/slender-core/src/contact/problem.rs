@@ -694,6 +694,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         &self.params
     }
 
+    /// The contact radius (m) of site `site` (index in [`Self::sites`]): the distance its
+    /// centerline point keeps from obstacles (see [`Self::with_radii`]).
+    pub fn site_radius(&self, site: usize) -> f64 {
+        self.site_radius[site]
+    }
+
     /// Every active contact (gap below the activation distance) of `state` with its force.
     pub fn contact_forces(&self, state: &P::State) -> Vec<ContactForce> {
         let mut out = Vec::new();

@@ -16,7 +16,7 @@ pub(crate) fn validate_member_radii(radii: &[f64]) -> Result<(), ModelError> {
         Some((m, &r)) => Err(ModelError::parameter(
             format!("radii[{m}]"),
             r,
-            "finite and >= 0 (m): member m's contact radius",
+            "finite and >= 0 (m: the contact radius of that member)",
         )),
         None => Ok(()),
     }
