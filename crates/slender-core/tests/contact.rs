@@ -566,7 +566,11 @@ fn each_member_keeps_its_own_radius_and_a_joint_the_largest() {
         .unwrap();
     let radii = [0.002, 0.005];
     let params = ContactParams::for_line_load(0.001, 1e-4, 1.0);
-    let floor = |z: f64| vec![boxed(Plane::new(Vector3::new(0.0, 0.0, z), Vector3::z(), 0.0).unwrap())];
+    let floor = |z: f64| {
+        vec![boxed(
+            Plane::new(Vector3::new(0.0, 0.0, z), Vector3::z(), 0.0).unwrap(),
+        )]
+    };
     let p = ContactProblem::with_radii(&s, floor(-0.006), params, s.rest_state(), &[], &radii)
         .expect("every site clear of the floor");
     for (k, site) in p.sites().iter().enumerate() {
@@ -575,7 +579,13 @@ fn each_member_keeps_its_own_radius_and_a_joint_the_largest() {
         } else {
             0.002
         };
-        assert_eq!(p.site_radius(k), expected, "member {} vertex {}", site.member, site.vertex);
+        assert_eq!(
+            p.site_radius(k),
+            expected,
+            "member {} vertex {}",
+            site.member,
+            site.vertex
+        );
     }
     assert!((p.min_gap(s.rest_state()) - 0.001).abs() < 1e-15);
     // 4.5 mm below: clear of the thin cable, inside the thick one's radius (its sites and
@@ -589,9 +599,16 @@ fn each_member_keeps_its_own_radius_and_a_joint_the_largest() {
     let p = ContactProblem::new(&s, floor(-0.0045), params, s.rest_state()).unwrap();
     assert!((0..p.sites().len()).all(|k| p.site_radius(k) == 0.001));
     for bad in [-1.0, f64::NAN] {
-        let e = ContactProblem::with_radii(&s, floor(-0.006), params, s.rest_state(), &[], &[0.002, bad])
-            .err()
-            .expect("refused");
+        let e = ContactProblem::with_radii(
+            &s,
+            floor(-0.006),
+            params,
+            s.rest_state(),
+            &[],
+            &[0.002, bad],
+        )
+        .err()
+        .expect("refused");
         println!("{e}");
         assert!(e.to_string().contains("radii[1]"), "{e}");
     }

@@ -96,7 +96,11 @@ activation = {ACTIVATION}
     let clearance = distance - (r_thin + r_thick);
     let mut pushed = 0.0;
     for p in pairs {
-        pushed += if p.rod_a == "thin" { p.force_a[2] } else { p.force_b[2] };
+        pushed += if p.rod_a == "thin" {
+            p.force_a[2]
+        } else {
+            p.force_b[2]
+        };
     }
     println!(
         "thin (r = {r_thin} m) on thick (r = {r_thick} m): {} pairs, centerlines {distance:.9} m apart = r_a + r_b + {clearance:.3e} m (ĝ = {ACTIVATION:.0e}), reported min gap {:.3e} m, the thick cable pushes the thin one up with {pushed:.4} N",
@@ -182,7 +186,11 @@ rayleigh_mass = 20.0
             rod.name
         );
         assert_eq!(contacts, 11, "{}: every vertex on the floor", rod.name);
-        assert!(low > 0.0 && high < ACTIVATION, "{}: {low:e} .. {high:e}", rod.name);
+        assert!(
+            low > 0.0 && high < ACTIVATION,
+            "{}: {low:e} .. {high:e}",
+            rod.name
+        );
     }
     let fz = last.obstacles[0].force[2];
     println!("floor force / weight − 1 = {:.2e}", fz / weight - 1.0);

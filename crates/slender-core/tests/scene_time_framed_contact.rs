@@ -157,7 +157,12 @@ fn a_framed_rod_dropped_on_a_floor_with_backward_euler_comes_to_rest_carrying_it
             // Backward Euler's discrete free fall: z_n = z0 − ½ g t_n (t_n + h), exactly.
             let mut free_fall_error: f64 = 0.0;
             for s in &samples {
-                assert!(s.gap > 0.0, "{model}, μ = {mu}, t = {}: gap {:e}", s.t, s.gap);
+                assert!(
+                    s.gap > 0.0,
+                    "{model}, μ = {mu}, t = {}: gap {:e}",
+                    s.t,
+                    s.gap
+                );
                 let exact = z0 - 0.5 * G * s.t * (s.t + dt);
                 if exact - 0.5 * D > activation + G * dt * (s.t + dt) {
                     free_fall_error = free_fall_error.max((s.z - exact).abs());
@@ -173,7 +178,11 @@ fn a_framed_rod_dropped_on_a_floor_with_backward_euler_comes_to_rest_carrying_it
             );
             assert!(free_fall_error <= 1e-12, "{model}: {free_fall_error:e}");
             assert!(gap > 0.0 && gap < activation, "{model}: {gap:e}");
-            assert_eq!(floor.contacts.len(), 11, "{model}: every vertex on the floor");
+            assert_eq!(
+                floor.contacts.len(),
+                11,
+                "{model}: every vertex on the floor"
+            );
             assert!(
                 (fz / weight() - 1.0).abs() < 1e-6,
                 "{model}: {fz} vs {}",
@@ -268,8 +277,14 @@ shape = { kind = "sphere", center = [0.15, 1.0, 0.0], radius = 0.05 }
                 "{model}, {scheme}: swing up to {swing:.3e} m and {turn:.3} rad; with the untouched obstacles positions differ by at most {dx:.2e} m, frames by {dq:.2e} rad"
             );
             assert!(swing > 0.01 && turn > 0.1, "{model}: the rod barely moved");
-            assert!(dx <= 1e-12 * 0.3, "{model}, {scheme}: positions differ by {dx:e} m");
-            assert!(dq <= 1e-11, "{model}, {scheme}: frames differ by {dq:e} rad");
+            assert!(
+                dx <= 1e-12 * 0.3,
+                "{model}, {scheme}: positions differ by {dx:e} m"
+            );
+            assert!(
+                dq <= 1e-11,
+                "{model}, {scheme}: frames differ by {dq:e} rad"
+            );
         }
     }
 }
@@ -293,7 +308,11 @@ fn twist_history(text: &str) -> (Vec<f64>, Vec<f64>, f64) {
     loop {
         let s = run.state(0).members[0].as_framed().unwrap();
         t.push(run.time());
-        twist.push((s.frames().last().unwrap() * rest.inverse()).scaled_axis().x);
+        twist.push(
+            (s.frames().last().unwrap() * rest.inverse())
+                .scaled_axis()
+                .x,
+        );
         if let Some(g) = run.frame(0).min_gap {
             gap = gap.min(g);
         }
@@ -320,16 +339,18 @@ fn a_shaft_lying_on_a_floor_twists_with_the_period_of_its_rotary_inertia() {
     let free = SHAFT
         .replace("scheme = \"midpoint\"", "scheme = \"energy_conserving\"")
         .replace("output_every = 10", "output_every = 1");
-    let on_floor = free.replace("gravity = [0.0, 0.0, 0.0]", &format!("gravity = [0.0, 0.0, -{G}]"))
-        + &format!(
-            r#"
+    let on_floor = free.replace(
+        "gravity = [0.0, 0.0, 0.0]",
+        &format!("gravity = [0.0, 0.0, -{G}]"),
+    ) + &format!(
+        r#"
 [[obstacles]]
 name = "floor"
 friction = 0.3
 shape = {{ kind = "plane", point = [0.0, 0.0, {z}], normal = [0.0, 0.0, 1.0] }}
 "#,
-            z = -0.5 * d - 0.5e-6
-        );
+        z = -0.5 * d - 0.5e-6
+    );
     let (t, free_twist, _) = twist_history(&free);
     let (t2, twist, gap) = twist_history(&on_floor);
     assert_eq!(t, t2);
@@ -347,9 +368,7 @@ shape = {{ kind = "plane", point = [0.0, 0.0, {z}], normal = [0.0, 0.0, 1.0] }}
     let k_peak = (0..n_period)
         .max_by(|&a, &b| twist[a].total_cmp(&twist[b]))
         .unwrap();
-    let k_back = (k_peak..n)
-        .find(|&k| twist[k + 1] > twist[k])
-        .unwrap();
+    let k_back = (k_peak..n).find(|&k| twist[k + 1] > twist[k]).unwrap();
     let back = t[k_back];
     let difference = twist
         .iter()
@@ -364,7 +383,10 @@ shape = {{ kind = "plane", point = [0.0, 0.0, {z}], normal = [0.0, 0.0, 1.0] }}
     );
     assert!(gap > 0.0 && gap < 1e-6, "gap {gap:e}");
     assert!((back / period - 1.0).abs() < 2e-2, "return at {back} s");
-    assert!((mean / static_twist - 1.0).abs() < 1e-2, "mean twist {mean}");
+    assert!(
+        (mean / static_twist - 1.0).abs() < 1e-2,
+        "mean twist {mean}"
+    );
     assert!(difference <= 1e-3 * peak, "differs by {difference:e} rad");
 }
 
@@ -413,7 +435,9 @@ scheme = "backward_euler"
 #[test]
 fn a_framed_rod_dropped_across_two_others_comes_to_rest_on_them() {
     for model in MODELS {
-        let compiled = scene(&stack_scene(model, 0.002)).compile().expect("compiles");
+        let compiled = scene(&stack_scene(model, 0.002))
+            .compile()
+            .expect("compiles");
         let mut run = TimeRun::new(&compiled).expect("starts");
         let (mut min_gap, mut min_segment_gap) = (f64::INFINITY, f64::INFINITY);
         loop {
@@ -428,7 +452,10 @@ fn a_framed_rod_dropped_across_two_others_comes_to_rest_on_them() {
         }
         let last = run.frame(1);
         let mut on_top = Vector3::zeros();
-        let contacts = last.segment_contacts.as_ref().expect("self-contact results");
+        let contacts = last
+            .segment_contacts
+            .as_ref()
+            .expect("self-contact results");
         for c in contacts {
             if c.rod_a == "top" {
                 on_top += Vector3::from(c.force_a);
@@ -446,10 +473,22 @@ fn a_framed_rod_dropped_across_two_others_comes_to_rest_on_them() {
             floor.z / (3.0 * weight()) - 1.0,
         );
         assert!(min_gap > 0.0 && min_segment_gap > 0.0);
-        assert!(!contacts.is_empty(), "{model}: the top rod does not rest on the others");
-        assert!((on_top.z / weight() - 1.0).abs() < 1e-6, "{model}: {on_top:?}");
-        assert!((floor.z / (3.0 * weight()) - 1.0).abs() < 1e-6, "{model}: {floor:?}");
-        assert!(kinetic < 1e-12 * weight() * L, "{model}: still moving ({kinetic:e} J)");
+        assert!(
+            !contacts.is_empty(),
+            "{model}: the top rod does not rest on the others"
+        );
+        assert!(
+            (on_top.z / weight() - 1.0).abs() < 1e-6,
+            "{model}: {on_top:?}"
+        );
+        assert!(
+            (floor.z / (3.0 * weight()) - 1.0).abs() < 1e-6,
+            "{model}: {floor:?}"
+        );
+        assert!(
+            kinetic < 1e-12 * weight() * L,
+            "{model}: still moving ({kinetic:e} J)"
+        );
     }
 }
 
@@ -474,15 +513,14 @@ fn the_cosserat_cable_dropped_on_a_bracket_scene_comes_to_rest_balanced_on_both_
         let last = run.frame(1);
         let rod = &last.rods[0];
         let clamp = Vector3::from(rod.supports[0].force);
-        let obstacles: Vector3<f64> = last
-            .obstacles
-            .iter()
-            .map(|o| Vector3::from(o.force))
-            .sum();
+        let obstacles: Vector3<f64> = last.obstacles.iter().map(|o| Vector3::from(o.force)).sum();
         let imbalance = (clamp + obstacles + Vector3::new(0.0, 0.0, -weight)).norm();
         let mut cone: f64 = 0.0;
         for c in &last.obstacles[1].contacts {
-            let (n, f) = (Vector3::from(c.normal_force), Vector3::from(c.friction_force));
+            let (n, f) = (
+                Vector3::from(c.normal_force),
+                Vector3::from(c.friction_force),
+            );
             cone = cone.max(f.norm() / (mu * n.norm()));
         }
         let kinetic = last.time.as_ref().unwrap().energy.kinetic;
@@ -500,7 +538,13 @@ fn the_cosserat_cable_dropped_on_a_bracket_scene_comes_to_rest_balanced_on_both_
             last.obstacles.iter().all(|o| !o.contacts.is_empty()),
             "{model}: the cable does not rest on both obstacles"
         );
-        assert!(imbalance <= 1e-6 * weight, "{model}: imbalance {imbalance:e} N");
-        assert!(cone <= 1.0 + 1e-9, "{model}: friction outside the cone ({cone})");
+        assert!(
+            imbalance <= 1e-6 * weight,
+            "{model}: imbalance {imbalance:e} N"
+        );
+        assert!(
+            cone <= 1.0 + 1e-9,
+            "{model}: friction outside the cone ({cone})"
+        );
     }
 }

@@ -31,11 +31,11 @@ use super::barrier::barrier;
 use super::broad_phase::{overlapping_pairs, Aabb, SweepBuffers};
 use super::friction::{Friction, FrictionUpdate};
 use super::obstacle::Obstacle;
+use super::radii::{member_radius, site_radii, validate_member_radii};
 use super::segment_distance::{
     closest_parameters, edge_edge_mollifier, point_segment_distance,
     point_segment_distance_squared, segment_distance, segment_distance_squared,
 };
-use super::radii::{member_radius, site_radii, validate_member_radii};
 use super::sites::{ContactSite, ContactSites, SiteDof};
 use crate::shell::dual::Dual2;
 
@@ -801,9 +801,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             match prim {
                 Primitive::EdgeEdge { a, b, x } => {
                     let m = edge_edge_mollifier(x, self.mollifier_scale(*a, *b));
-                    let Some(e) =
-                        self.primitive_energy(segment_distance_squared(x), Some(m), length, clearance)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        segment_distance_squared(x),
+                        Some(m),
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let (s, t) = closest_parameters(x);
@@ -833,9 +836,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                     });
                 }
                 Primitive::VertexEdge { v, e: edge, x } => {
-                    let Some(e) =
-                        self.primitive_energy(point_segment_distance_squared(x), None, length, clearance)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        point_segment_distance_squared(x),
+                        None,
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let (p, q0, q1) = (point(x, 0), point(x, 1), point(x, 2));
@@ -988,9 +994,12 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
             match prim {
                 Primitive::EdgeEdge { a, b, x } => {
                     let m = edge_edge_mollifier(x, self.mollifier_scale(*a, *b));
-                    let Some(e) =
-                        self.primitive_energy(segment_distance_squared(x), Some(m), length, clearance)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        segment_distance_squared(x),
+                        Some(m),
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let remap: [SiteDof; 12] = self
@@ -1001,9 +1010,12 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
                     asm.absorb(info);
                 }
                 Primitive::VertexEdge { v, e: edge, x } => {
-                    let Some(e) =
-                        self.primitive_energy(point_segment_distance_squared(x), None, length, clearance)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        point_segment_distance_squared(x),
+                        None,
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let [e0, e1] = self.edges[*edge].sites;
@@ -1132,11 +1144,7 @@ impl<P: ContactSites + crate::dynamics::FlatDofs> crate::dynamics::FlatDofs
         self.model.frames()
     }
 
-    fn frame_orientations(
-        &self,
-        state: &P::State,
-        out: &mut Vec<nalgebra::UnitQuaternion<f64>>,
-    ) {
+    fn frame_orientations(&self, state: &P::State, out: &mut Vec<nalgebra::UnitQuaternion<f64>>) {
         self.model.frame_orientations(state, out);
     }
 }
@@ -1236,8 +1244,7 @@ fn self_contact_edges<P: ContactSites>(
         for b in a + 1..raw.len() {
             let shares = edges[a].sites.iter().any(|s| edges[b].sites.contains(s));
             let (ea, eb) = (&edges[a], &edges[b]);
-            let reach =
-                std::f64::consts::PI * ea.radius.max(eb.radius) + params.activation;
+            let reach = std::f64::consts::PI * ea.radius.max(eb.radius) + params.activation;
             let near =
                 ea.chain == eb.chain && ea.arc[0].max(eb.arc[0]) - ea.arc[1].min(eb.arc[1]) < reach;
             if shares || near {

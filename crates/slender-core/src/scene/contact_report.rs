@@ -49,8 +49,8 @@ pub(crate) fn contact_problem<'a>(
             &c.chains[k],
             &c.radii[k],
         )
-            .inspect(|p| p.set_friction_state(friction))
-            .map_err(|e| format!("contact: {e}")),
+        .inspect(|p| p.set_friction_state(friction))
+        .map_err(|e| format!("contact: {e}")),
     )
 }
 

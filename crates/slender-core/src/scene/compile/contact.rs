@@ -329,28 +329,33 @@ pub(crate) fn compile_contact(
                 }
             }
         }
-        ContactProblem::with_radii(s, obstacles.clone(), p, s.rest_state(), &chain, &member_radius)
-            .map_err(
-            |e| match e {
-                ModelError::InvalidStructure { field, reason } => {
-                    let path = if field == "self_contact" {
-                        "contact.self_contact".to_string()
-                    } else {
-                        field
-                    };
-                    let rods_of: Vec<&str> = rods
-                        .iter()
-                        .filter(|r| r.parts.iter().any(|p| p.structure == k))
-                        .map(|r| r.name.as_str())
-                        .collect();
-                    SceneError::new(
-                        path,
-                        format!("{reason} (structure of rods {})", rods_of.join(", ")),
-                    )
-                }
-                e => SceneError::model("contact", e),
-            },
-        )?;
+        ContactProblem::with_radii(
+            s,
+            obstacles.clone(),
+            p,
+            s.rest_state(),
+            &chain,
+            &member_radius,
+        )
+        .map_err(|e| match e {
+            ModelError::InvalidStructure { field, reason } => {
+                let path = if field == "self_contact" {
+                    "contact.self_contact".to_string()
+                } else {
+                    field
+                };
+                let rods_of: Vec<&str> = rods
+                    .iter()
+                    .filter(|r| r.parts.iter().any(|p| p.structure == k))
+                    .map(|r| r.name.as_str())
+                    .collect();
+                SceneError::new(
+                    path,
+                    format!("{reason} (structure of rods {})", rods_of.join(", ")),
+                )
+            }
+            e => SceneError::model("contact", e),
+        })?;
         params.push(p);
         chains.push(chain);
         member_radii.push(member_radius);
