@@ -517,3 +517,99 @@ fn self_contact_derivatives_match_finite_differences() {
     let e = ContactProblem::new(&rod, vec![], tight, &state).unwrap_err();
     assert!(e.to_string().contains("self_contact"), "{e}");
 }
+
+#[test]
+fn each_member_keeps_its_own_radius_and_a_joint_the_largest() {
+    use slender_core::structure::{JointEnd, Member, StructureBuilder};
+    // Two cables joined end to end in an L at z = 0: a thin one (r = 2 mm) along x, a thick
+    // one (r = 5 mm) along y from its end.
+    let (props, _) = cable_properties();
+    let thin = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: 0.5,
+        },
+        props,
+    )
+    .elements(5)
+    .clamp_start()
+    .build()
+    .unwrap();
+    let thick = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.5, 0.0, 0.0],
+            direction: [0.0, 1.0, 0.0],
+            length: 0.5,
+        },
+        props,
+    )
+    .elements(5)
+    .allow_rigid_motion()
+    .build()
+    .unwrap();
+    let s = StructureBuilder::new()
+        .member(Member::Der(thin))
+        .member(Member::Der(thick))
+        .joint(vec![
+            JointEnd {
+                member: 0,
+                vertex: 5,
+            },
+            JointEnd {
+                member: 1,
+                vertex: 0,
+            },
+        ])
+        .allow_free_motion() // the thick cable may spin about its axis: no solve here
+        .build()
+        .unwrap();
+    let radii = [0.002, 0.005];
+    let params = ContactParams::for_line_load(0.001, 1e-4, 1.0);
+    let floor = |z: f64| {
+        vec![boxed(
+            Plane::new(Vector3::new(0.0, 0.0, z), Vector3::z(), 0.0).unwrap(),
+        )]
+    };
+    let p = ContactProblem::with_radii(&s, floor(-0.006), params, s.rest_state(), &[], &radii)
+        .expect("every site clear of the floor");
+    for (k, site) in p.sites().iter().enumerate() {
+        let expected = if site.member == 1 || site.vertex == 5 {
+            0.005 // the thick member, and the joint's vertex (the master is the thin one's end)
+        } else {
+            0.002
+        };
+        assert_eq!(
+            p.site_radius(k),
+            expected,
+            "member {} vertex {}",
+            site.member,
+            site.vertex
+        );
+    }
+    assert!((p.min_gap(s.rest_state()) - 0.001).abs() < 1e-15);
+    // 4.5 mm below: clear of the thin cable, inside the thick one's radius (its sites and
+    // the joint's).
+    let e = ContactProblem::with_radii(&s, floor(-0.0045), params, s.rest_state(), &[], &radii)
+        .err()
+        .expect("the thick cable starts inside the floor");
+    println!("{e}");
+    assert!(e.to_string().contains("obstacles[0]") && e.to_string().contains("0.005"));
+    // Without per-member radii every site has params.radius (1 mm).
+    let p = ContactProblem::new(&s, floor(-0.0045), params, s.rest_state()).unwrap();
+    assert!((0..p.sites().len()).all(|k| p.site_radius(k) == 0.001));
+    for bad in [-1.0, f64::NAN] {
+        let e = ContactProblem::with_radii(
+            &s,
+            floor(-0.006),
+            params,
+            s.rest_state(),
+            &[],
+            &[0.002, bad],
+        )
+        .err()
+        .expect("refused");
+        println!("{e}");
+        assert!(e.to_string().contains("radii[1]"), "{e}");
+    }
+}

@@ -610,10 +610,11 @@ fn a_jointed_structure_has_summed_joint_masses_and_conserves_energy() {
 }
 
 #[test]
-fn rotation_dofs_not_listed_as_frames_are_refused() {
+fn a_contact_problem_hands_a_cosserat_structures_frames_to_the_stepper() {
     // A structure of a Cosserat rod lists its frames and is stepped
-    // (tests/framed_dynamics.rs); a contact problem around it does not pass the frames on,
-    // so its rotation DOFs would be stepped as coordinates: refused, naming the model.
+    // (tests/framed_dynamics.rs); a contact problem around it passes them on (their rotary
+    // inertia and orientations), so that its rotation DOFs are stepped as frames, not as
+    // coordinates: with an obstacle it never touches, it steps the same motion to the bit.
     use slender_core::contact::{ContactParams, ContactProblem, Plane};
     let cosserat = CosseratBuilder::new(
         RestCurve::Straight {
@@ -626,16 +627,14 @@ fn rotation_dofs_not_listed_as_frames_are_refused() {
     )
     .elements(5)
     .clamp_start()
+    .gravity(Vec3::new(0.0, -G, 0.0))
     .build()
     .unwrap();
     let s = StructureBuilder::new()
         .member(Member::Cosserat(cosserat))
         .build()
         .unwrap();
-    let mut stepper = TimeStepper::at_rest(&s, s.rest_state().clone(), DynamicsParams::new(1e-3))
-        .expect("a structure of a Cosserat rod is stepped");
-    assert!(stepper.step().converged);
-    let plane = Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::y(), 0.0).unwrap();
+    let plane = Plane::new(Vec3::new(0.0, -10.0, 0.0), Vec3::y(), 0.0).unwrap();
     let contact = ContactProblem::new(
         &s,
         vec![std::sync::Arc::new(plane)],
@@ -643,10 +642,20 @@ fn rotation_dofs_not_listed_as_frames_are_refused() {
         s.rest_state(),
     )
     .unwrap();
-    let e = TimeStepper::at_rest(&contact, s.rest_state().clone(), DynamicsParams::new(1e-3))
-        .err()
-        .expect("refused");
-    assert_eq!(field_of(e), "model");
+    let params = DynamicsParams::new(1e-3);
+    let mut free = TimeStepper::at_rest(&s, s.rest_state().clone(), params).unwrap();
+    let mut touching = TimeStepper::at_rest(&contact, s.rest_state().clone(), params)
+        .expect("a contact problem around a Cosserat structure is stepped");
+    assert_eq!(touching.mass().frames(), free.mass().frames());
+    assert_eq!(touching.mass().frames().len(), 5, "one frame per edge");
+    for _ in 0..50 {
+        assert!(free.step().converged);
+        assert!(touching.step().converged);
+    }
+    let (a, b) = (free.state(), touching.state());
+    assert!(a.members[0].positions()[5].y < -1e-4, "the rod swings down");
+    assert_eq!(a.members[0].positions(), b.members[0].positions());
+    assert_eq!(free.velocity(), touching.velocity());
 }
 
 #[test]

@@ -3,6 +3,9 @@
 //! by `scene::TimeRun`, scored against Coulomb's law with the benchmark's own closed form,
 //! acceleration fit and targets — a rod on a slope steeper than atan μ slides with
 //! g (sin α − μ cos α) to 1e-3, one on a gentler slope moves by at most 1e-9 of its length.
+//! The same scenes with the rod modelled as a discrete Cosserat rod and as an SE(3) beam
+//! (whose frames' rotary inertia the contact problem hands to the stepper) meet the same
+//! targets.
 
 use slender_core::scene::{Scene, TimeRun};
 use slender_validation::stick_slip::fit::acceleration;
@@ -14,8 +17,9 @@ const ACTIVATION: f64 = 1e-6;
 
 /// `case` as a scene: the rod along x at rest on the plane z = 0 (at the gap where the
 /// barrier carries its normal load, as the benchmark starts it), gravity tilted by α so the
-/// slope runs down along +x, backward Euler as in the benchmark.
-fn scene_text(case: &StickSlipCase) -> String {
+/// slope runs down along +x, backward Euler as in the benchmark; the rod's `model` as the
+/// scene names it (`"der"`, `"cosserat"`, `"se3"`).
+fn scene_text(case: &StickSlipCase, model: &str) -> String {
     let r = 0.5 * case.diameter;
     let activation = ACTIVATION * case.length;
     let rho_a = case.density * std::f64::consts::PI * r * r;
@@ -30,6 +34,7 @@ gravity = [{gx}, 0.0, {gz}]
 
 [[rods]]
 name = "rod"
+model = "{model}"
 elements = {n}
 centerline = {{ kind = "straight", start = [0.0, 0.0, {z}], direction = [1.0, 0.0, 0.0], length = {l} }}
 section = {{ shape = "circle", diameter = {d} }}
@@ -73,8 +78,8 @@ struct SceneRun {
     iterations: usize,
 }
 
-fn run_scene(case: &StickSlipCase) -> SceneRun {
-    let spec: Scene = toml::from_str(&scene_text(case)).expect("scene");
+fn run_scene(case: &StickSlipCase, model: &str) -> SceneRun {
+    let spec: Scene = toml::from_str(&scene_text(case, model)).expect("scene");
     let compiled = spec.compile().expect("compiles");
     let mut run = TimeRun::new(&compiled).expect("starts");
     let centroid = |run: &TimeRun| {
@@ -103,8 +108,9 @@ fn run_scene(case: &StickSlipCase) -> SceneRun {
     }
 }
 
-#[test]
-fn a_rod_on_a_rough_slope_in_a_time_run_sticks_below_atan_mu_and_slides_at_coulombs_rate_above() {
+/// Runs the two benchmark rods as `model` on slopes at 0.5, 0.99, 1.01 and 1.5 × atan μ
+/// and checks Coulomb's law (see the module docs).
+fn check_stick_slip(model: &str) {
     let base = StickSlipCase {
         mu: 0.3,
         alpha: 0.0,
@@ -134,10 +140,10 @@ fn a_rod_on_a_rough_slope_in_a_time_run_sticks_below_atan_mu_and_slides_at_coulo
                 alpha: (factor * rod.mu).atan(),
                 ..rod
             };
-            let r = run_scene(&case);
+            let r = run_scene(&case, model);
             let exact = exact_acceleration(case.gravity, case.alpha, case.mu);
             println!(
-                "E = {:.0e}, μ = {}, tan α / μ = {factor}: sliding {}, displacement {:.3e} L, a = {:.9e} vs Coulomb {:.9e} (relative error {:.1e}), {} Newton iterations",
+                "{model}, E = {:.0e}, μ = {}, tan α / μ = {factor}: sliding {}, displacement {:.3e} L, a = {:.9e} vs Coulomb {:.9e} (relative error {:.1e}), {} Newton iterations",
                 case.young,
                 case.mu,
                 r.sliding,
@@ -164,4 +170,16 @@ fn a_rod_on_a_rough_slope_in_a_time_run_sticks_below_atan_mu_and_slides_at_coulo
             }
         }
     }
+}
+
+#[test]
+fn a_rod_on_a_rough_slope_in_a_time_run_sticks_below_atan_mu_and_slides_at_coulombs_rate_above() {
+    check_stick_slip("der");
+}
+
+#[test]
+fn a_cosserat_rod_or_se3_beam_on_a_rough_slope_sticks_below_atan_mu_and_slides_at_coulombs_rate_above(
+) {
+    check_stick_slip("cosserat");
+    check_stick_slip("se3");
 }

@@ -17,6 +17,7 @@ pub mod mesh;
 pub mod obstacle;
 pub mod plane;
 pub mod problem;
+mod radii;
 pub mod segment_distance;
 pub mod sites;
 pub mod sphere;

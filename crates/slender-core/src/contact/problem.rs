@@ -2,7 +2,8 @@
 //! solver: the model's energy plus a barrier energy of every site's gap to every obstacle.
 //!
 //! Each centerline vertex (a [`ContactSite`]) at distance d from an obstacle's surface has the
-//! gap g = d − r (r the cable's radius) and adds κ·w·b(g), with b the barrier of
+//! gap g = d − r (r its cable's radius: each member may have its own, see
+//! [`ContactProblem::with_radii`]) and adds κ·w·b(g), with b the barrier of
 //! [`barrier`](super::barrier), w the centerline length the vertex stands for and κ the
 //! barrier stiffness (N/m²). Its exact gradient and Hessian follow from the obstacle's
 //! distance derivatives (κw(b′ n, b″ n nᵀ + b′ ∂n/∂p)). The step cap stops every site short of
@@ -30,6 +31,7 @@ use super::barrier::barrier;
 use super::broad_phase::{overlapping_pairs, Aabb, SweepBuffers};
 use super::friction::{Friction, FrictionUpdate};
 use super::obstacle::Obstacle;
+use super::radii::{member_radius, site_radii, validate_member_radii};
 use super::segment_distance::{
     closest_parameters, edge_edge_mollifier, point_segment_distance,
     point_segment_distance_squared, segment_distance, segment_distance_squared,
@@ -56,6 +58,7 @@ const KEEP_GAP: f64 = 0.1;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactParams {
     /// Radius (m) of the cable's section: the centerline keeps this distance from surfaces.
+    /// The radius of every member that [`ContactProblem::with_radii`] gives none.
     pub radius: f64,
     /// Activation distance ĝ (m, > 0): a site within this gap of a surface is in contact, and
     /// at equilibrium every contact rests within it (the position tolerance of contacts).
@@ -69,9 +72,9 @@ pub struct ContactParams {
     /// deflection, never a creep).
     pub stick_stiffness: f64,
     /// Contact of the structure's centerline edges with each other (self-contact of a coil,
-    /// cable against cable): segment–segment distances against twice the radius, with the
-    /// same barrier. Edges closer along the same member than π r (which no bend of a cable of
-    /// radius r brings into contact) are not paired.
+    /// cable against cable): segment–segment distances against the sum of the two edges'
+    /// radii, with the same barrier. Edges closer along the same member than π r (which no
+    /// bend of a cable of radius r brings into contact) are not paired.
     pub self_contact: bool,
 }
 
@@ -156,7 +159,8 @@ pub struct SegmentContact {
     pub a: SegmentSide,
     /// Second side: always an edge.
     pub b: SegmentSide,
-    /// Gap (m) between the surfaces: distance of the closest points minus twice the radius.
+    /// Gap (m) between the surfaces: distance of the closest points minus the sum of the two
+    /// sides' radii.
     pub gap: f64,
 }
 
@@ -178,6 +182,8 @@ pub struct ContactProblem<'m, P: ContactSites> {
     excluded: Vec<(usize, usize)>,
     /// Per site: its chain and rest arc length (m) along it (see [`ContactProblem::with_chains`]).
     site_arcs: Vec<(usize, f64)>,
+    /// Per site: its contact radius (m), the distance its centerline point keeps from surfaces.
+    site_radius: Vec<f64>,
     scratch: RefCell<SelfScratch>,
 }
 
@@ -193,6 +199,8 @@ struct EdgeSites {
     /// Chain, and rest arc length (m) of its ends along the chain.
     chain: usize,
     arc: [f64; 2],
+    /// Contact radius (m): its member's.
+    radius: f64,
 }
 
 /// One self-contact primitive with its coordinates.
@@ -204,13 +212,21 @@ enum Primitive {
 }
 
 impl Primitive {
-    /// Surface gap (m): distance minus twice the radius `radius`.
-    fn gap(&self, radius: f64) -> f64 {
+    /// Surface gap (m): distance minus `clearance` (the two sides' radii, [`Self::clearance`]).
+    fn gap(&self, clearance: f64) -> f64 {
         let d2 = match self {
             Primitive::EdgeEdge { x, .. } => segment_distance_squared(x).v,
             Primitive::VertexEdge { x, .. } => point_segment_distance_squared(x).v,
         };
-        d2.sqrt() - 2.0 * radius
+        d2.sqrt() - clearance
+    }
+
+    /// The distance (m) the two sides' centerlines keep: the sum of their radii.
+    fn clearance<P: ContactSites>(&self, problem: &ContactProblem<'_, P>) -> f64 {
+        match *self {
+            Primitive::EdgeEdge { a, b, .. } => problem.edges[a].radius + problem.edges[b].radius,
+            Primitive::VertexEdge { v, e, .. } => problem.site_radius[v] + problem.edges[e].radius,
+        }
     }
 
     /// The first site of each side.
@@ -249,9 +265,10 @@ struct SelfScratch {
 }
 
 impl<'m, P: ContactSites> ContactProblem<'m, P> {
-    /// `model` with `obstacles`. Errors: invalid parameters, a model that already uses the
-    /// contact group's bit, or a site of `start` that is not outside every obstacle by more
-    /// than the radius (the cable would start inside; the field names the obstacle).
+    /// `model` with `obstacles`, every member of radius `params.radius`. Errors: invalid
+    /// parameters, a model that already uses the contact group's bit, or a site of `start`
+    /// that is not outside every obstacle by more than its radius (the cable would start
+    /// inside; the field names the obstacle).
     pub fn new(
         model: &'m P,
         obstacles: Vec<Arc<dyn Obstacle>>,
@@ -274,7 +291,24 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         start: &P::State,
         chains: &[(usize, f64)],
     ) -> Result<Self, ModelError> {
+        Self::with_radii(model, obstacles, params, start, chains, &[])
+    }
+
+    /// As [`Self::with_chains`], with a contact radius per member: `radii[m]` (m, finite and
+    /// ≥ 0; `params.radius` for members missing from it). Against obstacles each site keeps
+    /// its own member's radius (at a joint the largest of the members meeting there); two
+    /// edges in self-contact keep the sum of theirs apart, and are not paired closer along
+    /// one chain than π r + ĝ with r the larger. Errors as [`Self::new`], and `radii[m]`.
+    pub fn with_radii(
+        model: &'m P,
+        obstacles: Vec<Arc<dyn Obstacle>>,
+        params: ContactParams,
+        start: &P::State,
+        chains: &[(usize, f64)],
+        radii: &[f64],
+    ) -> Result<Self, ModelError> {
         params.validate()?;
+        validate_member_radii(radii)?;
         if model.term_groups().iter().any(|g| g.bit == CONTACT.bit) {
             return Err(ModelError::structure(
                 "obstacles",
@@ -282,16 +316,16 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             ));
         }
         let sites = model.contact_sites();
+        let site_radius = site_radii(model, &sites, radii, params.radius);
         for (o, obstacle) in obstacles.iter().enumerate() {
-            for site in &sites {
-                let gap =
-                    obstacle.surface(&model.site_position(start, site)).distance - params.radius;
+            for (site, &radius) in sites.iter().zip(&site_radius) {
+                let gap = obstacle.surface(&model.site_position(start, site)).distance - radius;
                 if !(gap > 0.0) {
                     return Err(ModelError::structure(
                         format!("obstacles[{o}]"),
                         format!(
-                            "vertex {} of member {} starts inside the obstacle (gap {gap:.3e} m with radius {} m): move the obstacle or the cable",
-                            site.vertex, site.member, params.radius
+                            "vertex {} of member {} starts inside the obstacle (gap {gap:.3e} m with radius {radius} m): move the obstacle or the cable",
+                            site.vertex, site.member
                         ),
                     ));
                 }
@@ -308,7 +342,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         groups.push(FRICTION);
         let pairs = sites.len() * obstacles.len();
         let (edges, excluded, site_arcs) = if params.self_contact {
-            self_contact_edges(model, &sites, &params, chains)
+            self_contact_edges(model, &sites, &params, chains, radii)
         } else {
             (Vec::new(), Vec::new(), Vec::new())
         };
@@ -322,17 +356,19 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             edges,
             excluded,
             site_arcs,
+            site_radius,
             scratch: RefCell::new(SelfScratch::default()),
         };
-        let mut worst: Option<(usize, usize, f64)> = None;
+        let mut worst: Option<(usize, usize, f64, f64)> = None;
         me.for_each_primitive(start, 0.0, |prim| {
-            let gap = prim.gap(me.params.radius);
+            let clearance = prim.clearance(&me);
+            let gap = prim.gap(clearance);
             let (a, b) = prim.edges(&me);
             if !(gap > 0.0) && worst.is_none_or(|w| gap < w.2) {
-                worst = Some((a, b, gap));
+                worst = Some((a, b, gap, clearance));
             }
         });
-        if let Some((a, b, gap)) = worst {
+        if let Some((a, b, gap, clearance)) = worst {
             let at = |e: usize| {
                 let s = &me.sites[me.edges[e].sites[0]];
                 format!("edge at vertex {} of member {}", s.vertex, s.member)
@@ -340,11 +376,10 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             return Err(ModelError::structure(
                 "self_contact",
                 format!(
-                    "the cable starts intersecting itself or another cable: {} and {} are {:.3e} m apart, less than twice the radius {} m",
+                    "the cable starts intersecting itself or another cable: {} and {} are {:.3e} m apart, less than the sum of their radii {clearance} m",
                     at(a),
                     at(b),
-                    gap + 2.0 * me.params.radius,
-                    me.params.radius
+                    gap + clearance,
                 ),
             ));
         }
@@ -383,9 +418,10 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             pairs,
             vertex_edges,
         } = &mut *scratch;
-        let pad = Vector3::repeat(self.params.radius + 0.5 * self.params.activation + grow);
         boxes.clear();
         for e in &self.edges {
+            // Two boxes overlap when their edges may be closer than r_a + r_b + ĝ (+ 2 grow).
+            let pad = Vector3::repeat(e.radius + 0.5 * self.params.activation + grow);
             let p = self.model.site_position(state, &self.sites[e.sites[0]]);
             let q = self.model.site_position(state, &self.sites[e.sites[1]]);
             boxes.push((p.inf(&q) - pad, p.sup(&q) + pad));
@@ -425,7 +461,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     }
 
     /// True if site `v` and edge `e` can touch: not an end of it, and not closer to it along
-    /// their member than π r + ĝ.
+    /// their chain than π r + ĝ (r the larger of their radii).
     fn vertex_edge_interacts(&self, v: usize, e: usize) -> bool {
         let edge = &self.edges[e];
         if edge.sites.contains(&v) {
@@ -434,7 +470,8 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         let (chain, arc) = self.site_arcs[v];
         !(chain == edge.chain
             && (arc - arc.clamp(edge.arc[0], edge.arc[1])).abs()
-                < std::f64::consts::PI * self.params.radius + self.params.activation)
+                < std::f64::consts::PI * self.site_radius[v].max(edge.radius)
+                    + self.params.activation)
     }
 
     /// The barrier weight of a primitive: half the shorter rest length involved (m).
@@ -449,15 +486,17 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         }
     }
 
-    /// Energy (J) of a primitive with its derivatives in its own coordinates, if active.
+    /// Energy (J) of a primitive with its derivatives in its own coordinates, if active;
+    /// `clearance` (m) is the distance its sides keep ([`Primitive::clearance`]).
     fn primitive_energy<const N: usize>(
         &self,
         distance_squared: Dual2<N>,
         mollifier: Option<Dual2<N>>,
         length: f64,
+        clearance: f64,
     ) -> Option<Dual2<N>> {
         let d = distance_squared.v.sqrt();
-        let gap = d - 2.0 * self.params.radius;
+        let gap = d - clearance;
         if gap >= self.params.activation {
             return None;
         }
@@ -499,16 +538,18 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     /// Energy (J) of one primitive at its coordinates (0 when inactive).
     fn primitive_value(&self, prim: &Primitive) -> f64 {
         let length = self.primitive_length(prim);
+        let clearance = prim.clearance(self);
         match prim {
             Primitive::EdgeEdge { a, b, x } => self
                 .primitive_energy(
                     segment_distance_squared(x),
                     Some(edge_edge_mollifier(x, self.mollifier_scale(*a, *b))),
                     length,
+                    clearance,
                 )
                 .map_or(0.0, |e| e.v),
             Primitive::VertexEdge { x, .. } => self
-                .primitive_energy(point_segment_distance_squared(x), None, length)
+                .primitive_energy(point_segment_distance_squared(x), None, length, clearance)
                 .map_or(0.0, |e| e.v),
         }
     }
@@ -518,11 +559,17 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         self.friction.borrow()[site * self.obstacles.len() + obstacle]
     }
 
-    /// Normal gap (m), outward normal and normal force (N, ≥ 0) of a site at `p` against
+    /// Normal gap (m), outward normal and normal force (N, ≥ 0) of site `k` at `p` against
     /// obstacle `o`, with `length` (m) the centerline the site stands for.
-    fn normal_contact(&self, p: &Vector3<f64>, o: usize, length: f64) -> (f64, Vector3<f64>, f64) {
+    fn normal_contact(
+        &self,
+        k: usize,
+        p: &Vector3<f64>,
+        o: usize,
+        length: f64,
+    ) -> (f64, Vector3<f64>, f64) {
         let s = self.obstacles[o].surface(p);
-        let gap = s.distance - self.params.radius;
+        let gap = s.distance - self.site_radius[k];
         let force = if gap < self.params.activation {
             -self.params.stiffness * length * barrier(gap, self.params.activation).1
         } else {
@@ -562,7 +609,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             for o in 0..n_obstacles {
                 let slot = &mut friction[k * n_obstacles + o];
                 let mu = self.obstacles[o].friction();
-                let (_, normal, f_n) = self.normal_contact(&x, o, site.length);
+                let (_, normal, f_n) = self.normal_contact(k, &x, o, site.length);
                 if f_n <= 0.0 || mu == 0.0 {
                     if *slot != Friction::Free {
                         update.released += 1;
@@ -647,6 +694,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         &self.params
     }
 
+    /// The contact radius (m) of site `site` (index in [`Self::sites`]): the distance its
+    /// centerline point keeps from obstacles (see [`Self::with_radii`]).
+    pub fn site_radius(&self, site: usize) -> f64 {
+        self.site_radius[site]
+    }
+
     /// Every active contact (gap below the activation distance) of `state` with its force.
     pub fn contact_forces(&self, state: &P::State) -> Vec<ContactForce> {
         let mut out = Vec::new();
@@ -654,7 +707,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             let p = self.model.site_position(state, site);
             for (o, obstacle) in self.obstacles.iter().enumerate() {
                 let s = obstacle.surface(&p);
-                let gap = s.distance - self.params.radius;
+                let gap = s.distance - self.site_radius[k];
                 if gap < self.params.activation {
                     let (_, slope, _) = barrier(gap, self.params.activation);
                     let friction = self.friction(k, o);
@@ -676,10 +729,10 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     /// Smallest gap (m) of any site to any obstacle in `state` (negative: penetration).
     pub fn min_gap(&self, state: &P::State) -> f64 {
         let mut g = f64::INFINITY;
-        for site in &self.sites {
+        for (site, &radius) in self.sites.iter().zip(&self.site_radius) {
             let p = self.model.site_position(state, site);
             for obstacle in &self.obstacles {
-                g = g.min(obstacle.surface(&p).distance - self.params.radius);
+                g = g.min(obstacle.surface(&p).distance - radius);
             }
         }
         g
@@ -690,7 +743,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     pub fn min_self_gap(&self, state: &P::State) -> f64 {
         let mut g = f64::INFINITY;
         self.for_each_primitive(state, 0.0, |prim| {
-            g = g.min(prim.gap(self.params.radius));
+            g = g.min(prim.gap(prim.clearance(self)));
         });
         g
     }
@@ -704,7 +757,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     ) -> Vec<((usize, usize), (usize, usize), f64, f64)> {
         let mut out = Vec::new();
         self.for_each_primitive(state, 0.0, |prim| {
-            let gap = prim.gap(self.params.radius);
+            let gap = prim.gap(prim.clearance(self));
             if gap < self.params.activation {
                 let slope = barrier(gap, self.params.activation).1;
                 let force = -self.params.stiffness * self.primitive_length(prim) * slope;
@@ -722,7 +775,8 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         let mut out = Vec::new();
         let point = |x: &[f64], k: usize| Vector3::new(x[3 * k], x[3 * k + 1], x[3 * k + 2]);
         self.for_each_primitive(state, 0.0, |prim| {
-            let gap = prim.gap(self.params.radius);
+            let clearance = prim.clearance(self);
+            let gap = prim.gap(clearance);
             if gap >= self.params.activation {
                 return;
             }
@@ -747,9 +801,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             match prim {
                 Primitive::EdgeEdge { a, b, x } => {
                     let m = edge_edge_mollifier(x, self.mollifier_scale(*a, *b));
-                    let Some(e) =
-                        self.primitive_energy(segment_distance_squared(x), Some(m), length)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        segment_distance_squared(x),
+                        Some(m),
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let (s, t) = closest_parameters(x);
@@ -779,9 +836,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                     });
                 }
                 Primitive::VertexEdge { v, e: edge, x } => {
-                    let Some(e) =
-                        self.primitive_energy(point_segment_distance_squared(x), None, length)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        point_segment_distance_squared(x),
+                        None,
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let (p, q0, q1) = (point(x, 0), point(x, 1), point(x, 2));
@@ -823,7 +883,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         for (k, site) in self.sites.iter().enumerate() {
             let p = self.model.site_position(state, site);
             for (o, obstacle) in self.obstacles.iter().enumerate() {
-                let gap = obstacle.surface(&p).distance - self.params.radius;
+                let gap = obstacle.surface(&p).distance - self.site_radius[k];
                 if gap < self.params.activation {
                     e += self.params.stiffness
                         * site.length
@@ -908,11 +968,11 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
             return;
         }
         let (kappa, activation) = (self.params.stiffness, self.params.activation);
-        for site in &self.sites {
+        for (site, &radius) in self.sites.iter().zip(&self.site_radius) {
             let p = self.model.site_position(state, site);
             for obstacle in &self.obstacles {
                 let s = obstacle.surface(&p);
-                let gap = s.distance - self.params.radius;
+                let gap = s.distance - radius;
                 if gap >= activation {
                     continue;
                 }
@@ -930,12 +990,16 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
         }
         self.for_each_primitive(state, 0.0, |prim| {
             let length = self.primitive_length(prim);
+            let clearance = prim.clearance(self);
             match prim {
                 Primitive::EdgeEdge { a, b, x } => {
                     let m = edge_edge_mollifier(x, self.mollifier_scale(*a, *b));
-                    let Some(e) =
-                        self.primitive_energy(segment_distance_squared(x), Some(m), length)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        segment_distance_squared(x),
+                        Some(m),
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let remap: [SiteDof; 12] = self
@@ -946,9 +1010,12 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
                     asm.absorb(info);
                 }
                 Primitive::VertexEdge { v, e: edge, x } => {
-                    let Some(e) =
-                        self.primitive_energy(point_segment_distance_squared(x), None, length)
-                    else {
+                    let Some(e) = self.primitive_energy(
+                        point_segment_distance_squared(x),
+                        None,
+                        length,
+                        clearance,
+                    ) else {
                         return;
                     };
                     let [e0, e1] = self.edges[*edge].sites;
@@ -988,7 +1055,7 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
 
     fn max_step(&self, state: &P::State, dx: &[f64]) -> f64 {
         let mut alpha = self.model.max_step(state, dx);
-        for site in &self.sites {
+        for (site, &radius) in self.sites.iter().zip(&self.site_radius) {
             let mut dp = Vector3::zeros();
             for (c, d) in site.dofs.iter().enumerate() {
                 if d.dof != crate::assembly::FIXED {
@@ -1000,8 +1067,8 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
             }
             let p = self.model.site_position(state, site);
             for obstacle in &self.obstacles {
-                let gap = obstacle.surface(&p).distance - self.params.radius;
-                let clearance = self.params.radius + KEEP_GAP * gap.max(0.0);
+                let gap = obstacle.surface(&p).distance - radius;
+                let clearance = radius + KEEP_GAP * gap.max(0.0);
                 alpha = alpha.min(obstacle.time_of_impact(&p, &(dp * alpha), clearance) * alpha);
             }
         }
@@ -1025,21 +1092,21 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
             let largest = (0..self.sites.len())
                 .map(|k| moved(k).norm())
                 .fold(0.0, f64::max);
-            let radius = self.params.radius;
             self.for_each_primitive(state, 2.0 * alpha * largest, |prim| {
+                let clearance = prim.clearance(self);
                 let t = match prim {
                     Primitive::EdgeEdge { a, b, x } => {
                         let sites = [self.edges[*a].sites, self.edges[*b].sites].concat();
                         let dp: [f64; 12] =
                             std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
-                        additive_ccd(x, &dp, 2, |y| segment_distance(y) - 2.0 * radius)
+                        additive_ccd(x, &dp, 2, |y| segment_distance(y) - clearance)
                     }
                     Primitive::VertexEdge { v, e, x } => {
                         let [e0, e1] = self.edges[*e].sites;
                         let sites = [*v, e0, e1];
                         let dp: [f64; 9] =
                             std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
-                        additive_ccd(x, &dp, 1, |y| point_segment_distance(y) - 2.0 * radius)
+                        additive_ccd(x, &dp, 1, |y| point_segment_distance(y) - clearance)
                     }
                 };
                 alpha *= t;
@@ -1061,11 +1128,24 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
     }
 }
 
+/// The wrapped model's DOFs, unchanged: the contact terms act on site positions only
+/// (coordinates of every model), so the frames whose rotations are DOFs, their rotary inertia
+/// and their orientations are the model's. Forwarding them is what lets the time stepper give
+/// a Cosserat rod's or an SE(3) beam's frames their inertia (and the log chart's dexp⁻¹) in
+/// contact; without them the rotation DOFs would have no mass at all.
 impl<P: ContactSites + crate::dynamics::FlatDofs> crate::dynamics::FlatDofs
     for ContactProblem<'_, P>
 {
     fn has_flat_dofs(&self) -> bool {
         self.model.has_flat_dofs()
+    }
+
+    fn frames(&self) -> Vec<crate::dynamics::FrameInertia> {
+        self.model.frames()
+    }
+
+    fn frame_orientations(&self, state: &P::State, out: &mut Vec<nalgebra::UnitQuaternion<f64>>) {
+        self.model.frame_orientations(state, out);
     }
 }
 
@@ -1114,13 +1194,15 @@ fn point3(g: &[f64], k: usize) -> Vector3<f64> {
 }
 
 /// The edges of `model` as site pairs, and the edge pairs that never interact: those sharing a
-/// site, and those of one chain closer along it than π r + ĝ (see
-/// [`ContactProblem::with_chains`]); with each site's chain and arc length.
+/// site, and those of one chain closer along it than π r + ĝ, r the larger of their radii
+/// (see [`ContactProblem::with_chains`], [`ContactProblem::with_radii`]: member m has
+/// `radii[m]`, or `params.radius`); with each site's chain and arc length.
 fn self_contact_edges<P: ContactSites>(
     model: &P,
     sites: &[ContactSite],
     params: &ContactParams,
     chains: &[(usize, f64)],
+    radii: &[f64],
 ) -> (Vec<EdgeSites>, Vec<(usize, usize)>, Vec<(usize, f64)>) {
     // A member not in `chains` is its own chain, numbered past every given one.
     let first_own = chains.iter().map(|c| c.0 + 1).max().unwrap_or(0);
@@ -1144,6 +1226,7 @@ fn self_contact_edges<P: ContactSites>(
             index: e.vertices[0],
             chain: chain_of(e.member).0,
             arc: e.arc.map(|s| s + chain_of(e.member).1),
+            radius: member_radius(radii, e.member, params.radius),
         })
         .collect();
     // Each site's arc length along its chain, from the edges that start or end there.
@@ -1156,12 +1239,12 @@ fn self_contact_edges<P: ContactSites>(
             }
         }
     }
-    let reach = std::f64::consts::PI * params.radius + params.activation;
     let mut excluded = Vec::new();
     for a in 0..raw.len() {
         for b in a + 1..raw.len() {
             let shares = edges[a].sites.iter().any(|s| edges[b].sites.contains(s));
             let (ea, eb) = (&edges[a], &edges[b]);
+            let reach = std::f64::consts::PI * ea.radius.max(eb.radius) + params.activation;
             let near =
                 ea.chain == eb.chain && ea.arc[0].max(eb.arc[0]) - ea.arc[1].min(eb.arc[1]) < reach;
             if shares || near {

@@ -68,8 +68,8 @@ impl<'m, P: FlatDofs> TimeStepper<'m, P> {
             return Err(ModelError::structure(
                 "model",
                 "time stepping needs coordinates and listed frames (FlatDofs::frames); this \
-                 model has rotation DOFs it does not list as frames (e.g. a contact problem \
-                 around a Cosserat rod or SE(3) beam)",
+                 model has rotation DOFs it does not list as frames (a wrapper of a Cosserat rod \
+                 or SE(3) beam that does not forward them)",
             ));
         }
         let n = model.n_free();

@@ -30,6 +30,7 @@ pub struct FramedRodBuilder<K> {
     pub(crate) first_director: Option<Vec3>,
     pub(crate) natural_twist: f64,
     pub(crate) node_arclengths: Option<Vec<f64>>,
+    pub(crate) allow_rigid_motion: bool,
     pub(crate) options: K,
 }
 
@@ -51,6 +52,7 @@ impl<K: Default> FramedRodBuilder<K> {
             first_director: None,
             natural_twist: 0.0,
             node_arclengths: None,
+            allow_rigid_motion: false,
             options: K::default(),
         }
     }
@@ -136,6 +138,15 @@ impl<K> FramedRodBuilder<K> {
     /// the tangent). Default: any deterministic orthogonal direction.
     pub fn first_director(mut self, d1: Vec3) -> Self {
         self.first_director = Some(d1);
+        self
+    }
+
+    /// Builds the rod even if its own supports leave it free to move rigidly: for a member
+    /// of a structure that checks the whole for free motion, or is allowed it (a rod in free
+    /// fall, or resting on obstacles, in a time run; see
+    /// [`StructureBuilder::allow_free_motion`](crate::structure::StructureBuilder::allow_free_motion)).
+    pub fn allow_rigid_motion(mut self) -> Self {
+        self.allow_rigid_motion = true;
         self
     }
 
@@ -232,7 +243,11 @@ impl<K> FramedRodBuilder<K> {
         let mut pins = self.supports.pins.clone();
         pins.sort_unstable();
         pins.dedup();
-        if !self.supports.clamp_start && !self.supports.clamp_end && pins.len() < 3 {
+        if !self.supports.clamp_start
+            && !self.supports.clamp_end
+            && pins.len() < 3
+            && !self.allow_rigid_motion
+        {
             return Err(ModelError::structure(
                 "supports",
                 "the rod can move as a rigid body; add a clamp, or pin at least three non-collinear vertices",

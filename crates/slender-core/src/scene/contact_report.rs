@@ -41,9 +41,16 @@ pub(crate) fn contact_problem<'a>(
     let c = scene.contact.as_ref()?;
     let s = &scene.structures[k];
     Some(
-        ContactProblem::with_chains(s, c.obstacles.clone(), c.params[k], state, &c.chains[k])
-            .inspect(|p| p.set_friction_state(friction))
-            .map_err(|e| format!("contact: {e}")),
+        ContactProblem::with_radii(
+            s,
+            c.obstacles.clone(),
+            c.params[k],
+            state,
+            &c.chains[k],
+            &c.radii[k],
+        )
+        .inspect(|p| p.set_friction_state(friction))
+        .map_err(|e| format!("contact: {e}")),
     )
 }
 

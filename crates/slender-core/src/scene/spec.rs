@@ -136,8 +136,8 @@ pub struct ContactSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub activation: Option<f64>,
     /// Contact of the rods with themselves and with each other: every rod of the scene is then
-    /// solved in one structure (so separate cables touch), whose contact radius is the largest
-    /// of its rods'. Default false.
+    /// solved in one structure (so separate cables touch); each keeps its own contact radius
+    /// (two cables touch at the sum of theirs). Default false.
     #[serde(default)]
     pub self_contact: bool,
     /// Barrier stiffness κ (N/m², > 0). Default: the stiffness at which the heaviest rod's
@@ -148,8 +148,9 @@ pub struct ContactSpec {
     pub stiffness: Option<f64>,
 }
 
-/// The `[time]` table: implicit time stepping of the scene's rods (discrete elastic rods
-/// only), starting from the rest state at rest (velocity 0) with gravity and the loads acting
+/// The `[time]` table: implicit time stepping of the scene's rods (every model; the Cosserat
+/// rods' and SE(3) beams' frames carry the sections' rotary inertia), starting from the rest
+/// state at rest (velocity 0) with gravity and the loads acting
 /// from t = 0 — a cable released from its rest shape —, in contact with the obstacles, with
 /// itself and with the other rods (self-contact) when the scene has them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -309,7 +310,9 @@ pub struct RodSpec {
     #[serde(default)]
     pub shear_stiffness: Option<[f64; 2]>,
     /// Radius (m, > 0) of the cable in contacts: its centerline keeps this distance from
-    /// obstacles (and twice it from other cables with self-contact). Default from the
+    /// obstacles, twice it from itself and r + r' from another cable of radius r' with
+    /// self-contact (each rod keeps its own, also in a structure of several rods; where
+    /// joined rods meet, the larger radius holds against obstacles). Default from the
     /// section: d/2 for a circle, max(width, height)/2 for a rectangle; required with
     /// `shape = "stiffness"` when the scene has obstacles or self-contact.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -14,10 +14,11 @@
 //! Supports stay at their rest pose, so a time-stepped scene has no prescribed motion (it is
 //! refused when compiling), and shells are refused too (see
 //! [`compile::time`](super::compile::time)). Cosserat rods and SE(3) beams are stepped like
-//! discrete elastic rods: the stepper takes their frames' rotary inertia from the structure.
+//! discrete elastic rods, with contact or without: the stepper takes their frames' rotary
+//! inertia from the structure, through the contact problem when there is one.
 
 use crate::contact::{step_with_friction, Friction};
-use crate::dynamics::{LumpedMass, StepReport, TimeStepper};
+use crate::dynamics::{FlatDofs, LumpedMass, StepReport, TimeStepper};
 use crate::solver::{EquilibriumProblem, SolveReport, SolveStatus};
 use crate::structure::{Structure, StructureState};
 
@@ -85,7 +86,16 @@ impl Motion<'_> {
                 velocity,
                 mass,
                 ..
-            } => (mass.kinetic_energy(velocity), s.energy(state, load)),
+            } => {
+                // The frames' rotary kinetic energy ½ ωᵀ I ω turns with them: it needs their
+                // orientations (none for discrete elastic rods).
+                let mut orientations = Vec::new();
+                s.frame_orientations(state, &mut orientations);
+                let kinetic = mass
+                    .kinetic_energy_at(velocity, &orientations)
+                    .unwrap_or(f64::NAN);
+                (kinetic, s.energy(state, load))
+            }
         }
     }
 }

@@ -218,12 +218,11 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 .collect();
             let mut structures: Vec<usize> = rod.parts.iter().map(|p| p.structure).collect();
             structures.dedup();
-            let contact_radius = scene.contact.as_ref().and_then(|c| {
-                structures
-                    .iter()
-                    .filter_map(|&k| c.params.get(k).map(|p| p.radius))
-                    .reduce(f64::max)
-            });
+            // The rod's own radius: each rod keeps it, in whatever structure.
+            let contact_radius = scene
+                .contact
+                .as_ref()
+                .and_then(|c| c.rod_radii.get(r).copied());
             RodView {
                 name: res.name.clone(),
                 display_radius: rod.display_radius,

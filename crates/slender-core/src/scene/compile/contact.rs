@@ -28,8 +28,16 @@ pub struct CompiledContact {
     pub obstacles: Vec<Arc<dyn Obstacle>>,
     /// Their names (`obstacle<i>` by default).
     pub names: Vec<String>,
-    /// Contact parameters per structure (its radius is the largest of its rods').
+    /// Contact parameters per structure (its `radius` is the largest of its rods'; each
+    /// member keeps its own rod's, see `radii`).
     pub params: Vec<ContactParams>,
+    /// Per structure, per member: its rod's contact radius (m), for
+    /// [`ContactProblem::with_radii`] — a thin and a thick cable in one structure (with
+    /// self-contact every rod is in one) rest on obstacles at their own radii and touch each
+    /// other at the sum of theirs.
+    pub radii: Vec<Vec<f64>>,
+    /// Per rod: its contact radius (m).
+    pub rod_radii: Vec<f64>,
     /// Per structure, per member: its rod (index) and the arc length (m) of its first vertex
     /// along the rod — the chains of [`ContactProblem::with_chains`], so that self-contact
     /// measures "near along the cable" by rod (across interior clamps).
@@ -261,6 +269,7 @@ pub(crate) fn compile_contact(
     }
     let mut params = Vec::with_capacity(structures.len());
     let mut chains = Vec::with_capacity(structures.len());
+    let mut member_radii = Vec::with_capacity(structures.len());
     for (k, s) in structures.iter().enumerate() {
         let chain: Vec<(usize, f64)> = (0..s.members().len())
             .map(|m| {
@@ -281,6 +290,11 @@ pub(crate) fn compile_contact(
             .filter(|(r, _)| r.parts.iter().any(|p| p.structure == k))
             .map(|(_, &r)| r)
             .fold(0.0, f64::max);
+        // Each member keeps its rod's radius (a member of no rod: the structure's largest).
+        let member_radius: Vec<f64> = chain
+            .iter()
+            .map(|&(r, _)| radii.get(r).copied().unwrap_or(radius))
+            .collect();
         let p = ContactParams {
             self_contact: spec.self_contact,
             ..ContactParams::for_line_load(radius, activation, line_load)
@@ -290,6 +304,7 @@ pub(crate) fn compile_contact(
         let rest = s.rest_state();
         for site in s.contact_sites() {
             let x = s.site_position(rest, &site);
+            let radius = member_radius[site.member];
             for (o, obstacle) in obstacles.iter().enumerate() {
                 let gap = obstacle.surface(&x).distance - radius;
                 if !(gap > 0.0) {
@@ -314,34 +329,43 @@ pub(crate) fn compile_contact(
                 }
             }
         }
-        ContactProblem::with_chains(s, obstacles.clone(), p, s.rest_state(), &chain).map_err(
-            |e| match e {
-                ModelError::InvalidStructure { field, reason } => {
-                    let path = if field == "self_contact" {
-                        "contact.self_contact".to_string()
-                    } else {
-                        field
-                    };
-                    let rods_of: Vec<&str> = rods
-                        .iter()
-                        .filter(|r| r.parts.iter().any(|p| p.structure == k))
-                        .map(|r| r.name.as_str())
-                        .collect();
-                    SceneError::new(
-                        path,
-                        format!("{reason} (structure of rods {})", rods_of.join(", ")),
-                    )
-                }
-                e => SceneError::model("contact", e),
-            },
-        )?;
+        ContactProblem::with_radii(
+            s,
+            obstacles.clone(),
+            p,
+            s.rest_state(),
+            &chain,
+            &member_radius,
+        )
+        .map_err(|e| match e {
+            ModelError::InvalidStructure { field, reason } => {
+                let path = if field == "self_contact" {
+                    "contact.self_contact".to_string()
+                } else {
+                    field
+                };
+                let rods_of: Vec<&str> = rods
+                    .iter()
+                    .filter(|r| r.parts.iter().any(|p| p.structure == k))
+                    .map(|r| r.name.as_str())
+                    .collect();
+                SceneError::new(
+                    path,
+                    format!("{reason} (structure of rods {})", rods_of.join(", ")),
+                )
+            }
+            e => SceneError::model("contact", e),
+        })?;
         params.push(p);
         chains.push(chain);
+        member_radii.push(member_radius);
     }
     Ok(Some(CompiledContact {
         obstacles,
         names,
         params,
         chains,
+        radii: member_radii,
+        rod_radii: radii,
     }))
 }

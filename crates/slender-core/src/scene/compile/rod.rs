@@ -602,7 +602,12 @@ struct FramedSetup<'a> {
 impl FramedSetup<'_> {
     /// The builder input both framed models share.
     fn apply<K>(&self, mut b: FramedRodBuilder<K>) -> FramedRodBuilder<K> {
-        b = b.nodes_at(self.nodes.clone()).gravity(self.gravity);
+        // As for a discrete elastic rod, the structure checks the whole for free motion (or
+        // allows it: a rod in free fall or resting on obstacles).
+        b = b
+            .nodes_at(self.nodes.clone())
+            .gravity(self.gravity)
+            .allow_rigid_motion();
         if let Some(d) = self.director {
             b = b.first_director(d);
         }

@@ -1,11 +1,11 @@
 //! The `[time]` table: validated into the parameters of a time integration, and the scene
 //! checked for what time stepping covers (rods of every model, conservative loads, fixed
-//! supports; obstacles, self-contact and friction with discrete elastic rods).
+//! supports; obstacles, self-contact and friction, with rods of every model).
 
 use crate::dynamics::DynamicsParams;
 
 use super::super::error::SceneError;
-use super::super::spec::{RodModelSpec, Scene, TimeSchemeSpec, TimeSpec};
+use super::super::spec::{Scene, TimeSchemeSpec, TimeSpec};
 
 /// Largest number of time steps a scene may ask for.
 pub const MAX_TIME_STEPS: usize = 10_000_000;
@@ -100,8 +100,9 @@ pub(crate) fn check_time(scene: &Scene, time: &TimeSpec) -> Result<CompiledTime,
         Some(k) => k,
         None => steps.div_ceil(DEFAULT_FRAMES).max(1),
     };
-    // Every rod model is stepped: the Cosserat rod's and the SE(3) beam's frames carry their
-    // rotary inertia (dynamics::IncrementalProblem).
+    // Every rod model is stepped, with contact or without: the Cosserat rod's and the SE(3)
+    // beam's frames carry their rotary inertia (dynamics::IncrementalProblem), which the
+    // contact problem forwards from the structure it wraps.
     for (i, rod) in scene.rods.iter().enumerate() {
         for (k, f) in rod.forces.iter().enumerate() {
             if f.follower {
@@ -131,17 +132,6 @@ pub(crate) fn check_time(scene: &Scene, time: &TimeSpec) -> Result<CompiledTime,
     }
     let contact =
         !scene.obstacles.is_empty() || scene.contact.as_ref().is_some_and(|c| c.self_contact);
-    if contact {
-        if let Some(i) = scene.rods.iter().position(|r| r.model != RodModelSpec::Der) {
-            // The contact problem hides the frames' rotary inertia from the stepper.
-            return Err(SceneError::new(
-                format!("rods[{i}].model"),
-                "time stepping with contact (obstacles or self-contact) covers discrete \
-                 elastic rods (model = \"der\") only; Cosserat rods and SE(3) beams are \
-                 stepped without contact, or solved for equilibria with it",
-            ));
-        }
-    }
     if contact && time.scheme == TimeSchemeSpec::Midpoint {
         // The solve's unknown is the midpoint y, kept outside every obstacle by the barrier
         // and the step caps; x_{n+1} = 2y − xₙ is extrapolated past it and, at an impact,
