@@ -137,10 +137,12 @@ pub struct ContactSpec {
     pub activation: Option<f64>,
     /// Contact of the rods with themselves and with each other: every rod of the scene is then
     /// solved in one structure (so separate cables touch), whose contact radius is the largest
-    /// of its rods'. Default false.
+    /// of its rods'. Default false. Refused in a scene with shell strips (they touch
+    /// obstacles only).
     #[serde(default)]
     pub self_contact: bool,
-    /// Barrier stiffness κ (N/m², > 0). Default: the stiffness at which the heaviest rod's
+    /// Barrier stiffness κ of the rods' contacts (N/m², > 0; a strip's: `shell_stiffness`).
+    /// Default: the stiffness at which the heaviest rod's
     /// weight per length under the scene's gravity rests a cable at ĝ/2; without gravity the
     /// line load EI/L³ of the stiffest rod (its largest bending stiffness over its length
     /// cubed) instead.
