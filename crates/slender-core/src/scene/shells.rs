@@ -393,7 +393,9 @@ fn arr(v: Vec3) -> [f64; 3] {
 }
 
 /// Solves a strip: its loads at its clamps' rest poses, then the clamps moved to the poses
-/// of the file (see [`ShellRun::new`](super::shell_run::ShellRun::new)).
+/// of the file (see [`ShellRun::new`](super::shell_run::ShellRun::new)). The strip alone: a
+/// scene's obstacles are not seen here (a [`Session`](super::Session) solves a scene's strips
+/// on its obstacles).
 pub fn solve_shell(c: &CompiledShell, params: &SolverParams) -> ShellResult {
     let mut c = c.clone();
     let run = super::shell_run::ShellRun::new(&mut c, params);
