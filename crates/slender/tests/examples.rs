@@ -1237,6 +1237,71 @@ fn a_cable_over_a_bracket_rests_on_its_obstacles_and_balances() {
     }
 }
 
+#[test]
+fn a_flat_cable_over_a_bracket_rests_on_its_obstacles_and_balances() {
+    let out = solve("flat_cable_on_bracket");
+    let n = n_steps(&out);
+    assert_eq!(n, 2);
+    // The scene's data: a 0.6 m × 30 mm × 0.2 mm strip, ρ = 1000 kg/m³, ĝ = 1e-5 m, floor
+    // μ = 0.3; the weight ρ h w L g computed here, not read from the results.
+    let (length, width, h, rho, g, activation) = (0.6, 0.03, 0.2e-3, 1000.0, 9.81, 1e-5);
+    let weight = rho * h * width * length * g;
+    for k in 0..n {
+        let r = step(&out, k);
+        assert_eq!(r["converged"], Value::Bool(true), "step {k}");
+        let strip = &r["shells"][0];
+        let min_gap = r["min_gap"].as_f64().unwrap();
+        assert!(
+            min_gap > 0.0 && min_gap < activation,
+            "step {k}: min gap {min_gap}"
+        );
+        assert_eq!(strip["min_gap"].as_f64(), Some(min_gap));
+        let mut total = [0.0, -weight, 0.0];
+        let mut on = [0usize; 2];
+        let mut worst_cone: f64 = 0.0;
+        for (o, obstacle) in r["obstacles"].as_array().unwrap().iter().enumerate() {
+            let mu = obstacle["friction"].as_f64().unwrap();
+            for c in obstacle["contacts"].as_array().unwrap() {
+                on[o] += 1;
+                assert_eq!(c["shell"], Value::Bool(true));
+                assert_eq!(c["rod"], Value::String("flat_cable".into()));
+                let gap = c["gap"].as_f64().unwrap();
+                assert!(gap > 0.0 && gap < activation, "step {k}: gap {gap}");
+                // The mid-surface keeps h/2 + gap from the surface: the floor's contacts
+                // lie at the floor's height + h/2 + gap.
+                if o == 1 {
+                    let y = v3(&c["position"])[1];
+                    assert!(
+                        (y - (-0.08 + 0.5 * h + gap)).abs() < 1e-12,
+                        "step {k}: y {y}"
+                    );
+                }
+                let (f_n, f_t) = (v3(&c["normal_force"]), v3(&c["friction_force"]));
+                worst_cone = worst_cone.max(norm(f_t) / (mu * norm(f_n)).max(f64::MIN_POSITIVE));
+                assert!(
+                    norm(f_t) <= mu * norm(f_n) * (1.0 + 1e-5) + 1e-15,
+                    "step {k}: friction {} > μ {mu} × {}",
+                    norm(f_t),
+                    norm(f_n)
+                );
+                total = add(total, add(f_n, f_t));
+            }
+        }
+        assert!(
+            on[0] >= 2 && on[1] >= 2,
+            "step {k}: on the bracket and the floor: {on:?}"
+        );
+        total = add(total, v3(&strip["clamp_force"]));
+        let err = norm(total) / weight;
+        println!(
+            "step {k}: {on:?} contacts (bracket, floor), min gap {min_gap:.3e} m, |clamp + contacts + weight| / weight = {err:.2e}, largest |f_t| / μ|f_n| = {worst_cone:.6}, iterations {}",
+            strip["report"]["iterations"]
+        );
+        assert!(err <= 1e-6, "step {k}: imbalance {err:e}");
+        assert!(strip["relative_force_imbalance"].as_f64().unwrap() < 1e-6);
+    }
+}
+
 /// The floats of accessor `a` of an embedded-buffer glTF (checked: its view and count fit the
 /// buffer; FLOAT components only).
 fn accessor_floats(g: &Value, bin: &[u8], a: usize) -> Vec<f32> {

@@ -4,7 +4,7 @@
 //! the derivatives an exact Hessian needs, and the time of impact that caps a step);
 //! [`plane`], [`sphere`] and [`cylinder`] are obstacles. [`barrier`] is the contact energy of
 //! one gap, [`sites`] says where a model's contact points are (its vertices) and which DOFs
-//! move them, and [`problem`] adds the contacts to any model as an
+//! move them ([`shell_sites`]: the mid-edge shell strip's vertices, weighted by area), and [`problem`] adds the contacts to any model as an
 //! [`EquilibriumProblem`](crate::solver::EquilibriumProblem) for the unchanged solver.
 
 pub mod barrier;
@@ -19,6 +19,7 @@ pub mod plane;
 pub mod problem;
 mod radii;
 pub mod segment_distance;
+pub mod shell_sites;
 pub mod sites;
 pub mod sphere;
 

@@ -24,7 +24,9 @@ pub struct ContactSite {
     pub dofs: [SiteDof; 3],
     /// Centerline length (m) the site stands for at rest (half of each adjacent edge): the
     /// weight of its contact energy, so that the contact stiffness is per unit length and
-    /// does not depend on the mesh.
+    /// does not depend on the mesh. For a shell strip's vertex, its share of the mid-surface
+    /// area (m²) instead, the contact stiffness then per unit area (see
+    /// [`shell_sites`](super::shell_sites)).
     pub length: f64,
 }
 

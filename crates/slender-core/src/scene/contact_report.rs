@@ -11,13 +11,14 @@ use crate::structure::{Structure, StructureState};
 
 use super::compile::CompiledScene;
 use super::result::{ContactResult, ObstacleResult, SegmentContactKind, SegmentContactResult};
+use super::shell_contact_run::StripContacts;
 
 /// Everything a scene step reports about its contacts.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ContactReport {
     /// Every obstacle with its active contacts (empty without obstacles).
     pub obstacles: Vec<ObstacleResult>,
-    /// Smallest gap (m) of a rod to an obstacle (None without obstacles).
+    /// Smallest gap (m) of a rod or a shell strip to an obstacle (None without obstacles).
     pub min_gap: Option<f64>,
     /// Every active segment pair (None without self-contact).
     pub segment_contacts: Option<Vec<SegmentContactResult>>,
@@ -119,6 +120,7 @@ pub(crate) fn contact_report(
             }
             o.contacts.push(ContactResult {
                 rod,
+                shell: false,
                 vertex,
                 position: x.into(),
                 gap: f.gap,
@@ -170,5 +172,43 @@ pub(crate) fn contact_report(
         segment_contacts: self_contact.then_some(pairs),
         min_segment_gap: (self_contact && min_segment_gap.is_finite()).then_some(min_segment_gap),
         external,
+    }
+}
+
+/// Adds the contacts of the scene's shell strips (`strips[i]` of `shells[i]`, `None` for a
+/// strip without contact) to `report`: each under its obstacle, named by the strip and its
+/// vertex, into the obstacle's resultant, and the strips' smallest gap into the scene's.
+pub(crate) fn add_strip_contacts(
+    scene: &CompiledScene,
+    strips: &[Option<StripContacts>],
+    report: &mut ContactReport,
+) {
+    for (c, strip) in scene.shells.iter().zip(strips) {
+        let Some(strip) = strip else {
+            continue;
+        };
+        report.min_gap = Some(
+            report
+                .min_gap
+                .map_or(strip.min_gap, |g| g.min(strip.min_gap)),
+        );
+        for (f, vertex, x) in &strip.contacts {
+            let total = f.force + f.friction;
+            let o = &mut report.obstacles[f.obstacle];
+            for i in 0..3 {
+                o.force[i] += total[i];
+            }
+            o.contacts.push(ContactResult {
+                rod: c.name.clone(),
+                shell: true,
+                vertex: *vertex,
+                position: (*x).into(),
+                gap: f.gap,
+                normal: f.normal.into(),
+                normal_force: f.force.into(),
+                friction_force: f.friction.into(),
+                sticking: f.sticking,
+            });
+        }
     }
 }

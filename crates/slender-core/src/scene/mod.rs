@@ -8,10 +8,12 @@
 mod carry;
 pub mod compile;
 mod contact_report;
+mod contact_solve;
 pub mod error;
 pub mod magnitudes;
 pub mod result;
 pub mod session;
+mod shell_contact_run;
 pub mod shell_run;
 pub mod shells;
 pub mod solve;

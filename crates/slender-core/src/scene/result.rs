@@ -157,8 +157,9 @@ pub struct SceneStep {
     /// Every obstacle with its active contacts (absent without obstacles).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub obstacles: Vec<ObstacleResult>,
-    /// Smallest gap (m) between a rod's surface and an obstacle over the scene (absent without
-    /// obstacles; negative would be a penetration, which the barrier prevents).
+    /// Smallest gap (m) between a rod's surface (a shell strip's face) and an obstacle over the
+    /// scene (absent without obstacles; negative would be a penetration, which the barrier
+    /// prevents).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_gap: Option<f64>,
     /// With self-contact (`contact.self_contact`): every active contact between segments of
@@ -224,7 +225,8 @@ pub struct ObstacleResult {
     pub name: String,
     /// Coulomb coefficient μ.
     pub friction: f64,
-    /// Resultant force (N) the obstacle applies to the rods (normal and friction).
+    /// Resultant force (N) the obstacle applies to the rods and shell strips (normal and
+    /// friction).
     pub force: [f64; 3],
     /// Its active contacts (gap below the activation distance).
     pub contacts: Vec<ContactResult>,
@@ -233,13 +235,19 @@ pub struct ObstacleResult {
 /// One contact of a rod vertex with an obstacle.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ContactResult {
-    /// The rod (name).
+    /// The rod (name), or the shell strip's when `shell` is true.
     pub rod: String,
-    /// The rod's vertex.
+    /// True if `rod` names a shell strip (`shells[]`): `vertex` is then the strip's vertex
+    /// of the result grid, station·(width_elements + 1) + column, and the gap is measured
+    /// from its mid-surface less h/2. Absent (false) for a rod.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub shell: bool,
+    /// The rod's (or strip's) vertex.
     pub vertex: usize,
     /// The vertex's position (m).
     pub position: [f64; 3],
-    /// Gap (m) between the rod's surface and the obstacle's, in (0, activation).
+    /// Gap (m) between the rod's surface (a strip's face, h/2 off its mid-surface) and the
+    /// obstacle's, in (0, activation).
     pub gap: f64,
     /// Outward unit normal of the obstacle there.
     pub normal: [f64; 3],

@@ -13,18 +13,21 @@
 
 use nalgebra::Rotation3;
 
-use crate::contact::{ContactProblem, Friction};
+use crate::contact::Friction;
 use crate::geometry::Vec3;
 use crate::linalg::AdaptiveMatrix;
 use crate::rod::{ClampHold, RodSnapshot};
 use crate::solver::{follow_unstable_mode, EquilibriumSolver, SolveReport, SolveStatus};
-use crate::structure::{MemberState, Structure, StructureState};
+use crate::structure::{MemberState, StructureState};
 
 use super::carry::FramedSnapshot;
 use super::compile::{CompiledScene, MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
-use super::contact_report::{contact_problem, contact_report};
+use super::contact_report::{add_strip_contacts, contact_problem, contact_report};
+use super::contact_solve::solve_with_contact;
+pub use super::contact_solve::{FRICTION_PIECES, MAX_FRICTION_SOLVES};
 use super::error::SceneError;
 use super::result::{scene_results_with, SceneStep, StabilityResult};
+use super::shell_contact_run::StripContact;
 use super::shell_run::{move_steps, pose_change, ShellRun, MAX_MOVE_STEPS};
 use super::shells::ShellResult;
 use super::spec::{
@@ -102,29 +105,8 @@ impl Run {
     }
 }
 
-/// Pieces of a load path solved with friction (the stick/slide set updated after each).
-pub const FRICTION_PIECES: usize = 10;
-
-/// Relative change of the sliding forces below which their refresh needs no re-solve.
-const SLIDE_DRIFT: f64 = 1e-12;
-/// Re-solves allowed for refreshed sliding forces.
-const MAX_REFRESHES: usize = 5;
-
-/// Largest change of a sliding force between two friction states, relative to it.
-fn slide_drift(a: &[Friction], b: &[Friction]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| match (x, y) {
-            (Friction::Slide { force: f }, Friction::Slide { force: g }) => {
-                (f - g).norm() / g.norm().max(f64::MIN_POSITIVE)
-            }
-            _ => 0.0,
-        })
-        .fold(0.0, f64::max)
-}
-
 /// A report of a solve that did not start (`reason`).
-fn unsolved(reason: String) -> SolveReport {
+pub(crate) fn unsolved(reason: String) -> SolveReport {
     SolveReport {
         status: SolveStatus::NotConverged { reason },
         load_reached: 0.0,
@@ -145,9 +127,6 @@ fn unsolved(reason: String) -> SolveReport {
         modes: None,
     }
 }
-
-/// Re-solves allowed for the stick/slide set of the contacts to settle after a solve.
-pub const MAX_FRICTION_SOLVES: usize = 20;
 
 /// A new solver for structure `k` (from its contact problem with contact: with self-contact
 /// its Hessian pattern is dense).
@@ -194,120 +173,9 @@ fn solve_structure(
         Some(Err(e)) => return unsolved(e),
         Some(Ok(p)) => p,
     };
-    // With friction, the load path is taken in pieces with the stick/slide set updated after
-    // each: a sticking contact's anchor is unlimited within a solve, so one solve over a long
-    // path would drag (or lift) what should slide.
-    let rough = scene
-        .contact
-        .as_ref()
-        .is_some_and(|c| c.obstacles.iter().any(|o| o.friction() > 0.0));
-    let pieces = if rough && from != to {
-        FRICTION_PIECES
-    } else {
-        1
-    };
-    let mut report = unsolved(String::new());
-    let (mut iterations, mut load_steps) = (0, 0);
-    // A barrier's Hessian changes too much between iterates for chord steps to polish the
-    // residual down to round-off (the reactions would balance the loads less well).
-    let params = run.solver.params;
-    run.solver.params.chord_final_check = false;
-    for piece in 0..pieces {
-        let a = from + (to - from) * piece as f64 / pieces as f64;
-        let b = if piece + 1 == pieces {
-            to
-        } else {
-            from + (to - from) * (piece + 1) as f64 / pieces as f64
-        };
-        report = settle_friction(&problem, run, a, b);
-        iterations += report.iterations;
-        load_steps += report.load_steps;
-        if !report.converged() {
-            break;
-        }
-    }
-    run.solver.params = params;
-    report.iterations = iterations;
-    report.load_steps = load_steps;
+    let report = solve_with_contact(&problem, &mut run.solver, &mut run.state, from, to);
     if report.converged() {
         run.friction = problem.friction_state();
-    }
-    report
-}
-
-/// Solves `problem` in `run` from load `from` to `to`, then updates the stick/slide set and
-/// re-solves warm at `to` until it settles (see [`solve_structure`]).
-fn settle_friction(
-    problem: &ContactProblem<'_, Structure>,
-    run: &mut Run,
-    from: f64,
-    to: f64,
-) -> SolveReport {
-    let mut previous = run.state.clone();
-    let mut report = run.solver.solve_in_place(problem, &mut run.state, from, to);
-    let (mut resolves, mut refreshes) = (0, 0);
-    // Within one piece of the load path the stick/slide set only moves forward, as within a
-    // time step (`contact::step_with_friction`): a contact that slipped keeps sliding for the
-    // rest of the piece. Otherwise a contact can cycle (stuck, slipping, stuck again where the
-    // slide ended) and the set never settles (measured on cable_over_bracket, 1 cm drags of
-    // the clamp along +x, +y, ±z: 1 of 24 converged before, 16 of 24 with this rule); the next
-    // piece may stick it again.
-    let mut slipped: Vec<bool> = Vec::new();
-    while report.converged() {
-        let before = problem.friction_state();
-        let update = problem.update_friction_keeping(&run.state, Some(&previous), &slipped);
-        slipped.resize(before.len(), false);
-        for ((old, new), slipped) in before
-            .iter()
-            .zip(problem.friction_state())
-            .zip(&mut slipped)
-        {
-            if matches!((old, new), (Friction::Stick { .. }, Friction::Slide { .. })) {
-                *slipped = true;
-            }
-        }
-        // A released contact's anchor acted in the solve: solve again without it.
-        if !update.changed() && update.released == 0 {
-            // The update refreshed the sliding forces to μ f_n of this state: while that
-            // moves them, solve again (a few times at most); then keep the forces this state
-            // was solved with, so that the reported forces balance exactly.
-            let drift = slide_drift(&before, &problem.friction_state());
-            if drift <= SLIDE_DRIFT || refreshes == MAX_REFRESHES {
-                problem.set_friction_state(&before);
-                break;
-            }
-            refreshes += 1;
-        } else if resolves == MAX_FRICTION_SOLVES {
-            report.status = SolveStatus::NotConverged {
-                reason: format!(
-                    "the stick/slide set of the contacts did not settle in {MAX_FRICTION_SOLVES} re-solves"
-                ),
-            };
-            break;
-        } else {
-            resolves += 1;
-        }
-        previous.clone_from(&run.state);
-        let user = run.solver.params;
-        run.solver.params.max_iterations = user.max_iterations.max(user.snap_iterations);
-        let again = run.solver.solve_in_place(problem, &mut run.state, to, to);
-        run.solver.params = user;
-        report.iterations += again.iterations;
-        let total = report.iterations;
-        report = SolveReport {
-            iterations: total,
-            load_steps: report.load_steps,
-            ..again
-        };
-        if let SolveStatus::NotConverged { reason } = &report.status {
-            // Keep the equilibrium of the previous stick/slide set, and say why.
-            report.status = SolveStatus::NotConverged {
-                reason: format!(
-                    "no equilibrium with the contacts' friction: re-solve {resolves} after contacts began to slip did not converge ({reason}); the friction may not hold the structure"
-                ),
-            };
-            run.state.clone_from(&previous);
-        }
     }
     report
 }
@@ -367,10 +235,18 @@ impl Session {
         }
         let mut scene = scene;
         let params = scene.solver;
+        let contact = scene.contact.clone();
         let shells = scene
             .shells
             .iter_mut()
-            .map(|s| ShellRun::new(s, &params))
+            .enumerate()
+            .map(|(i, s)| {
+                let with = contact.as_ref().map(|c| StripContact {
+                    obstacles: c.obstacles.clone(),
+                    params: c.shell_params[i],
+                });
+                ShellRun::with_contact(s, &params, with)
+            })
             .collect();
         let poses = rest_poses(&scene, &runs);
         let mut me = Self {
@@ -436,7 +312,14 @@ impl Session {
         let stability: Vec<StabilityResult> =
             self.runs.iter().map(|r| r.stability.clone()).collect();
         let friction: Vec<&[Friction]> = self.runs.iter().map(|r| r.friction.as_slice()).collect();
-        let contacts = contact_report(&self.scene, &states, &friction);
+        let mut contacts = contact_report(&self.scene, &states, &friction);
+        let strips: Vec<_> = self
+            .shells
+            .iter()
+            .zip(&self.scene.shells)
+            .map(|(run, c)| run.contacts(c))
+            .collect();
+        add_strip_contacts(&self.scene, &strips, &mut contacts);
         let (rods, structures) = scene_results_with(
             &self.scene,
             &states,

@@ -11,6 +11,7 @@ use crate::solver::{EquilibriumProblem, EquilibriumSolver, SolveReport, SolverPa
 
 use super::compile::{MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
 use super::session::{rotation_vector, SupportPose};
+use super::shell_contact_run::{ContactStripRun, StripContact, StripContacts};
 use super::shells::{
     bspline_result, midedge_result, solve_midedge_loaded, CompiledShell, ShellResult, StripModel,
 };
@@ -114,6 +115,8 @@ impl<P: StripProblem> StripRun<P> {
 enum Runs {
     Midedge(StripRun<Shell>),
     Bspline(StripRun<BsplineShell>),
+    /// A mid-edge strip in a scene with obstacles.
+    MidedgeContact(ContactStripRun),
 }
 
 /// A strip being solved and edited.
@@ -135,8 +138,22 @@ impl ShellRun {
     /// Solves the strip `c` loaded at its clamps' rest poses, then moves the clamps to the
     /// poses of the file (one load path for all of them).
     pub fn new(c: &mut CompiledShell, params: &SolverParams) -> Self {
-        let (runs, rod_predictor_used) = match &c.model {
-            StripModel::Midedge(shell) => {
+        Self::with_contact(c, params, None)
+    }
+
+    /// As [`Self::new`], in contact with obstacles when `contact` is given (a mid-edge strip:
+    /// the scene's compilation refuses B-spline strips with obstacles).
+    pub(crate) fn with_contact(
+        c: &mut CompiledShell,
+        params: &SolverParams,
+        contact: Option<StripContact>,
+    ) -> Self {
+        let (runs, rod_predictor_used) = match (&c.model, contact) {
+            (StripModel::Midedge(shell), Some(contact)) => (
+                Runs::MidedgeContact(ContactStripRun::new(shell, contact, params)),
+                false,
+            ),
+            (StripModel::Midedge(shell), None) => {
                 let flat = shell.rest_state();
                 let mut solver = EquilibriumSolver::new(shell, &flat, *params);
                 let (solution, rod) = solve_midedge_loaded(shell, &mut solver, params);
@@ -150,7 +167,7 @@ impl ShellRun {
                     rod,
                 )
             }
-            StripModel::Bspline(shell) => {
+            (StripModel::Bspline(shell), _) => {
                 let flat = shell.rest_state();
                 let mut solver = EquilibriumSolver::new(shell, &flat, *params);
                 let solution = solver.solve(shell, &flat, 0.0, 1.0);
@@ -200,6 +217,7 @@ impl ShellRun {
         match &self.runs {
             Runs::Midedge(r) => &r.report,
             Runs::Bspline(r) => &r.report,
+            Runs::MidedgeContact(r) => &r.report,
         }
     }
 
@@ -212,11 +230,13 @@ impl ShellRun {
         let report = match (&mut self.runs, &mut c.model) {
             (Runs::Midedge(r), StripModel::Midedge(m)) => r.move_clamps(m, motions, steps),
             (Runs::Bspline(r), StripModel::Bspline(m)) => r.move_clamps(m, motions, steps),
+            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.move_clamps(m, motions, steps),
             _ => unreachable!("a run is built from its own model"),
         };
         match &mut self.runs {
             Runs::Midedge(r) => r.report = report.clone(),
             Runs::Bspline(r) => r.report = report.clone(),
+            Runs::MidedgeContact(r) => r.report = report.clone(),
         }
         report
     }
@@ -227,12 +247,14 @@ impl ShellRun {
         let report = match (&mut self.runs, &mut c.model) {
             (Runs::Midedge(r), StripModel::Midedge(m)) => r.change_gravity(m, old, g),
             (Runs::Bspline(r), StripModel::Bspline(m)) => r.change_gravity(m, old, g),
+            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.change_gravity(m, old, g),
             _ => unreachable!("a run is built from its own model"),
         };
         if report.converged() {
             match &mut self.runs {
                 Runs::Midedge(r) => r.report = report.clone(),
                 Runs::Bspline(r) => r.report = report.clone(),
+                Runs::MidedgeContact(r) => r.report = report.clone(),
             }
         }
         report
@@ -243,6 +265,7 @@ impl ShellRun {
         match (&mut self.runs, &mut c.model) {
             (Runs::Midedge(r), StripModel::Midedge(m)) => r.undo_gravity(m, old),
             (Runs::Bspline(r), StripModel::Bspline(m)) => r.undo_gravity(m, old),
+            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.undo_gravity(m, old),
             _ => unreachable!("a run is built from its own model"),
         }
     }
@@ -254,6 +277,7 @@ impl ShellRun {
         let pose: Clamp = match &self.runs {
             Runs::Midedge(r) => r.state.clamps[clamp.end.index()],
             Runs::Bspline(r) => r.state.clamps[clamp.end.index()],
+            Runs::MidedgeContact(r) => r.state.clamps[clamp.end.index()],
         };
         Some(SupportPose {
             position: pose.position(&clamp.centre),
@@ -286,9 +310,25 @@ impl ShellRun {
     /// differentiated numerically: for output, not per Newton step).
     pub fn result(&self, c: &CompiledShell) -> ShellResult {
         match (&self.runs, &c.model) {
-            (Runs::Midedge(r), StripModel::Midedge(m)) => {
-                midedge_result(&c.name, m, &r.state, &r.report, self.rod_predictor_used)
-            }
+            (Runs::Midedge(r), StripModel::Midedge(m)) => midedge_result(
+                &c.name,
+                m,
+                &r.state,
+                &r.report,
+                self.rod_predictor_used,
+                None,
+            ),
+            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => midedge_result(
+                &c.name,
+                m,
+                &r.state,
+                &r.report,
+                false,
+                Some(&r.contacts(m).unwrap_or(StripContacts {
+                    contacts: Vec::new(),
+                    min_gap: f64::NAN,
+                })),
+            ),
             (Runs::Bspline(r), StripModel::Bspline(m)) => {
                 bspline_result(&c.name, m, &r.state, &r.report)
             }
@@ -300,7 +340,17 @@ impl ShellRun {
     pub fn midedge_state(&self) -> Option<&ShellState> {
         match &self.runs {
             Runs::Midedge(r) => Some(&r.state),
+            Runs::MidedgeContact(r) => Some(&r.state),
             Runs::Bspline(_) => None,
+        }
+    }
+
+    /// The strip's contacts with the obstacles at its current equilibrium (`None` without
+    /// obstacles).
+    pub(crate) fn contacts(&self, c: &CompiledShell) -> Option<StripContacts> {
+        match (&self.runs, &c.model) {
+            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.contacts(m),
+            _ => None,
         }
     }
 
@@ -308,7 +358,7 @@ impl ShellRun {
     pub fn bspline_state(&self) -> Option<&BsplineState> {
         match &self.runs {
             Runs::Bspline(r) => Some(&r.state),
-            Runs::Midedge(_) => None,
+            Runs::Midedge(_) | Runs::MidedgeContact(_) => None,
         }
     }
 }

@@ -2,7 +2,7 @@
 //! building the strip, and its equilibrium under the scene's gravity.
 //!
 //! A strip does not interact with the rods or the other strips of the scene: each structure
-//! is solved on its own.
+//! is solved on its own. It does rest on the scene's obstacles (`shell_contact_run`).
 
 use serde::Serialize;
 
@@ -16,6 +16,7 @@ use crate::shell::{rod_predictor, Clamp, Shell, ShellBuilder, ShellProperties, S
 use crate::solver::{EquilibriumSolver, SolveReport, SolverParams};
 
 use super::error::SceneError;
+use super::shell_contact_run::StripContacts;
 use super::spec::{RodEnd, ShellClampSpec, ShellModelSpec, ShellSpec};
 
 /// Default number of elements along a strip's length.
@@ -104,9 +105,21 @@ pub struct ShellResult {
     pub applied_force: [f64; 3],
     /// Force the clamps apply to the strip (N, both clamps together): Σ over the held
     /// vertices (control points) of ∂E/∂x (the generalized force the held DOFs need), by
-    /// central differences of the total energy. The clamp moment is not reported.
+    /// central differences of the strip's energy (elastic and loads; an obstacle's push on a
+    /// clamped vertex is the clamp's business and not in it). The clamp moment is not
+    /// reported.
     pub clamp_force: [f64; 3],
-    /// |clamp_force + applied_force| / |applied_force| (0 without load).
+    /// In a scene with obstacles: the resultant force (N) the obstacles apply to the strip's
+    /// free vertices (normal and friction; each contact is listed under its obstacle in the
+    /// step's `obstacles`). Absent without obstacles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_force: Option<[f64; 3]>,
+    /// In a scene with obstacles: the smallest gap (m) between the strip's mid-surface and an
+    /// obstacle, less its half-thickness h/2, over its vertices (positive: no penetration;
+    /// the contacts rest within the activation distance). Absent without obstacles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_gap: Option<f64>,
+    /// |clamp_force + contact_force + applied_force| / |applied_force| (0 without load).
     pub relative_force_imbalance: f64,
     /// True if the start came from the equivalent rod's equilibrium (else load stepping from
     /// the flat strip).
@@ -380,7 +393,9 @@ fn arr(v: Vec3) -> [f64; 3] {
 }
 
 /// Solves a strip: its loads at its clamps' rest poses, then the clamps moved to the poses
-/// of the file (see [`ShellRun::new`](super::shell_run::ShellRun::new)).
+/// of the file (see [`ShellRun::new`](super::shell_run::ShellRun::new)). The strip alone: a
+/// scene's obstacles are not seen here (a [`Session`](super::Session) solves a scene's strips
+/// on its obstacles).
 pub fn solve_shell(c: &CompiledShell, params: &SolverParams) -> ShellResult {
     let mut c = c.clone();
     let run = super::shell_run::ShellRun::new(&mut c, params);
@@ -416,12 +431,19 @@ pub(crate) fn midedge_result(
     state: &ShellState,
     report: &SolveReport,
     rod_predictor_used: bool,
+    contacts: Option<&StripContacts>,
 ) -> ShellResult {
     let weight: f64 = shell.vertex_masses().iter().sum();
     let applied =
         shell.gravity() * weight + shell.point_forces().iter().map(|(_, f)| *f).sum::<Vec3>();
     let clamp = clamp_force(shell, state);
-    let imbalance = (clamp + applied).norm();
+    let contact: Option<Vec3> = contacts.map(|c| {
+        c.contacts
+            .iter()
+            .map(|(f, _, _)| f.force + f.friction)
+            .sum()
+    });
+    let imbalance = (clamp + contact.unwrap_or_default() + applied).norm();
     let mesh = shell.mesh();
     ShellResult {
         name: name.to_string(),
@@ -430,6 +452,8 @@ pub(crate) fn midedge_result(
         elements: [mesh.n_length, mesh.n_width],
         applied_force: arr(applied),
         clamp_force: arr(clamp),
+        contact_force: contact.map(arr),
+        min_gap: contacts.map(|c| c.min_gap),
         relative_force_imbalance: if applied.norm() > 0.0 {
             imbalance / applied.norm()
         } else {
@@ -461,6 +485,8 @@ pub(crate) fn bspline_result(
         elements: [n_length, n_width],
         applied_force: arr(applied),
         clamp_force: arr(clamp),
+        contact_force: None,
+        min_gap: None,
         relative_force_imbalance: if applied.norm() > 0.0 {
             imbalance / applied.norm()
         } else {

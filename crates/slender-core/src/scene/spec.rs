@@ -132,20 +132,28 @@ pub enum ObstacleShapeSpec {
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
     /// Activation distance ĝ (m, > 0): contacts rest within this gap of a surface (the
-    /// position tolerance of contacts). Default 1e-6 × the longest rod's length.
+    /// position tolerance of contacts). Default 1e-6 × the longest rod's or strip's length.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub activation: Option<f64>,
     /// Contact of the rods with themselves and with each other: every rod of the scene is then
     /// solved in one structure (so separate cables touch); each keeps its own contact radius
-    /// (two cables touch at the sum of theirs). Default false.
+    /// (two cables touch at the sum of theirs). Default false. Refused in a scene with shell
+    /// strips (they touch obstacles only).
     #[serde(default)]
     pub self_contact: bool,
-    /// Barrier stiffness κ (N/m², > 0). Default: the stiffness at which the heaviest rod's
+    /// Barrier stiffness κ of the rods' contacts (N/m², > 0; a strip's: `shell_stiffness`).
+    /// Default: the stiffness at which the heaviest rod's
     /// weight per length under the scene's gravity rests a cable at ĝ/2; without gravity the
     /// line load EI/L³ of the stiffest rod (its largest bending stiffness over its length
     /// cubed) instead.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,
+    /// Barrier stiffness of the shell strips' contacts, per unit area of mid-surface (N/m³,
+    /// > 0). Default: the stiffness at which the heaviest strip's weight per area ρ h |g|
+    /// rests it at ĝ/2; without gravity the pressure D/L³ of the stiffest strip (its bending
+    /// stiffness D = E h³/(12(1 − ν²)) over its length cubed) instead.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shell_stiffness: Option<f64>,
 }
 
 /// The `[time]` table: implicit time stepping of the scene's rods (every model; the Cosserat

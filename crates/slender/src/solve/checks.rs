@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 19] = [
+pub const EXAMPLES: [(&str, &str); 20] = [
     (
         "rod_models_cantilever",
         include_str!("../../../../examples/rod_models_cantilever.toml"),
@@ -88,6 +88,10 @@ pub const EXAMPLES: [(&str, &str); 19] = [
         "cable_dropped_on_bracket",
         include_str!("../../../../examples/cable_dropped_on_bracket.toml"),
     ),
+    (
+        "flat_cable_on_bracket",
+        include_str!("../../../../examples/flat_cable_on_bracket.toml"),
+    ),
 ];
 
 fn check(description: String, measured: f64, target: &str, passed: bool) -> Check {
@@ -103,7 +107,7 @@ fn check(description: String, measured: f64, target: &str, passed: bool) -> Chec
 /// Solves every example: one balance check per example with rods (worst relative force or
 /// moment imbalance over its steps, target ≤ 1e-9; NaN if a step did not converge; for a
 /// time-stepped example instead its energy conservation, see [`time_check`]) or with
-/// strips only (their clamps' force against the loads, ≤ 1e-6: the clamp force is a
+/// strips only (their clamps' force, with their contacts', against the loads, ≤ 1e-6: the clamp force is a
 /// Richardson-extrapolated energy difference), the
 /// cantilever-benchmark check (relative difference of Δy/Δx, target ≤ 1e-10) and the two
 /// shell-strip checks of [`shell_example_checks`].
@@ -147,8 +151,8 @@ pub fn scene_checks() -> Result<Vec<Check>> {
                 measured <= 1e-9,
             ));
         }
-        // Strips clamped at both ends: their clamps carry the loads (the cantilever strip has
-        // its own checks in shell_example_checks).
+        // Strips clamped at both ends or resting on obstacles: their clamps (and contacts)
+        // carry the loads (the cantilever strip has its own checks in shell_example_checks).
         if compiled.rods.is_empty() && name != "flat_cable_shell_cantilever" {
             let worst = steps
                 .iter()
@@ -158,7 +162,7 @@ pub fn scene_checks() -> Result<Vec<Check>> {
             let measured = if converged { worst } else { f64::NAN };
             checks.push(check(
                 format!(
-                    "{name}: the strips' clamp forces balance the loads (worst relative imbalance, {} steps)",
+                    "{name}: the strips' clamp forces (and contact forces) balance the loads (worst relative imbalance, {} steps)",
                     steps.len()
                 ),
                 measured,

@@ -161,6 +161,10 @@ pub struct ShellView {
     pub converged: bool,
     /// Its clamps, as handles (in the order of the scene's `clamps`).
     pub clamps: Vec<ShellClampView>,
+    /// Distance (m) its mid-surface keeps from obstacles, h/2 (a contact's surface point is
+    /// its vertex minus the normal times this plus the gap); `None` in a scene without
+    /// obstacles.
+    pub contact_radius: Option<f64>,
 }
 
 /// A clamp of a strip as a handle: the centre of its clamped edge and its orientation.
@@ -305,6 +309,11 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                     })
                 })
                 .collect(),
+            contact_radius: scene
+                .contact
+                .as_ref()
+                .and_then(|c| c.shell_params.get(i))
+                .map(|p| p.radius),
         })
         .collect();
     let (segment_contacts, min_segment_gap) = segment_contacts(session, step);

@@ -15,10 +15,11 @@ use crate::error::ModelError;
 use crate::structure::Structure;
 
 use super::super::error::SceneError;
+use super::super::shells::CompiledShell;
 use super::super::spec::{ObstacleShapeSpec, ObstacleSpec, Scene, SectionSpec};
 use super::rod::CompiledRod;
 
-/// Default activation distance, as a fraction of the longest rod's length.
+/// Default activation distance, as a fraction of the longest rod's or strip's length.
 pub const DEFAULT_ACTIVATION: f64 = 1e-6;
 
 /// The compiled obstacles and contact parameters of a scene.
@@ -38,6 +39,9 @@ pub struct CompiledContact {
     pub radii: Vec<Vec<f64>>,
     /// Per rod: its contact radius (m).
     pub rod_radii: Vec<f64>,
+    /// Contact parameters per shell strip, in the order of `shells` (radius h/2, stiffness
+    /// per unit area: see [`shell_contact`](super::shell_contact)).
+    pub shell_params: Vec<ContactParams>,
     /// Per structure, per member: its rod (index) and the arc length (m) of its first vertex
     /// along the rod — the chains of [`ContactProblem::with_chains`], so that self-contact
     /// measures "near along the cable" by rod (across interior clamps).
@@ -196,12 +200,14 @@ fn rod_radius(scene: &Scene, i: usize) -> Result<f64, SceneError> {
 }
 
 /// Validates the obstacles and `[contact]` of `scene` and the contact parameters of every
-/// structure; `None` when the scene has neither obstacles nor self-contact. Checks the
-/// structures' rest states: a cable starting inside an obstacle is an error naming it.
+/// structure and shell strip; `None` when the scene has neither obstacles nor self-contact.
+/// Checks the structures' and strips' rest states: a cable or strip starting inside an
+/// obstacle is an error naming it.
 pub(crate) fn compile_contact(
     scene: &Scene,
     rods: &[CompiledRod],
     structures: &[Structure],
+    shells: &[CompiledShell],
 ) -> Result<Option<CompiledContact>, SceneError> {
     let spec = scene.contact.clone().unwrap_or_default();
     if scene.obstacles.is_empty() && !spec.self_contact {
@@ -229,6 +235,7 @@ pub(crate) fn compile_contact(
     // Lengths of whole rods (a rod split at interior clamps counts whole).
     let rod_length = |r: &CompiledRod| r.node_arclengths.last().copied().unwrap_or(0.0);
     let longest = rods.iter().map(rod_length).fold(longest, f64::max);
+    let longest = shells.iter().map(|s| s.length()).fold(longest, f64::max);
     let activation = spec.activation.unwrap_or(DEFAULT_ACTIVATION * longest);
     if !(activation.is_finite() && activation > 0.0) {
         return Err(SceneError::new(
@@ -360,10 +367,14 @@ pub(crate) fn compile_contact(
         chains.push(chain);
         member_radii.push(member_radius);
     }
+    let shell_params = super::shell_contact::shell_contact_params(
+        scene, &spec, shells, &obstacles, &names, activation,
+    )?;
     Ok(Some(CompiledContact {
         obstacles,
         names,
         params,
+        shell_params,
         chains,
         radii: member_radii,
         rod_radii: radii,

@@ -9,6 +9,7 @@ pub mod line_loads;
 pub mod motion;
 pub mod rod;
 pub mod section;
+pub mod shell_contact;
 pub mod structures;
 pub mod time;
 
@@ -37,7 +38,7 @@ pub struct CompiledScene {
     pub rods: Vec<CompiledRod>,
     /// The structures: groups of rod parts solved together.
     pub structures: Vec<Structure>,
-    /// The shell strips (solved independently of the rods).
+    /// The shell strips (solved independently of the rods; each against the obstacles).
     pub shells: Vec<super::shells::CompiledShell>,
     /// Prescribed motion stages (validated).
     pub motion: Vec<MotionStage>,
@@ -138,7 +139,6 @@ impl Scene {
             })
             .collect();
         let rods: Vec<CompiledRod> = drafts.into_iter().map(|d| d.rod).collect();
-        let contact = contact::compile_contact(self, &rods, &structures)?;
         let mut shells = Vec::with_capacity(self.shells.len());
         for (i, spec) in self.shells.iter().enumerate() {
             let path = format!("shells[{i}]");
@@ -155,6 +155,7 @@ impl Scene {
             names.push(shell.name.clone());
             shells.push(shell);
         }
+        let contact = contact::compile_contact(self, &rods, &structures, &shells)?;
         for (k, stage) in self.motion.iter().enumerate() {
             motion::check_stage(k, stage, &rods, &shortest, &shells)?;
         }

@@ -549,9 +549,12 @@ function placeArrow(a, origin, f, show) {
 function updateContacts() {
   contacts = [];
   const radius = new Map(view.rods.map((r) => [r.name, r.contact_radius ?? r.display_radius]));
+  // A strip's contacts (`shell`): its mid-surface keeps h/2 from the surface.
+  const stripRadius = new Map((view.shells ?? []).map((s) => [s.name, s.contact_radius ?? 0]));
   view.obstacles.forEach((ob, i) => ob.contacts.forEach((c, k) => {
     // The contact point on the surface: the vertex minus the normal × (contact radius + gap).
-    const surface = v3(c.position).addScaledVector(v3(c.normal), -((radius.get(c.rod) ?? 0) + c.gap));
+    const r = c.shell ? stripRadius.get(c.rod) : radius.get(c.rod);
+    const surface = v3(c.position).addScaledVector(v3(c.normal), -((r ?? 0) + c.gap));
     contacts.push({ obstacle: i, index: k, name: ob.name, friction: ob.friction, state: contactState(ob, c), c, surface });
   }));
   while (markers.length < contacts.length) {
@@ -655,7 +658,7 @@ function updateContactPanel() {
     const counts = ["sticking", "sliding", "frictionless"].map((k) => [k, mine.filter((h) => h.state === k).length]).filter(([, n]) => n > 0);
     const kind = geometry?.obstacles[i]?.shape.kind ?? "";
     const f = ob.force;
-    const where = (c) => (view.rods.length > 1 ? `${c.rod} v ${c.vertex}` : `v ${c.vertex}`);
+    const where = (c) => (view.rods.length + (view.shells?.length ?? 0) > 1 ? `${c.rod} v ${c.vertex}` : `v ${c.vertex}`);
     const rows = mine.slice(0, 200).map((h) => `<tr class="contact-row"><td>${where(h.c)}</td><td>${fmtGap(h.c.gap)}</td><td>${fmtForce(Math.hypot(...h.c.normal_force))}</td><td>${h.state === "frictionless" ? "–" : fmtForce(Math.hypot(...h.c.friction_force))}</td><td><span class="swatch" title="${h.state}" style="background:#${CONTACT_COLOURS[h.state].toString(16).padStart(6, "0")}"></span>${{ sticking: "stick", sliding: "slide", frictionless: "" }[h.state]}</td></tr>`).join("");
     return `<div class="obstacle" data-obstacle="${i}"><b>${ob.name}</b> <span class="muted">${kind}, μ = ${ob.friction}</span><br>
       ${mine.length} contact${mine.length === 1 ? "" : "s"}${counts.length ? ` (${counts.map(([k, n]) => `${n} ${k}`).join(", ")})` : ""};

@@ -1,0 +1,186 @@
+//! A mid-edge shell strip of a scene with obstacles: solved as a [`ContactProblem`] around
+//! the strip (its vertices held h/2 off every obstacle, see `contact::shell_sites`) for every
+//! solve — the loaded strip, its clamps' moves, gravity edits —, friction settled as for rods
+//! (`contact_solve`), and the friction state of its contacts kept across solves.
+
+use std::sync::Arc;
+
+use crate::assembly::FIXED;
+use crate::bspline_shell::ClampMotion;
+use crate::contact::{ContactForce, ContactParams, ContactProblem, Friction, Obstacle};
+use crate::geometry::Vec3;
+use crate::linalg::AdaptiveMatrix;
+use crate::shell::{Shell, ShellState};
+use crate::solver::{EquilibriumSolver, SolveReport, SolverParams};
+
+use super::contact_solve::solve_with_contact;
+use super::session::unsolved;
+use super::shell_run::StripProblem;
+
+/// What a strip touches: the scene's obstacles and the strip's contact parameters.
+#[derive(Clone, Debug)]
+pub(crate) struct StripContact {
+    /// The obstacles (shared with the rods' solves).
+    pub obstacles: Vec<Arc<dyn Obstacle>>,
+    /// Radius h/2, activation distance, stiffness per unit area (N/m³).
+    pub params: ContactParams,
+}
+
+/// The contacts of a strip at its equilibrium, for the results.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StripContacts {
+    /// Every active contact at a free vertex with its force, its vertex and the vertex's
+    /// position (m). Contacts at clamped vertices are left out: the clamp takes their force,
+    /// as a rod's support does (the strip's clamp force is that of its own energy).
+    pub contacts: Vec<(ContactForce, usize, Vec3)>,
+    /// Smallest gap (m) of any vertex (clamped ones included) to any obstacle: distance
+    /// minus h/2.
+    pub min_gap: f64,
+}
+
+/// A strip in contact: state, backup, solver, last report, friction state.
+pub(crate) struct ContactStripRun {
+    pub(crate) state: ShellState,
+    backup: ShellState,
+    solver: EquilibriumSolver<ShellState, AdaptiveMatrix>,
+    pub(crate) report: SolveReport,
+    contact: StripContact,
+    /// The friction state of the contacts at `state` (empty: every contact free).
+    friction: Vec<Friction>,
+    backup_friction: Vec<Friction>,
+}
+
+impl ContactStripRun {
+    /// The strip loaded from flat (loads ramped from 0, clamps at rest) in contact. No rod
+    /// predictor here: the rod's equilibrium knows no obstacles and may start the strip inside
+    /// one.
+    pub(crate) fn new(shell: &Shell, contact: StripContact, params: &SolverParams) -> Self {
+        let flat = shell.rest_state();
+        // The solver's template: the Hessian's pattern is the strip's (obstacle contacts touch
+        // one vertex at a time), whatever the obstacles and parameters; without obstacles and
+        // with valid parameters the problem always builds.
+        let template = ContactProblem::new(
+            shell,
+            Vec::new(),
+            ContactParams::for_area_load(0.0, 1.0, 1.0),
+            &flat,
+        )
+        .expect("valid parameters and no obstacle");
+        let solver = EquilibriumSolver::new(&template, &flat, *params);
+        let mut run = Self {
+            state: flat.clone(),
+            backup: flat,
+            solver,
+            report: unsolved(String::new()),
+            contact,
+            friction: Vec::new(),
+            backup_friction: Vec::new(),
+        };
+        // Contacts within ĝ of a rough surface at the start stick where they are.
+        if let Ok(p) = run.problem(shell) {
+            p.update_friction(&run.state, None);
+            run.friction = p.friction_state();
+        }
+        run.report = run.solve(shell, 0.0, 1.0);
+        run.save();
+        run
+    }
+
+    /// The contact problem around `shell` with the current friction state.
+    fn problem<'a>(&self, shell: &'a Shell) -> Result<ContactProblem<'a, Shell>, String> {
+        ContactProblem::new(
+            shell,
+            self.contact.obstacles.clone(),
+            self.contact.params,
+            &self.state,
+        )
+        .inspect(|p| p.set_friction_state(&self.friction))
+        .map_err(|e| format!("contact: {e}"))
+    }
+
+    /// Solves from load `from` to `to` in place, the friction state updated if it converged.
+    fn solve(&mut self, shell: &Shell, from: f64, to: f64) -> SolveReport {
+        let problem = match self.problem(shell) {
+            Ok(p) => p,
+            Err(e) => return unsolved(e),
+        };
+        let report = solve_with_contact(&problem, &mut self.solver, &mut self.state, from, to);
+        if report.converged() {
+            self.friction = problem.friction_state();
+        }
+        report
+    }
+
+    fn save(&mut self) {
+        self.backup.clone_from(&self.state);
+        self.backup_friction.clone_from(&self.friction);
+    }
+
+    fn restore(&mut self) {
+        self.state.clone_from(&self.backup);
+        self.friction.clone_from(&self.backup_friction);
+    }
+
+    /// Moves the clamps by `motions` in at least `steps` load steps, warm from the current
+    /// state; if the solve does not converge, the state goes back to where it was.
+    pub(crate) fn move_clamps(
+        &mut self,
+        model: &mut Shell,
+        motions: &[ClampMotion],
+        steps: f64,
+    ) -> SolveReport {
+        self.save();
+        model.set_motions(motions);
+        let user = self.solver.params;
+        let piece = 1.0 / steps;
+        self.solver.params.initial_load_step = user.initial_load_step.min(piece);
+        self.solver.params.max_load_step = user.max_load_step.min(piece);
+        let report = self.solve(model, 0.0, 1.0);
+        self.solver.params = user;
+        model.clear_motions();
+        if !report.converged() {
+            self.restore();
+        }
+        report
+    }
+
+    /// Gravity changed from `old` to `g` (m/s²): one solve warm from the current state; if it
+    /// does not converge, gravity and the state go back.
+    pub(crate) fn change_gravity(&mut self, model: &mut Shell, old: Vec3, g: Vec3) -> SolveReport {
+        self.save();
+        model.set_gravity_to(g);
+        let report = self.solve(model, 1.0, 1.0);
+        if !report.converged() {
+            model.set_gravity_to(old);
+            self.restore();
+        }
+        report
+    }
+
+    /// Undoes the last [`Self::change_gravity`] that converged.
+    pub(crate) fn undo_gravity(&mut self, model: &mut Shell, old: Vec3) {
+        model.set_gravity_to(old);
+        self.restore();
+    }
+
+    /// The contacts at the current state (see [`StripContacts`]); `None` if the problem could
+    /// not be built (the report says why).
+    pub(crate) fn contacts(&self, shell: &Shell) -> Option<StripContacts> {
+        let p = self.problem(shell).ok()?;
+        let contacts = p
+            .contact_forces(&self.state)
+            .into_iter()
+            .filter_map(|f| {
+                let site = p.sites()[f.site];
+                if site.dofs.iter().all(|d| d.dof == FIXED) {
+                    return None;
+                }
+                Some((f, site.vertex, self.state.positions[site.vertex]))
+            })
+            .collect();
+        Some(StripContacts {
+            contacts,
+            min_gap: p.min_gap(&self.state),
+        })
+    }
+}
