@@ -6,7 +6,8 @@
 use nalgebra::Vector3;
 use slender_core::assembly::TermSet;
 use slender_core::contact::{
-    ContactParams, ContactProblem, Cylinder, Obstacle, Plane, Sphere, CONTACT,
+    ContactParams, ContactProblem, ContactSites, Cylinder, Friction, Obstacle, Plane, Sphere,
+    CONTACT, FRICTION,
 };
 use slender_core::rod::{RestCurve, RodBuilder, RodProperties, SectionStiffness};
 use slender_core::solver::{EquilibriumProblem, EquilibriumSolver, SolverParams};
@@ -612,4 +613,92 @@ fn each_member_keeps_its_own_radius_and_a_joint_the_largest() {
         println!("{e}");
         assert!(e.to_string().contains("radii[1]"), "{e}");
     }
+}
+
+/// The sliding contacts' lagged dissipation potential m φ_ε(|P (x − o)|) — on its sliding
+/// branch (slip beyond ε) and its smoothed one (within ε), with tilted normals — has the
+/// gradient and Hessian it claims; its force never exceeds m and opposes the slip.
+#[test]
+fn sliding_friction_derivatives_match_finite_differences() {
+    let props = RodProperties {
+        stiffness: SectionStiffness::isotropic(50.0, 1.3, 0.7),
+        linear_density: 0.9,
+    };
+    let rod = RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        props,
+    )
+    .elements(8)
+    .clamp_start()
+    .build()
+    .unwrap();
+    let mut rng = Rng(23);
+    let n = rod.n_free();
+    let dx: Vec<f64> = (0..n)
+        .map(|i| rng.uniform() * if rod.dofs().is_angle(i) { 0.3 } else { 0.004 })
+        .collect();
+    let mut state = rod.rest_state().clone();
+    rod.displace(&rod.rest_state().clone(), &dx, 1.0, &mut state);
+    let obstacles = vec![boxed(
+        Plane::new(Vector3::new(0.0, 0.0, -0.03), Vector3::z(), 0.4).unwrap(),
+    )];
+    let params = ContactParams {
+        radius: 0.01,
+        activation: 0.5,
+        stiffness: 3.0,
+        stick_stiffness: 5.0,
+        self_contact: false,
+    };
+    let problem = ContactProblem::new(&rod, obstacles, params, &state).unwrap();
+    // Slides with ε = m / (k_t w) = 0.01 m, slips of 3 ε and 0.2 ε, perturbations of a site
+    // below 4e-3 m: every site stays on its branch, away from the C¹ seam at |slip| = ε, and
+    // the sliding branch's curvature (1 / |slip|) shows truncation errors above round-off.
+    let slides: Vec<Friction> = problem
+        .sites()
+        .iter()
+        .enumerate()
+        .map(|(k, site)| {
+            let x = rod.site_position(&state, site);
+            let normal = Vector3::new(0.2 * (k as f64).sin(), 0.1, 1.0).normalize();
+            let magnitude = 0.05 * site.length;
+            let eps = Friction::smoothing(magnitude, site.length, params.stick_stiffness);
+            let t = normal
+                .cross(&Vector3::new(1.0, 0.3 * k as f64, 0.0))
+                .normalize();
+            let slip = if k % 2 == 0 { 3.0 } else { 0.2 } * eps;
+            Friction::Slide {
+                origin: x - t * slip + normal * 0.05,
+                normal,
+                magnitude,
+            }
+        })
+        .collect();
+    problem.set_friction_state(&slides);
+    for (f, site) in slides.iter().zip(problem.sites()) {
+        let x = rod.site_position(&state, site);
+        let force = f.force(&x, site.length, params.stick_stiffness);
+        let Friction::Slide { magnitude, .. } = *f else {
+            unreachable!()
+        };
+        assert!(force.norm() <= magnitude * (1.0 + 1e-12), "{force:?}");
+        assert!(
+            force.dot(&f.slip(&x)) < 0.0,
+            "{force:?} does not oppose the slip"
+        );
+    }
+    let scale = |_: usize| 1.0;
+    check_derivatives(
+        &problem,
+        &state,
+        1.0,
+        FRICTION.set(),
+        &mut rng,
+        scale,
+        "sliding friction",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

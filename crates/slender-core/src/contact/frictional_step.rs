@@ -3,9 +3,13 @@
 //! and while a contact changed between sticking and sliding the step is solved again from
 //! its start with the new set — so every accepted step satisfies Coulomb's law at its end.
 //!
+//! Where the step starts, every sliding contact's origin is dragged to just behind it
+//! ([`ContactProblem::restart_slides`]), so that its kinetic force opposes the slip of this
+//! step, as lagged friction lags to the step's start.
+//!
 //! Within one step the set only moves forward: a contact that slipped in one of the step's
-//! solves keeps sliding (against the same kinetic force) for the rest of the step, even if
-//! its slip then runs along that force. Without this, a contact landing on a rough surface
+//! solves keeps sliding (against μ f_n) for the rest of the step, even if its slip then falls
+//! back to its origin. Without this, a contact landing on a rough surface
 //! can cycle — stuck at touchdown, slipping, stuck again where the slide ended, slipping
 //! again — and never settle; it may stick again at the next step's update. Each contact then
 //! changes at most twice per step (free → stick → slide), which bounds the re-solves.
@@ -26,6 +30,7 @@ pub fn step_with_friction<P: ContactSites + FlatDofs>(
     stepper: &mut TimeStepper<'_, ContactProblem<'_, P>>,
     problem: &ContactProblem<'_, P>,
 ) -> StepReport {
+    problem.restart_slides(stepper.state());
     let start = stepper.clone();
     let mut iterations = 0;
     // Per contact: slipped in an earlier solve of this step.

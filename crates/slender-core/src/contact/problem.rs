@@ -579,26 +579,28 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     }
 
     /// The active-set step of Coulomb friction at `state`, an equilibrium (or time step)
-    /// solved with the current friction set; `previous` is the state before that solve (to
-    /// detect slides that stopped). A contact on a rough surface starts to stick where it is;
-    /// a sticking contact whose anchor pulls harder than μ f_n slides against μ f_n along
-    /// that pull; a sliding contact whose slip since `previous` runs against its friction
-    /// force no more (it stopped or reversed) sticks again; a contact that opened is freed.
-    /// Sliding forces are refreshed to μ times the current normal force. When the update says
-    /// [`changed`](FrictionUpdate::changed), solve again from `previous`.
+    /// solved with the current friction set; `previous` is the state before that solve (the
+    /// state to solve again from; the update itself needs only `state`). A contact on a rough
+    /// surface starts to stick where it is; a sticking contact whose anchor pulls harder than
+    /// μ f_n slides, its anchor becoming the slide's origin (its force the pull capped at
+    /// μ f_n); a sliding contact whose slip from its origin falls back within the smoothing
+    /// slip ε (it stopped or reversed) sticks again at its origin; a contact that opened is
+    /// freed. Sliding magnitudes are refreshed to μ times the current normal force (origins
+    /// kept). When the update says [`changed`](FrictionUpdate::changed), solve again from
+    /// `previous`.
     pub fn update_friction(&self, state: &P::State, previous: Option<&P::State>) -> FrictionUpdate {
         self.update_friction_keeping(state, previous, &[])
     }
 
     /// As [`Self::update_friction`], except that a sliding contact flagged in `keep_sliding`
     /// (index as in [`Self::friction_state`]; missing entries are false) keeps sliding —
-    /// against μ times its current normal force — even if its slip runs along its force:
+    /// against μ times its current normal force — even if its slip fell back within ε:
     /// within one time step, a contact that slipped stays sliding
     /// ([`step_with_friction`](super::step_with_friction)).
     pub fn update_friction_keeping(
         &self,
         state: &P::State,
-        previous: Option<&P::State>,
+        _previous: Option<&P::State>,
         keep_sliding: &[bool],
     ) -> FrictionUpdate {
         let mut update = FrictionUpdate::default();
@@ -623,40 +625,66 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                         update.stuck += 1;
                         Friction::Stick { anchor: x, normal }
                     }
-                    stick @ Friction::Stick { .. } => {
+                    stick @ Friction::Stick { anchor, normal } => {
                         let pull = stick.force(&x, site.length, self.params.stick_stiffness);
-                        let magnitude = pull.norm();
-                        if magnitude > limit {
+                        if pull.norm() > limit {
+                            // The anchor's pull, capped to the cone: the force at x keeps
+                            // its direction and is cut to μ f_n (no jump).
                             update.slipped += 1;
                             Friction::Slide {
-                                force: pull * (limit / magnitude),
+                                origin: anchor,
+                                normal,
+                                magnitude: limit,
                             }
                         } else {
                             stick
                         }
                     }
-                    Friction::Slide { force } => {
-                        let direction = force.normalize();
-                        let slip = previous.map_or(Vector3::zeros(), |p| {
-                            let d = x - self.model.site_position(p, site);
-                            d - normal * normal.dot(&d)
-                        });
+                    Friction::Slide { origin, normal, .. } => {
+                        let slide = Friction::Slide {
+                            origin,
+                            normal,
+                            magnitude: limit,
+                        };
+                        let eps =
+                            Friction::smoothing(limit, site.length, self.params.stick_stiffness);
                         let keep = keep_sliding.get(k * n_obstacles + o) == Some(&true);
-                        if previous.is_some() && slip.dot(&direction) >= 0.0 && !keep {
-                            // Kinetic friction opposes the slip: a slip along the force means
-                            // the contact stopped (or reversed) within the solve.
+                        if slide.slip(&x).norm() < eps && !keep {
+                            // The slip from the origin fell back within the anchor's
+                            // deflection at the limit: the contact stopped (or reversed), and
+                            // sticks at the origin, where its force stays the same.
                             update.stuck += 1;
-                            Friction::Stick { anchor: x, normal }
-                        } else {
-                            Friction::Slide {
-                                force: direction * limit,
+                            Friction::Stick {
+                                anchor: origin,
+                                normal,
                             }
+                        } else {
+                            slide
                         }
                     }
                 };
             }
         }
         update
+    }
+
+    /// Where a piece of a load path or a time step starts at `state`: every sliding contact's
+    /// origin is dragged to ε behind it along its slip ([`Friction::restarted`]), so that its
+    /// force keeps its value at `state` and opposes the slip of the piece or step (as lagged
+    /// friction lags to the step's start).
+    pub fn restart_slides(&self, state: &P::State) {
+        let mut friction = self.friction.borrow_mut();
+        let n_obstacles = self.obstacles.len();
+        for (k, site) in self.sites.iter().enumerate() {
+            let x = self.model.site_position(state, site);
+            for o in 0..n_obstacles {
+                let slot = &mut friction[k * n_obstacles + o];
+                if matches!(slot, Friction::Slide { .. }) {
+                    let normal = self.obstacles[o].surface(&x).normal;
+                    *slot = slot.restarted(&x, &normal, site.length, self.params.stick_stiffness);
+                }
+            }
+        }
     }
 
     /// The friction state of every (site, obstacle) contact, at index site·n_obstacles +
