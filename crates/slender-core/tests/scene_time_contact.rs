@@ -5,81 +5,13 @@
 //! (energy-conserving) or comes to rest on the floor carrying its weight (backward Euler);
 //! what time stepping with contact refuses is named.
 
-use slender_core::scene::{Scene, TimeRun};
+mod common;
+use common::dropped_rod::{drop, scene, weight, D, G, L};
 
-fn scene(text: &str) -> Scene {
-    toml::from_str(text).expect("scene")
-}
-
-const G: f64 = 9.81;
-/// The rod: steel, L = 0.2 m, d = 10 mm, 10 elements, free, horizontal along x.
-const L: f64 = 0.2;
-const D: f64 = 0.01;
-const RHO: f64 = 7850.0;
-
-/// The rod's weight (N).
-fn weight() -> f64 {
-    RHO * std::f64::consts::PI * D * D / 4.0 * L * G
-}
-
-/// The rod lying flat with its axis at `z0` over a floor z = 0 with Coulomb coefficient `mu`.
+/// The discrete elastic rod lying flat at `z0` over the floor (see
+/// [`common::dropped_rod::drop_scene`]).
 fn drop_scene(z0: f64, mu: f64, contact: &str, time: &str) -> String {
-    format!(
-        r#"
-gravity = [0.0, 0.0, -{G}]
-
-[[rods]]
-name = "rod"
-elements = 10
-centerline = {{ kind = "straight", start = [0.0, 0.0, {z0}], direction = [1.0, 0.0, 0.0], length = {L} }}
-section = {{ shape = "circle", diameter = {D} }}
-material = {{ young = 2.0e11, poisson = 0.3, density = {RHO} }}
-
-[[obstacles]]
-name = "floor"
-friction = {mu}
-shape = {{ kind = "plane", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }}
-
-[contact]
-{contact}
-
-[time]
-{time}
-"#
-    )
-}
-
-/// One sample of a drop: time (s), centroid height (m), lowest gap (m).
-struct Sample {
-    t: f64,
-    z: f64,
-    gap: f64,
-}
-
-/// Runs a drop scene to its end, sampling every step (the gap from the positions here).
-fn drop(text: &str) -> (Vec<Sample>, slender_core::scene::SceneStep) {
-    let spec = scene(text);
-    let compiled = spec.compile().expect("compiles");
-    let mut run = TimeRun::new(&compiled).expect("starts");
-    let mut samples = Vec::new();
-    loop {
-        let p = run.state(0).members[0].positions();
-        samples.push(Sample {
-            t: run.time(),
-            z: p.iter().map(|x| x.z).sum::<f64>() / p.len() as f64,
-            gap: p
-                .iter()
-                .map(|x| x.z - 0.5 * D)
-                .fold(f64::INFINITY, f64::min),
-        });
-        if run.finished() {
-            break;
-        }
-        let r = run.step();
-        assert!(r.converged, "{r:?}");
-    }
-    let last = run.frame(1);
-    (samples, last)
+    common::dropped_rod::drop_scene("der", z0, mu, contact, time)
 }
 
 #[test]

@@ -13,84 +13,12 @@
 //!   rotary inertia ρJ: the contact problem hands it to the stepper.
 
 use nalgebra::{UnitQuaternion, Vector3};
-use slender_core::scene::{Scene, SceneStep, TimeRun};
+use slender_core::scene::TimeRun;
 
-fn scene(text: &str) -> Scene {
-    toml::from_str(text).expect("scene")
-}
+mod common;
+use common::dropped_rod::{drop, drop_scene, scene, weight, D, G, L, RHO};
 
-const G: f64 = 9.81;
-/// The dropped rod: steel, L = 0.2 m, d = 10 mm, 10 elements, free, horizontal along x.
-const L: f64 = 0.2;
-const D: f64 = 0.01;
-const RHO: f64 = 7850.0;
 const MODELS: [&str; 2] = ["cosserat", "se3"];
-
-/// The rod's weight (N).
-fn weight() -> f64 {
-    RHO * std::f64::consts::PI * D * D / 4.0 * L * G
-}
-
-/// A `model` rod lying flat with its axis at `z0` over a floor z = 0 with Coulomb
-/// coefficient `mu`.
-fn drop_scene(model: &str, z0: f64, mu: f64, contact: &str, time: &str) -> String {
-    format!(
-        r#"
-gravity = [0.0, 0.0, -{G}]
-
-[[rods]]
-name = "rod"
-model = "{model}"
-elements = 10
-centerline = {{ kind = "straight", start = [0.0, 0.0, {z0}], direction = [1.0, 0.0, 0.0], length = {L} }}
-section = {{ shape = "circle", diameter = {D} }}
-material = {{ young = 2.0e11, poisson = 0.3, density = {RHO} }}
-
-[[obstacles]]
-name = "floor"
-friction = {mu}
-shape = {{ kind = "plane", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }}
-
-[contact]
-{contact}
-
-[time]
-{time}
-"#
-    )
-}
-
-/// One sample of a drop: time (s), centroid height (m), lowest gap (m).
-struct Sample {
-    t: f64,
-    z: f64,
-    gap: f64,
-}
-
-/// Runs a drop scene to its end, sampling every step (the gap from the positions here).
-fn drop(text: &str) -> (Vec<Sample>, SceneStep) {
-    let compiled = scene(text).compile().expect("compiles");
-    let mut run = TimeRun::new(&compiled).expect("starts");
-    let mut samples = Vec::new();
-    loop {
-        let p = run.state(0).members[0].positions();
-        samples.push(Sample {
-            t: run.time(),
-            z: p.iter().map(|x| x.z).sum::<f64>() / p.len() as f64,
-            gap: p
-                .iter()
-                .map(|x| x.z - 0.5 * D)
-                .fold(f64::INFINITY, f64::min),
-        });
-        if run.finished() {
-            break;
-        }
-        let r = run.step();
-        assert!(r.converged, "{r:?}");
-    }
-    let last = run.frame(1);
-    (samples, last)
-}
 
 #[test]
 fn a_framed_rod_dropped_on_a_frictionless_floor_falls_freely_never_penetrates_and_bounces_back() {

@@ -1,6 +1,9 @@
-//! Shared references of the scene tests: Euler's elastica by elliptic integrals.
+//! Shared references of the scene tests: Euler's elastica by elliptic integrals; the
+//! dropped rod of the time-stepped contact tests ([`dropped_rod`]).
 
 #![allow(dead_code)]
+
+pub mod dropped_rod;
 
 /// Complete elliptic integrals K(m), E(m) of parameter m = k² by the arithmetic–geometric mean.
 pub fn elliptic_ke(m: f64) -> (f64, f64) {
