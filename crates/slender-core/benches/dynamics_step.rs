@@ -11,7 +11,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
-use slender_core::dynamics::{DynamicsParams, Scheme, TimeStepper};
+use slender_core::dynamics::{DynamicsParams, FlatDofs, Scheme, TimeStepper};
 use slender_core::geometry::Vec3;
 use slender_core::rod::{RestCurve, Rod, RodBuilder, RodProperties, SectionStiffness};
 
@@ -36,9 +36,10 @@ fn swinging_rod() -> Rod {
     .expect("valid rod")
 }
 
-fn bench(c: &mut Criterion) {
-    let rod = swinging_rod();
-    let mut group = c.benchmark_group("dynamics_step_n100");
+/// One step of each scheme of `model` (released at rest from `rest`), timed from ten
+/// snapshots of its first second, in the criterion group `name`.
+fn bench_schemes<P: FlatDofs>(c: &mut Criterion, name: &str, model: &P, rest: P::State) {
+    let mut group = c.benchmark_group(name);
     group.measurement_time(Duration::from_secs(5));
     for scheme in [
         Scheme::EnergyConserving,
@@ -46,8 +47,7 @@ fn bench(c: &mut Criterion) {
         Scheme::BackwardEuler,
     ] {
         let params = DynamicsParams::new(1e-3).with_scheme(scheme);
-        let mut stepper =
-            TimeStepper::at_rest(&rod, rod.rest_state().clone(), params).expect("valid params");
+        let mut stepper = TimeStepper::at_rest(model, rest.clone(), params).expect("valid params");
         let mut snapshots = Vec::new();
         for k in 0..1000 {
             let r = stepper.step();
@@ -73,6 +73,11 @@ fn bench(c: &mut Criterion) {
         });
     }
     group.finish();
+}
+
+fn bench(c: &mut Criterion) {
+    let rod = swinging_rod();
+    bench_schemes(c, "dynamics_step_n100", &rod, rod.rest_state().clone());
 }
 
 /// The same cable lying on a rough plane (μ = 0.3) tilted past its friction angle (tan α =
@@ -155,41 +160,12 @@ fn bench_cosserat(c: &mut Criterion) {
     .gravity(Vec3::new(0.0, -9.81, 0.0))
     .build()
     .expect("valid rod");
-    let mut group = c.benchmark_group("dynamics_step_cosserat_n100");
-    group.measurement_time(Duration::from_secs(5));
-    for scheme in [
-        Scheme::EnergyConserving,
-        Scheme::ImplicitMidpoint,
-        Scheme::BackwardEuler,
-    ] {
-        let params = DynamicsParams::new(1e-3).with_scheme(scheme);
-        let mut stepper =
-            TimeStepper::at_rest(&rod, rod.rest_state().clone(), params).expect("valid params");
-        let mut snapshots = Vec::new();
-        for k in 0..1000 {
-            let r = stepper.step();
-            assert!(r.converged, "{scheme:?} {r:?}");
-            if k % 100 == 50 {
-                snapshots.push(stepper.clone());
-            }
-        }
-        let mut next = 0;
-        group.bench_function(format!("{scheme:?}"), |b| {
-            b.iter_batched(
-                || {
-                    next = (next + 1) % snapshots.len();
-                    snapshots[next].clone()
-                },
-                |mut s| {
-                    let r = s.step();
-                    assert!(r.converged, "{r:?}");
-                    black_box(r.iterations)
-                },
-                BatchSize::SmallInput,
-            )
-        });
-    }
-    group.finish();
+    bench_schemes(
+        c,
+        "dynamics_step_cosserat_n100",
+        &rod,
+        rod.rest_state().clone(),
+    );
 }
 
 criterion_group!(benches, bench, bench_contact, bench_cosserat);
