@@ -13,32 +13,44 @@ fn scene(text: &str) -> Scene {
     toml::from_str(text).expect("scene")
 }
 
-/// Closest distance (m) between segments [p0, p1] and [q0, q1] (sampled minimization is not
-/// enough here: the exact clamped solution of the 2×2 least-squares problem).
+/// Closest distance (m) from point `x` to segment [p, q] (the projection clamped to it).
+fn point_segment_distance(x: [f64; 3], p: [f64; 3], q: [f64; 3]) -> f64 {
+    let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+    let r = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = ((r[0] * d[0] + r[1] * d[1] + r[2] * d[2]) / dd).clamp(0.0, 1.0);
+    let e = [r[0] - t * d[0], r[1] - t * d[1], r[2] - t * d[2]];
+    (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
+}
+
+/// Closest distance (m) between segments [p0, p1] and [q0, q1], by another route than the
+/// core's clamped solve (`contact::segment_distance`): |p(s) − q(t)|² is a convex quadratic
+/// on the unit square, so its minimum is the interior stationary point when that lies in the
+/// square, and otherwise on an edge of it — one of the four endpoint-to-segment distances.
 fn segment_distance(p0: [f64; 3], p1: [f64; 3], q0: [f64; 3], q1: [f64; 3]) -> f64 {
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let (d1, d2, r) = (sub(p1, p0), sub(q1, q0), sub(p0, q0));
-    let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
-    let (b, c) = (dot(d1, d2), dot(d1, r));
-    let denom = a * e - b * b;
-    let mut s = if denom > 0.0 {
-        ((b * f - c * e) / denom).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let mut t = (b * s + f) / e;
-    if t < 0.0 {
-        t = 0.0;
-        s = (-c / a).clamp(0.0, 1.0);
-    } else if t > 1.0 {
-        t = 1.0;
-        s = ((b - c) / a).clamp(0.0, 1.0);
+    // Stationary point: [a −b; −b e] (s, t) = (−c, f).
+    let (a, b, e) = (dot(d1, d1), dot(d1, d2), dot(d2, d2));
+    let (c, f) = (dot(d1, r), dot(d2, r));
+    let det = a * e - b * b;
+    if det > 1e-12 * a * e {
+        let s = (b * f - c * e) / det;
+        let t = (a * f - b * c) / det;
+        if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
+            let g = [
+                r[0] + s * d1[0] - t * d2[0],
+                r[1] + s * d1[1] - t * d2[1],
+                r[2] + s * d1[2] - t * d2[2],
+            ];
+            return dot(g, g).sqrt();
+        }
     }
-    let pa = [p0[0] + d1[0] * s, p0[1] + d1[1] * s, p0[2] + d1[2] * s];
-    let pb = [q0[0] + d2[0] * t, q0[1] + d2[1] * t, q0[2] + d2[2] * t];
-    let d = sub(pa, pb);
-    dot(d, d).sqrt()
+    point_segment_distance(p0, q0, q1)
+        .min(point_segment_distance(p1, q0, q1))
+        .min(point_segment_distance(q0, p0, p1))
+        .min(point_segment_distance(q1, p0, p1))
 }
 
 /// Closest distance (m) between two polylines.
