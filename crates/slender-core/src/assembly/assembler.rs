@@ -91,13 +91,19 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
     /// outputs (not zeroed again). Add its measures back with [`Self::absorb`].
     pub fn part<'r>(&'r mut self, remap: &'r [MapSlot]) -> Assembler<'r, M> {
         debug_assert!(self.remap.is_none(), "parts of parts are not supported");
+        // A map that sends each DOF to itself with coefficient 1 (a lone member) is no map:
+        // the direct scatter adds the same values to the same entries.
+        let identity = remap
+            .iter()
+            .enumerate()
+            .all(|(i, m)| m.dof == i && m.coef == 1.0);
         Assembler {
             selection: self.selection,
             grad: self.grad.as_deref_mut(),
             hess: self.hess.as_deref_mut(),
             abs_grad: self.abs_grad.as_deref_mut(),
             info: AssemblyInfo::default(),
-            remap: Some(remap),
+            remap: (!identity).then_some(remap),
             weight: self.weight,
             chart_scale: self.chart_scale,
         }

@@ -133,4 +133,15 @@ impl SymmetricFactor<AdaptiveMatrix> for AdaptiveLdlt {
             Self::Sparse(f) => f.try_solve_in_place(b),
         }
     }
+
+    fn solve_block_in_place<const K: usize>(&self, bs: [&mut [f64]; K]) {
+        match self {
+            Self::Band(f) => f.solve_block_in_place(bs),
+            _ => {
+                for b in bs {
+                    self.solve_in_place(b);
+                }
+            }
+        }
+    }
 }

@@ -269,45 +269,18 @@ impl BandLdlt {
 
         let rtol = ZERO_PIVOT_RTOL * (bw as f64 + 1.0);
         self.pivot_scale.resize(n, 0.0);
-        for i in 0..n {
-            let lo = i.saturating_sub(bw);
-            let off = lo + bw - i;
-            let arow = a.row(i);
-            let (done, rest) = self.l.split_at_mut(i * bw);
-            let row = &mut rest[..bw];
-            row[..off].fill(0.0);
-            row[off..].copy_from_slice(&arow[off..bw]);
-
-            // Row i of W = L·D, left to right: w_ij = a_ij − Σ_{lo ≤ k < j} w_ik·l_jk.
-            // Row j of L holds l_jk for k ∈ [lo, j) at slots [lo + bw − j, bw).
-            for t in 0..(i - lo) {
-                let j = lo + t;
-                let lj = &done[j * bw + (lo + bw - j)..(j + 1) * bw];
-                let (head, tail) = row.split_at_mut(off + t);
-                let dot: f64 = head[off..].iter().zip(lj).map(|(w, l)| w * l).sum();
-                tail[0] -= dot;
-            }
-
-            // l_ij = w_ij / d_j and d_i = a_ii + σ − Σ_j w_ij·l_ij.
-            let mut di = arow[bw] + shift;
-            let mut scale = di.abs();
-            let mut finite = true;
-            for (x, &dj) in row[off..].iter_mut().zip(&self.d[lo..i]) {
-                let w = *x;
-                let l = w / dj;
-                *x = l;
-                di -= w * l;
-                scale += (w * l).abs();
-                finite &= l.is_finite();
-            }
-            self.pivot_scale[i] = scale;
-            if !(finite && di.is_finite()) {
-                return Err(FactorError::NonFinite { index: i });
-            }
-            if di == 0.0 {
-                return Err(FactorError::ZeroPivot { index: i });
-            }
-            self.d[i] = di;
+        let mut rows = BandRows {
+            l: &mut self.l[..n * bw],
+            d: &mut self.d[..n],
+            pivot_scale: &mut self.pivot_scale[..n],
+        };
+        // The rod models' widths get a kernel whose interior rows have a compile-time width.
+        match bw {
+            6 => rows.factor::<6>(a, shift)?,
+            10 => rows.factor::<10>(a, shift)?,
+            11 => rows.factor::<11>(a, shift)?,
+            12 => rows.factor::<12>(a, shift)?,
+            _ => rows.factor::<0>(a, shift)?,
         }
         let inertia = Inertia::from_pivots(
             self.d.iter().copied().zip(self.pivot_scale.iter().copied()),
@@ -365,25 +338,12 @@ impl BandLdlt {
                 found: b.len(),
             });
         }
-        // Forward substitution L y = b (row-oriented dot products).
-        for i in 0..n {
-            let lo = i.saturating_sub(bw);
-            let row = &self.l[i * bw + (lo + bw - i)..(i + 1) * bw];
-            let dot: f64 = row.iter().zip(&b[lo..i]).map(|(l, y)| l * y).sum();
-            b[i] -= dot;
-        }
-        for (x, d) in b.iter_mut().zip(&self.d) {
-            *x /= d;
-        }
-        // Back substitution Lᵀ x = z: once x_i is final, remove its contribution from the rows
-        // above (column-oriented, so L is still read row by row).
-        for i in (0..n).rev() {
-            let lo = i.saturating_sub(bw);
-            let row = &self.l[i * bw + (lo + bw - i)..(i + 1) * bw];
-            let xi = b[i];
-            for (x, l) in b[lo..i].iter_mut().zip(row) {
-                *x -= l * xi;
-            }
+        match bw {
+            6 => solve_rows::<6>(&self.l, &self.d, bw, b),
+            10 => solve_rows::<10>(&self.l, &self.d, bw, b),
+            11 => solve_rows::<11>(&self.l, &self.d, bw, b),
+            12 => solve_rows::<12>(&self.l, &self.d, bw, b),
+            _ => solve_rows::<0>(&self.l, &self.d, bw, b),
         }
         Ok(())
     }
@@ -412,6 +372,195 @@ impl BandLdlt {
     }
 }
 
+/// The buffers of a [`BandLdlt`] being factored, row by row.
+///
+/// Why two code paths: with the half-bandwidth a compile-time constant `BW`, the rows at or
+/// past `BW` (all but the first few) run loops of fixed trip counts over fixed-size arrays,
+/// which the compiler unrolls without bounds checks: about half the instructions of the
+/// general loops for a rod's band. Both paths do the same operations in the same order, so
+/// the factors have the same bits. `BW = 0` means the general path for every row.
+struct BandRows<'a> {
+    l: &'a mut [f64],
+    d: &'a mut [f64],
+    pivot_scale: &'a mut [f64],
+}
+
+impl BandRows<'_> {
+    fn factor<const BW: usize>(
+        &mut self,
+        a: &SymmetricBandMatrix,
+        shift: f64,
+    ) -> Result<(), FactorError> {
+        let (n, bw) = (a.n, a.bw);
+        debug_assert!(BW == 0 || BW == bw);
+        for i in 0..n {
+            let arow = a.row(i);
+            let (done, rest) = self.l.split_at_mut(i * bw);
+            let row = &mut rest[..bw];
+            let lo = i.saturating_sub(bw);
+            let off = lo + bw - i;
+            if BW > 0 && i >= BW {
+                let row: &mut [f64; BW] = row.try_into().expect("row of width BW");
+                row.copy_from_slice(&arow[..BW]);
+                // Rows i − BW … i − 1 of L, each BW wide.
+                let above = &done[(i - BW) * BW..];
+                for t in 0..BW {
+                    let lj: &[f64; BW] = above[t * BW..(t + 1) * BW]
+                        .try_into()
+                        .expect("row of width BW");
+                    let mut dot = -0.0;
+                    for k in 0..t {
+                        dot += row[k] * lj[BW - t + k];
+                    }
+                    row[t] -= dot;
+                }
+            } else {
+                row[..off].fill(0.0);
+                row[off..].copy_from_slice(&arow[off..bw]);
+                // Row i of W = L·D, left to right: w_ij = a_ij − Σ_{lo ≤ k < j} w_ik·l_jk.
+                // Row j of L holds l_jk for k ∈ [lo, j) at slots [lo + bw − j, bw).
+                for t in 0..(i - lo) {
+                    let j = lo + t;
+                    let lj = &done[j * bw + (lo + bw - j)..(j + 1) * bw];
+                    let (head, tail) = row.split_at_mut(off + t);
+                    let dot: f64 = head[off..].iter().zip(lj).map(|(w, l)| w * l).sum();
+                    tail[0] -= dot;
+                }
+            }
+
+            // l_ij = w_ij / d_j and d_i = a_ii + σ − Σ_j w_ij·l_ij.
+            let mut di = arow[bw] + shift;
+            let mut scale = di.abs();
+            let mut finite = true;
+            for (x, &dj) in row[off..].iter_mut().zip(&self.d[lo..i]) {
+                let w = *x;
+                let l = w / dj;
+                *x = l;
+                di -= w * l;
+                scale += (w * l).abs();
+                finite &= l.is_finite();
+            }
+            self.pivot_scale[i] = scale;
+            if !(finite && di.is_finite()) {
+                return Err(FactorError::NonFinite { index: i });
+            }
+            if di == 0.0 {
+                return Err(FactorError::ZeroPivot { index: i });
+            }
+            self.d[i] = di;
+        }
+        Ok(())
+    }
+}
+
+/// b ← (L D Lᵀ)⁻¹ b for a band factor of half-bandwidth `bw` (`BW` as in [`BandRows`]: the
+/// same operations in the same order on both paths).
+fn solve_rows<const BW: usize>(l: &[f64], d: &[f64], bw: usize, b: &mut [f64]) {
+    let n = b.len();
+    debug_assert!(BW == 0 || BW == bw);
+    // Forward substitution L y = b (row-oriented dot products).
+    for i in 0..n {
+        if BW > 0 && i >= BW {
+            let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
+            let (above, below) = b.split_at_mut(i);
+            let y: &[f64; BW] = above[i - BW..].try_into().expect("width BW");
+            let mut dot = -0.0;
+            for k in 0..BW {
+                dot += row[k] * y[k];
+            }
+            below[0] -= dot;
+        } else {
+            let lo = i.saturating_sub(bw);
+            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
+            let dot: f64 = row.iter().zip(&b[lo..i]).map(|(l, y)| l * y).sum();
+            b[i] -= dot;
+        }
+    }
+    for (x, d) in b.iter_mut().zip(d) {
+        *x /= d;
+    }
+    // Back substitution Lᵀ x = z: once x_i is final, remove its contribution from the rows
+    // above (column-oriented, so L is still read row by row).
+    for i in (0..n).rev() {
+        let xi = b[i];
+        if BW > 0 && i >= BW {
+            let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
+            let x: &mut [f64; BW] = (&mut b[i - BW..i]).try_into().expect("width BW");
+            for k in 0..BW {
+                x[k] -= row[k] * xi;
+            }
+        } else {
+            let lo = i.saturating_sub(bw);
+            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
+            for (x, l) in b[lo..i].iter_mut().zip(row) {
+                *x -= l * xi;
+            }
+        }
+    }
+}
+
+/// [`solve_rows`] for `K` right-hand sides at once (`BW` > 0): the rows past `BW` run the `K`
+/// substitutions side by side, so that their dependency chains overlap; each vector sees the
+/// same operations in the same order as alone.
+fn solve_rows_block<const BW: usize, const K: usize>(
+    l: &[f64],
+    d: &[f64],
+    bw: usize,
+    mut bs: [&mut [f64]; K],
+) {
+    let n = d.len();
+    debug_assert!(BW > 0 && BW == bw);
+    let head = BW.min(n);
+    // Forward substitution L y = b: the first BW rows one vector at a time, then the rest
+    // interleaved.
+    for b in bs.iter_mut() {
+        for i in 0..head {
+            let lo = i.saturating_sub(bw);
+            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
+            let dot: f64 = row.iter().zip(&b[lo..i]).map(|(l, y)| l * y).sum();
+            b[i] -= dot;
+        }
+    }
+    for i in head..n {
+        let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
+        for b in bs.iter_mut() {
+            let (above, below) = b.split_at_mut(i);
+            let y: &[f64; BW] = above[i - BW..].try_into().expect("width BW");
+            let mut dot = -0.0;
+            for k in 0..BW {
+                dot += row[k] * y[k];
+            }
+            below[0] -= dot;
+        }
+    }
+    for b in bs.iter_mut() {
+        for (x, d) in b.iter_mut().zip(d) {
+            *x /= d;
+        }
+    }
+    // Back substitution Lᵀ x = z, interleaved down to row BW, then one vector at a time.
+    for i in (head..n).rev() {
+        let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
+        for b in bs.iter_mut() {
+            let xi = b[i];
+            let x: &mut [f64; BW] = (&mut b[i - BW..i]).try_into().expect("width BW");
+            for k in 0..BW {
+                x[k] -= row[k] * xi;
+            }
+        }
+    }
+    for b in bs.iter_mut() {
+        for i in (0..head).rev() {
+            let xi = b[i];
+            let lo = i.saturating_sub(bw);
+            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
+            for (x, l) in b[lo..i].iter_mut().zip(row) {
+                *x -= l * xi;
+            }
+        }
+    }
+}
+
 impl SymmetricMatrix for SymmetricBandMatrix {
     type Factor = BandLdlt;
 
@@ -437,6 +586,25 @@ impl SymmetricMatrix for SymmetricBandMatrix {
         dofs: &[usize; D],
         value: impl Fn(usize, usize) -> f64,
     ) {
+        let bw = self.bw;
+        // Consecutive DOFs (an interior rod stencil): no slot is fixed, none repeats, and row
+        // a of the block's lower triangle is a contiguous run of the band's row first + a.
+        // Each entry receives one addition either way, so the result has the same bits.
+        if let Some(&first) = dofs.first() {
+            if D <= bw + 1
+                && first != crate::assembly::FIXED
+                && first + D <= self.n
+                && dofs.iter().enumerate().all(|(a, &i)| i == first + a)
+            {
+                for a in 0..D {
+                    let start = (first + a) * bw + first + bw;
+                    for (b, x) in self.data[start..=start + a].iter_mut().enumerate() {
+                        *x += value(a, b);
+                    }
+                }
+                return;
+            }
+        }
         let (lo, hi) = dofs
             .iter()
             .filter(|&&i| i != crate::assembly::FIXED)
@@ -450,7 +618,6 @@ impl SymmetricMatrix for SymmetricBandMatrix {
             return;
         }
         // Entry (r, c), c ≤ r ≤ c + bw, sits at r·(bw + 1) + c + bw − r = r·bw + c + bw.
-        let bw = self.bw;
         let data = &mut self.data;
         super::symmetric::lower_block_entries(dofs, value, |i, j, v| {
             let (r, c) = if i >= j { (i, j) } else { (j, i) };
@@ -495,5 +662,27 @@ impl SymmetricFactor<SymmetricBandMatrix> for BandLdlt {
 
     fn try_solve_in_place(&self, b: &mut [f64]) -> Result<(), FactorError> {
         BandLdlt::try_solve_in_place(self, b)
+    }
+
+    fn solve_block_in_place<const K: usize>(&self, bs: [&mut [f64]; K]) {
+        if !(self.factored && bs.iter().all(|b| b.len() == self.n)) {
+            // The checked path reports (debug) or poisons (release) each bad solve.
+            for b in bs {
+                self.solve_in_place(b);
+            }
+            return;
+        }
+        let bw = self.bw;
+        match bw {
+            6 => solve_rows_block::<6, K>(&self.l, &self.d, bw, bs),
+            10 => solve_rows_block::<10, K>(&self.l, &self.d, bw, bs),
+            11 => solve_rows_block::<11, K>(&self.l, &self.d, bw, bs),
+            12 => solve_rows_block::<12, K>(&self.l, &self.d, bw, bs),
+            _ => {
+                for b in bs {
+                    solve_rows::<0>(&self.l, &self.d, bw, b);
+                }
+            }
+        }
     }
 }

@@ -72,6 +72,15 @@ pub trait SymmetricFactor<M> {
             b.fill(f64::NAN);
         }
     }
+
+    /// [`solve_in_place`](Self::solve_in_place) for each of `K` right-hand sides, with the
+    /// same results. Factors whose solves are bound by the latency of one long dependency
+    /// chain (the band's substitutions) override it to run the `K` chains side by side.
+    fn solve_block_in_place<const K: usize>(&self, bs: [&mut [f64]; K]) {
+        for b in bs {
+            self.solve_in_place(b);
+        }
+    }
 }
 
 /// Counts of negative, (numerically) zero and positive eigenvalues of a symmetric matrix.

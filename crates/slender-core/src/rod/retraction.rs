@@ -141,22 +141,21 @@ impl Rod {
                 if b <= a + 1 {
                     continue;
                 }
-                // The forward walk is written into p, then blended with the backward walk.
+                // The forward walk is written into p. The backward walk from b is the same
+                // walk shifted by its closure gap p_b − (p_a + Σ e), so the blend adds the gap
+                // in proportion to the arc length from a (each edge is computed once).
                 let mut forward = p[a];
                 for j in a..b - 1 {
                     forward += new_edge(j);
                     p[j + 1] = forward;
                 }
-                let mut backward = p[b];
+                let gap = p[b] - (forward + new_edge(b - 1));
                 let s_total: f64 = self.rest_lengths[a..b].iter().sum();
                 let mut s_from_b = 0.0;
-                for j in (a..b).rev() {
-                    backward -= new_edge(j);
+                for j in (a + 1..b).rev() {
                     s_from_b += self.rest_lengths[j];
-                    if j > a {
-                        let wb = 1.0 - s_from_b / s_total;
-                        p[j] = p[j] * (1.0 - wb) + backward * wb;
-                    }
+                    let wb = 1.0 - s_from_b / s_total;
+                    p[j] += gap * wb;
                 }
             }
         }

@@ -225,11 +225,24 @@ fn inverse_iteration<P: EquilibriumProblem>(
             for i in 0..n {
                 w[k][i] = mass[i] * v[k][i];
             }
-            ldlt.solve_in_place(&mut w[k]);
         }
-        // Projected pencil: A = Wᵀ H W = Wᵀ M V, B = Wᵀ M W.
-        let a = Matrix3::from_fn(|r, c| 0.5 * (m_dot(&w[r], &v[c]) + m_dot(&w[c], &v[r])));
-        let b = Matrix3::from_fn(|r, c| m_dot(&w[r], &w[c]));
+        let [w0, w1, w2] = w;
+        ldlt.solve_block_in_place([&mut w0[..], &mut w1[..], &mut w2[..]]);
+        // Projected pencil: A = Wᵀ H W = Wᵀ M V, B = Wᵀ M W. The 18 M-products in one pass
+        // (each summed in index order as `m_dot` does): one pass per product would be 18
+        // chains of n dependent additions.
+        let (mut wmv, mut wmw) = ([[-0.0; BLOCK]; BLOCK], [[-0.0; BLOCK]; BLOCK]);
+        for i in 0..n {
+            for r in 0..BLOCK {
+                let wm = w[r][i] * mass[i];
+                for c in 0..BLOCK {
+                    wmv[r][c] += wm * v[c][i];
+                    wmw[r][c] += wm * w[c][i];
+                }
+            }
+        }
+        let a = Matrix3::from_fn(|r, c| 0.5 * (wmv[r][c] + wmv[c][r]));
+        let b = Matrix3::from_fn(|r, c| wmw[r][c]);
         let Some(chol) = b.cholesky() else {
             return false;
         };
