@@ -18,16 +18,13 @@ pub fn cross_matrix(a: &Vec3) -> Matrix3<f64> {
 /// when they are antiparallel; the solver's step cap keeps edges from turning by more than π/4.
 pub fn parallel_transport(u: &Vec3, from: &Vec3, to: &Vec3) -> Vec3 {
     let b = from.cross(to);
-    let sin = b.norm();
-    if sin <= f64::EPSILON * 16.0 {
+    if b.norm_squared() <= (f64::EPSILON * 16.0).powi(2) {
         return *u;
     }
-    let b = b / sin;
-    // Orthonormal frames (from, n1, b) and (to, n2, b) share b; the transport maps one onto
-    // the other.
-    let n1 = from.cross(&b);
-    let n2 = to.cross(&b);
-    to * u.dot(from) + n2 * u.dot(&n1) + b * u.dot(&b)
+    // The rotation about b = from × to that takes `from` to `to` (Rodrigues' formula with
+    // sin = |b| and 1 − cos = |b|²/(1 + cos)): no square root, no trigonometry.
+    let bu = b.cross(u);
+    u + bu + b.cross(&bu) / (1.0 + from.dot(to))
 }
 
 /// Signed angle (rad, in (−π, π]) from `u` to `v` about `axis` (right-hand rule). `u` and `v`

@@ -195,34 +195,40 @@ impl<const N: usize> std::ops::Mul for Dual2<N> {
 /// at once, without temporaries); the factors' own Hessians are skipped when affine.
 #[inline]
 pub fn sum_of_products<const N: usize>(terms: &[(&Dual2<N>, &Dual2<N>, f64)]) -> Dual2<N> {
-    let mut v = 0.0;
-    let mut g = SVector::<f64, N>::zeros();
-    let mut h = SMatrix::<f64, N, N>::zeros();
+    let mut out = Dual2 {
+        v: 0.0,
+        g: SVector::<f64, N>::zeros(),
+        h: SMatrix::<f64, N, N>::zeros(),
+        affine: false,
+    };
     for &(a, b, s) in terms {
-        v += s * a.v * b.v;
-        g += a.g * (s * b.v) + b.g * (s * a.v);
-        if !a.affine {
-            h += a.h * (s * b.v);
+        let (sa, sb) = (s * a.v, s * b.v);
+        out.v += s * a.v * b.v;
+        for i in 0..N {
+            out.g[i] += a.g[i] * sb + b.g[i] * sa;
         }
-        if !b.affine {
-            h += b.h * (s * a.v);
-        }
+        // Entry loops, each entry updated in the order h + a.h·sb + b.h·sa + (outer products):
+        // matrix expressions here built N×N temporaries, and copying them was a fifth of a
+        // shell assembly.
         for j in 0..N {
             let (aj, bj) = (s * a.g[j], s * b.g[j]);
-            if aj == 0.0 && bj == 0.0 {
-                continue;
-            }
+            let outer = !(aj == 0.0 && bj == 0.0);
             for i in 0..N {
-                h[(i, j)] += a.g[i] * bj + b.g[i] * aj;
+                let mut x = out.h[(i, j)];
+                if !a.affine {
+                    x += a.h[(i, j)] * sb;
+                }
+                if !b.affine {
+                    x += b.h[(i, j)] * sa;
+                }
+                if outer {
+                    x += a.g[i] * bj + b.g[i] * aj;
+                }
+                out.h[(i, j)] = x;
             }
         }
     }
-    Dual2 {
-        v,
-        g,
-        h,
-        affine: false,
-    }
+    out
 }
 
 impl<const N: usize> std::ops::Div for Dual2<N> {
