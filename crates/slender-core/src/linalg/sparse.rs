@@ -215,7 +215,9 @@ impl SymmetricMatrix for SparseSymmetricMatrix {
     }
 
     fn first_non_finite(&self) -> Option<usize> {
-        self.entries().find(|e| !e.2.is_finite()).map(|e| e.1)
+        // Values are stored column by column: the first non-finite one and its column.
+        let k = self.values.iter().position(|v| !v.is_finite())?;
+        Some(self.pattern.col_ptr.partition_point(|&start| start <= k) - 1)
     }
 
     fn congruence_scaled(&self, s: &[f64], out: &mut Self) {
@@ -333,7 +335,6 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
         for &d in &a.pattern.diag {
             self.shifted[d] += shift;
         }
-        let scale = self.shifted.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let matrix = SparseColMatRef::new(a.symbolic(), &self.shifted);
         let req = symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
         let mut mem = MemBuffer::new(req);
@@ -368,7 +369,6 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
             rtol,
         )
         .map_err(|index| FactorError::NonFinite { index })?;
-        let _ = scale;
         self.inertia = inertia;
         self.factored = true;
         Ok(inertia)
