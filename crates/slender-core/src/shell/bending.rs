@@ -16,7 +16,7 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use crate::geometry::Vec3;
 
-use super::dual::{cross3, cross3_const, dot3, dot3_const, point, sub3, Dual2};
+use super::dual::{cross3, cross3_const, dot3, dot3_const, point, sub3, Dual2, DualVec3};
 use super::membrane::{quadratic_form, FaceRest};
 
 /// Variables of one edge term: q₀, q₁, q₂ (9), the opposite vertex p (3) and φ (1).
@@ -54,10 +54,42 @@ pub enum EdgeDirector {
 /// II_i = 2 h_i tan α_i of the edge opposite local vertex `i` of the face q, with derivatives
 /// in the 13 edge variables (q₀, q₁, q₂, p, φ); unused variables have zero derivatives.
 pub fn edge_curvature(q: [&Vec3; 3], i: usize, director: &EdgeDirector) -> Dual2<EDGE_VARS> {
-    let mut x = [0.0; EDGE_VARS];
-    for k in 0..3 {
-        x[3 * k..3 * k + 3].copy_from_slice(q[k].as_slice());
+    edge_curvature_on(&FaceDuals::new(q), i, director)
+}
+
+/// The face's corners and normal as duals in the edge variables. The corners are variables
+/// 0–8 in every edge term of the face, so the three edges share them: built once per face.
+pub struct FaceDuals {
+    x: [f64; EDGE_VARS],
+    q: [DualVec3<EDGE_VARS>; 3],
+    /// n_f = (q₁ − q₀) × (q₂ − q₀), not normalized.
+    n_f: DualVec3<EDGE_VARS>,
+    /// |n_f| = twice the face area.
+    n_f_norm: Dual2<EDGE_VARS>,
+}
+
+impl FaceDuals {
+    /// The duals of face q.
+    pub fn new(q: [&Vec3; 3]) -> Self {
+        let mut x = [0.0; EDGE_VARS];
+        for k in 0..3 {
+            x[3 * k..3 * k + 3].copy_from_slice(q[k].as_slice());
+        }
+        let q: [_; 3] = std::array::from_fn(|k| point::<EDGE_VARS>(&x, k));
+        let n_f = cross3(&sub3(&q[1], &q[0]), &sub3(&q[2], &q[0]));
+        let n_f_norm = dot3(&n_f, &n_f).sqrt();
+        Self {
+            x,
+            q,
+            n_f,
+            n_f_norm,
+        }
     }
+}
+
+/// [`edge_curvature`] with the face's duals built already.
+pub fn edge_curvature_on(face: &FaceDuals, i: usize, director: &EdgeDirector) -> Dual2<EDGE_VARS> {
+    let mut x = face.x;
     if let EdgeDirector::Interior { p, phi, .. } = director {
         x[9..12].copy_from_slice(p.as_slice());
         x[12] = *phi;
@@ -65,26 +97,25 @@ pub fn edge_curvature(q: [&Vec3; 3], i: usize, director: &EdgeDirector) -> Dual2
     if let EdgeDirector::Free { phi, .. } = director {
         x[12] = *phi;
     }
-    let qd: [_; 3] = std::array::from_fn(|k| point::<EDGE_VARS>(&x, k));
-    let n_f = cross3(&sub3(&qd[1], &qd[0]), &sub3(&qd[2], &qd[0]));
+    let (qd, n_f) = (&face.q, &face.n_f);
     // The edge, in this face's counter-clockwise direction.
     let (a, b) = (&qd[(i + 1) % 3], &qd[(i + 2) % 3]);
     let edge = sub3(b, a);
     let edge_len = dot3(&edge, &edge).sqrt();
-    let altitude = dot3(&n_f, &n_f).sqrt() / edge_len;
+    let altitude = face.n_f_norm / edge_len;
     let alpha = match director {
         EdgeDirector::Interior { sigma, .. } => {
             let p = point::<EDGE_VARS>(&x, 3);
             // The neighbour runs along the edge the other way: (b, a, p) is counter-clockwise.
             let n_g = cross3(&sub3(a, b), &sub3(&p, b));
             // Signed angle from n_f to n_g about the edge; normals need not be unit.
-            let theta = (dot3(&cross3(&n_f, &n_g), &edge) / edge_len).atan2(&dot3(&n_f, &n_g));
+            let theta = (dot3(&cross3(n_f, &n_g), &edge) / edge_len).atan2(&dot3(n_f, &n_g));
             theta.scale(0.5) + Dual2::variable(x[12], 12).scale(*sigma)
         }
         EdgeDirector::Free { sigma, .. } => Dual2::variable(x[12], 12).scale(*sigma),
         EdgeDirector::Clamped { normal } => {
             let c = [normal.x, normal.y, normal.z];
-            (dot3(&cross3_const(&n_f, &c), &edge) / edge_len).atan2(&dot3_const(&n_f, &c))
+            (dot3(&cross3_const(n_f, &c), &edge) / edge_len).atan2(&dot3_const(n_f, &c))
         }
     };
     (altitude * alpha.tan()).scale(2.0)
@@ -152,7 +183,9 @@ pub fn bending_energy(
         let db = second_fundamental_form(&ii_v) - bbar;
         return 0.5 * db.dot(&(k * db));
     }
-    let ii: [Dual2<EDGE_VARS>; 3] = std::array::from_fn(|i| edge_curvature(q, i, &directors[i]));
+    let face = FaceDuals::new(q);
+    let ii: [Dual2<EDGE_VARS>; 3] =
+        std::array::from_fn(|i| edge_curvature_on(&face, i, &directors[i]));
     let ii_v = Vector3::new(ii[0].v, ii[1].v, ii[2].v);
     let j = sff_jacobian();
     let db = second_fundamental_form(&ii_v) - bbar;
