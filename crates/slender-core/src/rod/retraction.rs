@@ -178,7 +178,9 @@ impl Rod {
             }
             d
         };
-        let mut max_turn: f64 = 0.0;
+        // The largest turn is found by comparing the points (cos, sin)·r of the turns, all in
+        // the upper half-plane: one atan2 for the largest instead of one per edge.
+        let (mut best_sin, mut best_cos) = (0.0_f64, 1.0_f64);
         let mut max_stretch: f64 = 0.0;
         for j in 0..n {
             let e = s.positions[j + 1] - s.positions[j];
@@ -186,10 +188,15 @@ impl Rod {
             let len = e.norm();
             // Rotation of the edge direction ≈ |de⊥|/|e|, exact angle for the full step.
             let new = e + de;
-            let turn = e.cross(&new).norm().atan2(e.dot(&new));
-            max_turn = max_turn.max(turn);
+            let (sin, cos) = (e.cross(&new).norm(), e.dot(&new));
+            // Counter-clockwise of the best so far is a larger angle in [0, π]; a reversed
+            // edge (sin = 0, cos < 0) is the largest, π, which that test cannot see.
+            let reversed = sin == 0.0 && cos < 0.0;
+            if reversed || best_cos * sin - best_sin * cos > 0.0 {
+                (best_sin, best_cos) = (sin, cos);
+            }
             max_stretch = max_stretch.max(de.norm() / len);
         }
-        (max_turn, max_stretch)
+        (best_sin.atan2(best_cos), max_stretch)
     }
 }
