@@ -510,6 +510,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             g: grad_d * db,
             h: grad_d * grad_d.transpose() * ddb + hess_d * db,
             affine: false,
+            active: distance_squared.active,
         };
         let energy = match mollifier {
             Some(m) if m.v < 1.0 => m * energy,

@@ -20,6 +20,11 @@ pub struct Dual2<const N: usize> {
     /// True when f is known to be affine (h = 0): the stencil's coordinates and their
     /// differences. Products of affine factors then skip the Hessian terms of the factors.
     pub affine: bool,
+    /// Variables k ≥ `active` do not enter f at all, so their first and second derivatives
+    /// are zero: a structural bound (N when unknown), not a test of the values. Stencils
+    /// number their variables so that early quantities depend on a prefix (a face's corners
+    /// before the neighbour and the angle), and the products then loop over that prefix only.
+    pub active: usize,
 }
 
 impl<const N: usize> Dual2<N> {
@@ -30,6 +35,7 @@ impl<const N: usize> Dual2<N> {
             g: SVector::zeros(),
             h: SMatrix::zeros(),
             affine: true,
+            active: 0,
         }
     }
 
@@ -37,6 +43,7 @@ impl<const N: usize> Dual2<N> {
     pub fn variable(v: f64, i: usize) -> Self {
         let mut d = Self::constant(v);
         d.g[i] = 1.0;
+        d.active = i + 1;
         d
     }
 
@@ -44,10 +51,11 @@ impl<const N: usize> Dual2<N> {
     #[inline]
     fn chain(&self, f: f64, df: f64, d2f: f64) -> Self {
         // Entry loops instead of matrix expressions: no N×N temporaries.
+        let m = self.active;
         let mut h = SMatrix::<f64, N, N>::zeros();
-        for j in 0..N {
+        for j in 0..m {
             let gj = self.g[j] * d2f;
-            for i in 0..N {
+            for i in 0..m {
                 h[(i, j)] = self.h[(i, j)] * df + self.g[i] * gj;
             }
         }
@@ -56,6 +64,7 @@ impl<const N: usize> Dual2<N> {
             g: self.g * df,
             h,
             affine: false,
+            active: m,
         }
     }
 
@@ -63,10 +72,11 @@ impl<const N: usize> Dual2<N> {
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn chain2(&self, o: &Self, f: f64, fa: f64, fb: f64, faa: f64, fab: f64, fbb: f64) -> Self {
+        let m = self.active.max(o.active);
         let mut h = SMatrix::<f64, N, N>::zeros();
-        for j in 0..N {
+        for j in 0..m {
             let (aj, bj) = (self.g[j], o.g[j]);
-            for i in 0..N {
+            for i in 0..m {
                 let (ai, bi) = (self.g[i], o.g[i]);
                 h[(i, j)] = self.h[(i, j)] * fa
                     + o.h[(i, j)] * fb
@@ -80,6 +90,7 @@ impl<const N: usize> Dual2<N> {
             g: self.g * fa + o.g * fb,
             h,
             affine: false,
+            active: m,
         }
     }
 
@@ -121,6 +132,7 @@ impl<const N: usize> Dual2<N> {
                 self.h - o.h
             },
             affine,
+            active: self.active.max(o.active),
         }
     }
 
@@ -136,6 +148,7 @@ impl<const N: usize> Dual2<N> {
                 self.h * c
             },
             affine: self.affine,
+            active: self.active,
         }
     }
 
@@ -171,6 +184,7 @@ impl<const N: usize> std::ops::Add for Dual2<N> {
                 self.h + o.h
             },
             affine,
+            active: self.active.max(o.active),
         }
     }
 }
@@ -200,20 +214,24 @@ pub fn sum_of_products<const N: usize>(terms: &[(&Dual2<N>, &Dual2<N>, f64)]) ->
         g: SVector::<f64, N>::zeros(),
         h: SMatrix::<f64, N, N>::zeros(),
         affine: false,
+        active: 0,
     };
     for &(a, b, s) in terms {
         let (sa, sb) = (s * a.v, s * b.v);
         out.v += s * a.v * b.v;
-        for i in 0..N {
+        // Entries outside the factors' active prefix would add zeros.
+        let m = a.active.max(b.active);
+        out.active = out.active.max(m);
+        for i in 0..m {
             out.g[i] += a.g[i] * sb + b.g[i] * sa;
         }
         // Entry loops, each entry updated in the order h + a.h·sb + b.h·sa + (outer products):
         // matrix expressions here built N×N temporaries, and copying them was a fifth of a
         // shell assembly.
-        for j in 0..N {
+        for j in 0..m {
             let (aj, bj) = (s * a.g[j], s * b.g[j]);
             let outer = !(aj == 0.0 && bj == 0.0);
-            for i in 0..N {
+            for i in 0..m {
                 let mut x = out.h[(i, j)];
                 if !a.affine {
                     x += a.h[(i, j)] * sb;
