@@ -456,52 +456,57 @@ impl BandRows<'_> {
 /// b ← (L D Lᵀ)⁻¹ b for a band factor of half-bandwidth `bw` (`BW` as in [`BandRows`]: the
 /// same operations in the same order on both paths).
 fn solve_rows<const BW: usize>(l: &[f64], d: &[f64], bw: usize, b: &mut [f64]) {
-    let n = b.len();
-    debug_assert!(BW == 0 || BW == bw);
-    // Forward substitution L y = b (row-oriented dot products).
-    for i in 0..n {
-        if BW > 0 && i >= BW {
-            let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
-            let (above, below) = b.split_at_mut(i);
-            let y: &[f64; BW] = above[i - BW..].try_into().expect("width BW");
-            let mut dot = -0.0;
-            for k in 0..BW {
-                dot += row[k] * y[k];
-            }
-            below[0] -= dot;
-        } else {
-            let lo = i.saturating_sub(bw);
-            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
-            let dot: f64 = row.iter().zip(&b[lo..i]).map(|(l, y)| l * y).sum();
-            b[i] -= dot;
-        }
+    solve_rows_block::<BW, 1>(l, d, bw, [b]);
+}
+
+/// Row i of the forward substitution L y = b (a row-oriented dot product), any width.
+#[inline]
+fn forward_row(l: &[f64], bw: usize, i: usize, b: &mut [f64]) {
+    let lo = i.saturating_sub(bw);
+    let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
+    let dot: f64 = row.iter().zip(&b[lo..i]).map(|(l, y)| l * y).sum();
+    b[i] -= dot;
+}
+
+/// [`forward_row`] for a row i ≥ BW of a band of width BW, in fixed-size loops.
+#[inline]
+fn forward_row_fixed<const BW: usize>(l: &[f64], i: usize, b: &mut [f64]) {
+    let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
+    let (above, below) = b.split_at_mut(i);
+    let y: &[f64; BW] = above[i - BW..].try_into().expect("width BW");
+    let mut dot = -0.0;
+    for k in 0..BW {
+        dot += row[k] * y[k];
     }
-    for (x, d) in b.iter_mut().zip(d) {
-        *x /= d;
-    }
-    // Back substitution Lᵀ x = z: once x_i is final, remove its contribution from the rows
-    // above (column-oriented, so L is still read row by row).
-    for i in (0..n).rev() {
-        let xi = b[i];
-        if BW > 0 && i >= BW {
-            let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
-            let x: &mut [f64; BW] = (&mut b[i - BW..i]).try_into().expect("width BW");
-            for k in 0..BW {
-                x[k] -= row[k] * xi;
-            }
-        } else {
-            let lo = i.saturating_sub(bw);
-            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
-            for (x, l) in b[lo..i].iter_mut().zip(row) {
-                *x -= l * xi;
-            }
-        }
+    below[0] -= dot;
+}
+
+/// Row i of the back substitution Lᵀ x = z: once x_i is final, its contribution is removed
+/// from the rows above (column-oriented, so L is still read row by row), any width.
+#[inline]
+fn back_row(l: &[f64], bw: usize, i: usize, b: &mut [f64]) {
+    let xi = b[i];
+    let lo = i.saturating_sub(bw);
+    let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
+    for (x, l) in b[lo..i].iter_mut().zip(row) {
+        *x -= l * xi;
     }
 }
 
-/// [`solve_rows`] for `K` right-hand sides at once (`BW` > 0): the rows past `BW` run the `K`
+/// [`back_row`] for a row i ≥ BW of a band of width BW, in fixed-size loops.
+#[inline]
+fn back_row_fixed<const BW: usize>(l: &[f64], i: usize, b: &mut [f64]) {
+    let xi = b[i];
+    let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
+    let x: &mut [f64; BW] = (&mut b[i - BW..i]).try_into().expect("width BW");
+    for k in 0..BW {
+        x[k] -= row[k] * xi;
+    }
+}
+
+/// [`solve_rows`] for `K` right-hand sides at once: the rows past `BW` run the `K`
 /// substitutions side by side, so that their dependency chains overlap; each vector sees the
-/// same operations in the same order as alone.
+/// same operations in the same order as alone. `BW = 0`: the general loops for every row.
 fn solve_rows_block<const BW: usize, const K: usize>(
     l: &[f64],
     d: &[f64],
@@ -509,28 +514,16 @@ fn solve_rows_block<const BW: usize, const K: usize>(
     mut bs: [&mut [f64]; K],
 ) {
     let n = d.len();
-    debug_assert!(BW > 0 && BW == bw);
-    let head = BW.min(n);
-    // Forward substitution L y = b: the first BW rows one vector at a time, then the rest
-    // interleaved.
+    debug_assert!(BW == 0 || BW == bw);
+    let head = if BW == 0 { n } else { BW.min(n) };
     for b in bs.iter_mut() {
         for i in 0..head {
-            let lo = i.saturating_sub(bw);
-            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
-            let dot: f64 = row.iter().zip(&b[lo..i]).map(|(l, y)| l * y).sum();
-            b[i] -= dot;
+            forward_row(l, bw, i, b);
         }
     }
     for i in head..n {
-        let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
         for b in bs.iter_mut() {
-            let (above, below) = b.split_at_mut(i);
-            let y: &[f64; BW] = above[i - BW..].try_into().expect("width BW");
-            let mut dot = -0.0;
-            for k in 0..BW {
-                dot += row[k] * y[k];
-            }
-            below[0] -= dot;
+            forward_row_fixed::<BW>(l, i, b);
         }
     }
     for b in bs.iter_mut() {
@@ -538,25 +531,14 @@ fn solve_rows_block<const BW: usize, const K: usize>(
             *x /= d;
         }
     }
-    // Back substitution Lᵀ x = z, interleaved down to row BW, then one vector at a time.
     for i in (head..n).rev() {
-        let row: &[f64; BW] = l[i * BW..(i + 1) * BW].try_into().expect("width BW");
         for b in bs.iter_mut() {
-            let xi = b[i];
-            let x: &mut [f64; BW] = (&mut b[i - BW..i]).try_into().expect("width BW");
-            for k in 0..BW {
-                x[k] -= row[k] * xi;
-            }
+            back_row_fixed::<BW>(l, i, b);
         }
     }
     for b in bs.iter_mut() {
         for i in (0..head).rev() {
-            let xi = b[i];
-            let lo = i.saturating_sub(bw);
-            let row = &l[i * bw + (lo + bw - i)..(i + 1) * bw];
-            for (x, l) in b[lo..i].iter_mut().zip(row) {
-                *x -= l * xi;
-            }
+            back_row(l, bw, i, b);
         }
     }
 }
@@ -678,11 +660,7 @@ impl SymmetricFactor<SymmetricBandMatrix> for BandLdlt {
             10 => solve_rows_block::<10, K>(&self.l, &self.d, bw, bs),
             11 => solve_rows_block::<11, K>(&self.l, &self.d, bw, bs),
             12 => solve_rows_block::<12, K>(&self.l, &self.d, bw, bs),
-            _ => {
-                for b in bs {
-                    solve_rows::<0>(&self.l, &self.d, bw, b);
-                }
-            }
+            _ => solve_rows_block::<0, K>(&self.l, &self.d, bw, bs),
         }
     }
 }
