@@ -114,6 +114,11 @@ const ROUNDOFF_STEP: f64 = 16.0 * f64::EPSILON;
 const MIN_SHIFT: f64 = 1e-8;
 /// Largest shift before giving up, in the same relative units.
 const MAX_SHIFT: f64 = 1e12;
+/// A gradient whose cosine with the lowest mode (mass metric, see [`mass_metric_cosine`]) is
+/// above this is no symmetric saddle: the precise test asks for 1e-9 (identity metric), and
+/// the mode of the shift, converged to 1e-3 in λ, is off a symmetric mode by far less than
+/// this unless the lowest two modes nearly coincide.
+const SADDLE_SCREEN: f64 = 1e-2;
 
 /// Newton's method at load factor `load`, starting from and updating `state`.
 ///
@@ -181,10 +186,38 @@ pub fn newton<P: EquilibriumProblem>(
         let positive_definite = inertia.is_some_and(|i| i.is_positive_definite());
         // At a saddle the unshifted step is kept only if it descends: with several unstable
         // modes the gradient may be orthogonal to the lowest one and not to the others.
+        let descends = inertia.is_some() && dot(&ws.grad, &ws.dx) < 0.0;
+        // Indefinite or singular: the lowest mode in the mass metric sizes the shift below.
+        // It is computed first because it also screens the symmetric-saddle test: a gradient
+        // with a clear component along it is no symmetric saddle, and the precise test (a
+        // cold eigensolve of its own) is then skipped.
+        let mut lambda = 0.0;
+        let mut screened = false;
+        if !positive_definite {
+            for i in 0..n {
+                ws.diag[i] = problem.inertia_metric(i);
+            }
+            lambda = match lowest_mode_with(
+                problem,
+                &ws.hess,
+                false,
+                &mut ws.scaled,
+                &mut ws.ldlt,
+                1e-3,
+                &mut ws.eigen,
+                &mut ws.shift_mode,
+            ) {
+                Ok(()) => {
+                    screened = ws.shift_mode.value < 0.0
+                        && mass_metric_cosine(&ws.grad, &ws.shift_mode.shape, &ws.diag)
+                            > SADDLE_SCREEN;
+                    ws.shift_mode.value
+                }
+                Err(_) => 0.0,
+            };
+        }
         if positive_definite
-            || (inertia.is_some()
-                && dot(&ws.grad, &ws.dx) < 0.0
-                && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
+            || (descends && !screened && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
         {
             // Positive definite: the Newton step. At a symmetric saddle (the gradient has no
             // component along the unstable mode, e.g. a planar state under planar loads) the
@@ -198,22 +231,6 @@ pub fn newton<P: EquilibriumProblem>(
             // shift does not smother the soft bending directions the way a shift scaled by
             // diag(H) (dominated by the stretching stiffness) would: it acts like a
             // pseudo-time step. μ = 2|λ_min(H, M)| leaves a margin of |λ_min| on every mode.
-            for i in 0..n {
-                ws.diag[i] = problem.inertia_metric(i);
-            }
-            let lambda = match lowest_mode_with(
-                problem,
-                &ws.hess,
-                false,
-                &mut ws.scaled,
-                &mut ws.ldlt,
-                1e-3,
-                &mut ws.eigen,
-                &mut ws.shift_mode,
-            ) {
-                Ok(()) => ws.shift_mode.value,
-                Err(_) => 0.0,
-            };
             shift = shift
                 .max(2.0 * lambda.min(0.0).abs())
                 .max(MIN_SHIFT * ws.hess.max_abs_diagonal() / max_entry(&ws.diag));
@@ -595,6 +612,23 @@ fn factor_shifted<S, M: SymmetricMatrix>(
         ws.hess.add(i, i, -shift * ws.diag[i]);
     }
     ok
+}
+
+/// |cos| of the angle between the gradient and an M-normalized mode `shape` (vᵀMv = 1), both
+/// measured in the mass metric: |gᵀv| / ‖M^{-1/2} g‖ (`mass` holds M's diagonal).
+fn mass_metric_cosine(grad: &[f64], shape: &[f64], mass: &[f64]) -> f64 {
+    let g_norm = grad
+        .iter()
+        .zip(mass)
+        .map(|(g, m)| g * g / m)
+        .sum::<f64>()
+        .sqrt();
+    let c = dot(grad, shape).abs() / g_norm;
+    if c.is_finite() {
+        c
+    } else {
+        0.0
+    }
 }
 
 /// True if the gradient is orthogonal (to round-off) to the lowest eigenvector of `hess`,
