@@ -556,6 +556,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         load: f64,
         target: f64,
     ) {
+        let ratio = ratio.filter(|_| problem.secant_predictor());
         match ratio {
             Some(ratio) => {
                 problem.difference(state, &self.previous, &mut self.predictor);
