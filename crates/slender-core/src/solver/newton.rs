@@ -231,7 +231,11 @@ pub fn newton<P: EquilibriumProblem>(
             // shift does not smother the soft bending directions the way a shift scaled by
             // diag(H) (dominated by the stretching stiffness) would: it acts like a
             // pseudo-time step. μ = 2|λ_min(H, M)| leaves a margin of |λ_min| on every mode.
-            shift = shift
+            // The last shift decays by half per iteration here too (λ_min is measured anew at
+            // each indefinite iterate): kept whole, the shift of a far-off first iterate (a
+            // poor first guess, |λ_min| at the stretching scale) made every later step a tiny
+            // pseudo-time step, and the load step failed after max_iterations.
+            shift = (0.5 * shift)
                 .max(2.0 * lambda.min(0.0).abs())
                 .max(MIN_SHIFT * ws.hess.max_abs_diagonal() / max_entry(&ws.diag));
             loop {
