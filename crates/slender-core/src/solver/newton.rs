@@ -140,6 +140,8 @@ pub fn newton<P: EquilibriumProblem>(
     let mut previous_residual: Option<f64> = None;
     // Newton decrement of the previous measured iterate (quadratic-convergence forecast).
     let mut previous_decrement: Option<f64> = None;
+    // Consecutive iterations with a shifted (indefinite) step.
+    let mut shifted_run = 0;
     for iteration in 0..=params.max_iterations {
         let (measures, info) = measure(problem, state, load, params, ws);
         last = measures;
@@ -225,7 +227,16 @@ pub fn newton<P: EquilibriumProblem>(
             // instability is then reported by the inertia (design.md §4.2, §4.5); shifting
             // would only slow convergence to it. `dx` holds the unshifted step already.
             shift *= 0.5;
+            shifted_run = 0;
         } else {
+            shifted_run += 1;
+            if params.indefinite_patience.is_some_and(|k| shifted_run > k) {
+                return failed(
+                    iteration,
+                    &format!("indefinite Hessian for {} iterations", shifted_run - 1),
+                    last,
+                );
+            }
             // Indefinite or singular: shift by a multiple of the mass matrix M, H + μM. In that
             // metric every mode is measured in the same units (squared frequencies), so the
             // shift does not smother the soft bending directions the way a shift scaled by
