@@ -5,7 +5,7 @@ use faer::{Mat, Side};
 use slender_core::linalg::banded::{
     smallest_eigenpair, BandLdlt, EigenEstimate, FactorError, Inertia, SymmetricBandMatrix,
 };
-use slender_core::linalg::{SymmetricFactor, SymmetricMatrix};
+use slender_core::linalg::{smallest_eigenpair_near, SymmetricFactor, SymmetricMatrix};
 
 /// Deterministic xorshift64 generator (no RNG crate, reproducible failures).
 struct XorShift(u64);
@@ -277,6 +277,61 @@ fn smallest_eigenpair_matches_dense_pd_and_indefinite() {
 }
 
 /// Documented accuracy: |λ̂ − λ| ≤ max(rel_tol·|λ|, 64·ε·s) plus rounding in the counts.
+/// The warm start (a guessed eigenvector) keeps the accuracy of the cold solve, whatever the
+/// guess: the eigenvector of a perturbed matrix (the Newton use), an arbitrary vector, or one
+/// of the wrong length (ignored); and a good guess needs fewer factorizations.
+#[test]
+fn smallest_eigenpair_near_matches_dense_for_any_guess() {
+    let mut ws = BandLdlt::new();
+    let (mut cold_total, mut warm_total) = (0, 0);
+    for &bw in &BANDWIDTHS {
+        for &n in &[10usize, 64, 200] {
+            for seed in 0..2u64 {
+                let mut rng = XorShift::new(9000 + 1000 * n as u64 + 10 * bw as u64 + seed);
+                let a = random_band(&mut rng, n, bw);
+                // The previous iterate's matrix: `a` perturbed by 1 %.
+                let mut b = a.clone();
+                for i in 0..n {
+                    for j in i.saturating_sub(bw)..=i {
+                        b.add(i, j, 0.01 * rng.uniform());
+                    }
+                }
+                let previous = smallest_eigenpair(&b, &mut ws, 1e-11).expect("previous");
+                let eigs = eigenvalues(&a);
+                let s = spectral_radius(&eigs);
+                let lambda = eigs[0];
+                let arbitrary: Vec<f64> = (0..n).map(|_| rng.uniform()).collect();
+                let cold = smallest_eigenpair(&a, &mut ws, 1e-11).expect("cold");
+                for (name, guess) in [
+                    ("previous", &previous.vector[..]),
+                    ("arbitrary", &arbitrary[..]),
+                    ("wrong length", &arbitrary[1..]),
+                ] {
+                    let est = smallest_eigenpair_near(&a, &mut ws, 1e-11, Some(guess))
+                        .unwrap_or_else(|e| panic!("{name} n={n} bw={bw}: {e}"));
+                    let ctx = format!("{name} n={n} bw={bw} seed={seed}: λ={lambda}");
+                    let err = (est.value - lambda).abs();
+                    assert!(
+                        err <= 1e-9 * lambda.abs().max(1e-14 * s),
+                        "{ctx}, est={}, err={err:e}",
+                        est.value
+                    );
+                    let res = eig_residual(&a, &est);
+                    assert!(res <= 1e-9 * s, "{ctx}: residual {res:e}");
+                    if name == "previous" {
+                        cold_total += cold.iterations;
+                        warm_total += est.iterations;
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        warm_total < cold_total,
+        "factorizations: warm {warm_total}, cold {cold_total}"
+    );
+}
+
 fn documented_bound(lambda: f64, rel_tol: f64, s: f64, bw: usize) -> f64 {
     (rel_tol * lambda.abs()).max(64.0 * f64::EPSILON * s)
         + 4.0 * (bw as f64 + 1.0) * f64::EPSILON * s

@@ -75,6 +75,13 @@ impl EquilibriumProblem for BsplineShell {
         self.energy(trial, load) - left_out
     }
 
+    fn secant_predictor(&self) -> bool {
+        // As for the mid-edge shell: a strip held at one end turns rigidly with its clamp in
+        // the first guess; the secant step would stretch it at second order.
+        let motions = &self.load_path.motions;
+        motions.is_empty() || motions.iter().any(|m| self.is_clamped(m.end.other()))
+    }
+
     fn impose_load(&self, state: &mut BsplineState, from: f64, to: f64, guess: bool) {
         let motions = &self.load_path.motions;
         if motions.is_empty() {

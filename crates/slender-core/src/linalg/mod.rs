@@ -10,6 +10,6 @@ pub mod symmetric;
 
 pub use adaptive::{AdaptiveLdlt, AdaptiveMatrix};
 pub use banded::{BandLdlt, SymmetricBandMatrix};
-pub use eigen::{smallest_eigenpair, EigenEstimate};
+pub use eigen::{smallest_eigenpair, smallest_eigenpair_near, EigenEstimate};
 pub use sparse::{SparseLdlt, SparseSymmetricMatrix};
 pub use symmetric::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};

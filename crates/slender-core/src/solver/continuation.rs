@@ -165,6 +165,12 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         to: f64,
     ) -> SolveReport {
         let params = self.params;
+        // Only the load steps' solves may give up early on an indefinite Hessian (see
+        // `SolverParams::indefinite_patience`); whatever cannot halve its step may not.
+        let unlimited = SolverParams {
+            indefinite_patience: None,
+            ..params
+        };
         let span = to - from;
         let mut load = from;
         let mut step = params.initial_load_step.min(params.max_load_step) * span;
@@ -186,8 +192,8 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
 
         // Span 0 (e.g. a warm re-solve at the same load): a single Newton solve.
         if span == 0.0 {
-            let out = newton(problem, state, to, &params, &mut self.ws);
-            let out = settle_loads(problem, state, to, &params, &mut self.ws, out);
+            let out = newton(problem, state, to, &unlimited, &mut self.ws);
+            let out = settle_loads(problem, state, to, &unlimited, &mut self.ws, out);
             iterations += out.iterations;
             last = out.last;
             if !out.converged {
@@ -236,7 +242,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     self.predict(problem, state, None, load, target);
                     let long = SolverParams {
                         max_iterations: params.snap_iterations,
-                        ..params
+                        ..unlimited
                     };
                     out = newton(problem, &mut self.candidate, target, &long, &mut self.ws);
                     iterations += out.iterations;
@@ -249,7 +255,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     problem,
                     &mut self.candidate,
                     target,
-                    &params,
+                    &unlimited,
                     &mut self.ws,
                     out,
                 );
@@ -280,7 +286,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                             continue;
                         }
                         // Just past it: follow the unstable mode to the stable branch.
-                        let (switched, its) = self.switch_branch(problem, target, &params);
+                        let (switched, its) = self.switch_branch(problem, target, &unlimited);
                         iterations += its;
                         if let Some(o) = switched {
                             switches += 1;
@@ -556,6 +562,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         load: f64,
         target: f64,
     ) {
+        let ratio = ratio.filter(|_| problem.secant_predictor());
         match ratio {
             Some(ratio) => {
                 problem.difference(state, &self.previous, &mut self.predictor);

@@ -7,7 +7,7 @@ use crate::linalg::{Inertia, SymmetricBandMatrix, SymmetricFactor, SymmetricMatr
 use super::line_search::{armijo_backtracking, LineSearch};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
-use super::stability::{lowest_mode_with, EigenWorkspace, LowestMode};
+use super::stability::{slice_lowest_mode, EigenWorkspace, LowestMode};
 
 /// Buffers reused across Newton iterations and solves: nothing is allocated per iteration.
 #[derive(Clone, Debug)]
@@ -114,6 +114,11 @@ const ROUNDOFF_STEP: f64 = 16.0 * f64::EPSILON;
 const MIN_SHIFT: f64 = 1e-8;
 /// Largest shift before giving up, in the same relative units.
 const MAX_SHIFT: f64 = 1e12;
+/// A gradient whose cosine with the lowest mode (mass metric, see [`mass_metric_cosine`]) is
+/// above this is no symmetric saddle: the precise test asks for 1e-9 (identity metric), and
+/// the mode of the shift, converged to 1e-3 in λ, is off a symmetric mode by far less than
+/// this unless the lowest two modes nearly coincide.
+const SADDLE_SCREEN: f64 = 1e-2;
 
 /// Newton's method at load factor `load`, starting from and updating `state`.
 ///
@@ -135,6 +140,10 @@ pub fn newton<P: EquilibriumProblem>(
     let mut previous_residual: Option<f64> = None;
     // Newton decrement of the previous measured iterate (quadratic-convergence forecast).
     let mut previous_decrement: Option<f64> = None;
+    // Consecutive iterations with a shifted (indefinite) step.
+    let mut shifted_run = 0;
+    // Whether `ws.shift_mode` holds the lowest mode of an earlier iterate of this solve.
+    let mut mode_known = false;
     for iteration in 0..=params.max_iterations {
         let (measures, info) = measure(problem, state, load, params, ws);
         last = measures;
@@ -181,10 +190,43 @@ pub fn newton<P: EquilibriumProblem>(
         let positive_definite = inertia.is_some_and(|i| i.is_positive_definite());
         // At a saddle the unshifted step is kept only if it descends: with several unstable
         // modes the gradient may be orthogonal to the lowest one and not to the others.
+        let descends = inertia.is_some() && dot(&ws.grad, &ws.dx) < 0.0;
+        // Indefinite or singular: the lowest mode in the mass metric sizes the shift below.
+        // It is computed first because it also screens the symmetric-saddle test: a gradient
+        // with a clear component along it is no symmetric saddle, and the precise test (a
+        // cold eigensolve of its own) is then skipped.
+        let mut lambda = 0.0;
+        let mut screened = false;
+        if !positive_definite {
+            for i in 0..n {
+                ws.diag[i] = problem.inertia_metric(i);
+            }
+            // From the second indefinite iterate of a solve on, the last iterate's mode starts
+            // the eigensolve: the Hessian changed by one step, and the slicing closes in a few
+            // factorizations instead of bisecting from the Gershgorin bound.
+            let warm = std::mem::take(&mut mode_known);
+            lambda = match slice_lowest_mode(
+                problem,
+                &ws.hess,
+                &mut ws.scaled,
+                &mut ws.ldlt,
+                1e-3,
+                &mut ws.eigen,
+                &mut ws.shift_mode,
+                warm,
+            ) {
+                Ok(()) => {
+                    mode_known = true;
+                    screened = ws.shift_mode.value < 0.0
+                        && mass_metric_cosine(&ws.grad, &ws.shift_mode.shape, &ws.diag)
+                            > SADDLE_SCREEN;
+                    ws.shift_mode.value
+                }
+                Err(_) => 0.0,
+            };
+        }
         if positive_definite
-            || (inertia.is_some()
-                && dot(&ws.grad, &ws.dx) < 0.0
-                && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
+            || (descends && !screened && saddle_is_symmetric(&ws.hess, &ws.grad, &mut ws.ldlt))
         {
             // Positive definite: the Newton step. At a symmetric saddle (the gradient has no
             // component along the unstable mode, e.g. a planar state under planar loads) the
@@ -192,29 +234,26 @@ pub fn newton<P: EquilibriumProblem>(
             // instability is then reported by the inertia (design.md §4.2, §4.5); shifting
             // would only slow convergence to it. `dx` holds the unshifted step already.
             shift *= 0.5;
+            shifted_run = 0;
         } else {
+            shifted_run += 1;
+            if params.indefinite_patience.is_some_and(|k| shifted_run > k) {
+                return failed(
+                    iteration,
+                    &format!("indefinite Hessian for {} iterations", shifted_run - 1),
+                    last,
+                );
+            }
             // Indefinite or singular: shift by a multiple of the mass matrix M, H + μM. In that
             // metric every mode is measured in the same units (squared frequencies), so the
             // shift does not smother the soft bending directions the way a shift scaled by
             // diag(H) (dominated by the stretching stiffness) would: it acts like a
             // pseudo-time step. μ = 2|λ_min(H, M)| leaves a margin of |λ_min| on every mode.
-            for i in 0..n {
-                ws.diag[i] = problem.inertia_metric(i);
-            }
-            let lambda = match lowest_mode_with(
-                problem,
-                &ws.hess,
-                false,
-                &mut ws.scaled,
-                &mut ws.ldlt,
-                1e-3,
-                &mut ws.eigen,
-                &mut ws.shift_mode,
-            ) {
-                Ok(()) => ws.shift_mode.value,
-                Err(_) => 0.0,
-            };
-            shift = shift
+            // The last shift decays by half per iteration here too (λ_min is measured anew at
+            // each indefinite iterate): kept whole, the shift of a far-off first iterate (a
+            // poor first guess, |λ_min| at the stretching scale) made every later step a tiny
+            // pseudo-time step, and the load step failed after max_iterations.
+            shift = (0.5 * shift)
                 .max(2.0 * lambda.min(0.0).abs())
                 .max(MIN_SHIFT * ws.hess.max_abs_diagonal() / max_entry(&ws.diag));
             loop {
@@ -595,6 +634,23 @@ fn factor_shifted<S, M: SymmetricMatrix>(
         ws.hess.add(i, i, -shift * ws.diag[i]);
     }
     ok
+}
+
+/// |cos| of the angle between the gradient and an M-normalized mode `shape` (vᵀMv = 1), both
+/// measured in the mass metric: |gᵀv| / ‖M^{-1/2} g‖ (`mass` holds M's diagonal).
+fn mass_metric_cosine(grad: &[f64], shape: &[f64], mass: &[f64]) -> f64 {
+    let g_norm = grad
+        .iter()
+        .zip(mass)
+        .map(|(g, m)| g * g / m)
+        .sum::<f64>()
+        .sqrt();
+    let c = dot(grad, shape).abs() / g_norm;
+    if c.is_finite() {
+        c
+    } else {
+        0.0
+    }
 }
 
 /// True if the gradient is orthogonal (to round-off) to the lowest eigenvector of `hess`,

@@ -75,6 +75,16 @@ pub struct SolverParams {
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub chord_final_check: bool,
+    /// A load step's Newton solve gives up after this many consecutive iterations on an
+    /// indefinite Hessian (shifted steps), so that the continuation halves the step at once
+    /// instead of after `max_iterations`: a step that lands near a saddle crawls away from it
+    /// with shifted steps, where the half step converges in a few Newton iterations. Snap
+    /// retries, branch switches and single solves (zero load span) are not limited. `None`
+    /// (the default): no limit. Not part of the scene file: the lateral-buckling protocol
+    /// sets it.
+    #[serde(skip)]
+    #[cfg_attr(feature = "schema", schemars(skip))]
+    pub indefinite_patience: Option<usize>,
 }
 
 impl Default for SolverParams {
@@ -96,6 +106,7 @@ impl Default for SolverParams {
             follow_stable: false,
             chord_predictor: false,
             chord_final_check: false,
+            indefinite_patience: None,
         }
     }
 }
@@ -137,6 +148,9 @@ impl SolverParams {
                 self.polish_iterations.unwrap_or(0) as f64,
                 "in 0..=100",
             ));
+        }
+        if self.indefinite_patience == Some(0) {
+            return Err(ModelError::parameter("indefinite_patience", 0.0, ">= 1"));
         }
         if self.max_iterations == 0 {
             return Err(ModelError::parameter("max_iterations", 0.0, ">= 1"));

@@ -138,6 +138,14 @@ pub trait EquilibriumProblem: MassMetric {
         false
     }
 
+    /// False if the continuation should start every load step from the model's first guess
+    /// ([`impose_load`](Self::impose_load) with `guess`) instead of the secant predictor: a
+    /// load path that turns the structure, whose linear extrapolation stretches it at second
+    /// order (a strip turning with its clamp). Default true.
+    fn secant_predictor(&self) -> bool {
+        true
+    }
+
     /// Length (m) that turns the generalized force of DOF `i` into a force: 1 for coordinates,
     /// a characteristic length for angles (whose generalized forces are moments).
     fn force_length(&self, i: usize) -> f64;

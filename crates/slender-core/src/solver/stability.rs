@@ -7,7 +7,8 @@
 //! and scale with the mesh, so we solve H v = λ M v with the lumped mass matrix M: λ is the
 //! square of the lowest natural frequency (1/s²), a physical and mesh-independent quantity.
 
-use crate::linalg::{smallest_eigenpair, FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
+use crate::linalg::eigen::smallest_eigenpair_near;
+use crate::linalg::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
 
 use super::problem::{EquilibriumProblem, MassMetric};
 
@@ -167,8 +168,36 @@ pub fn lowest_mode_with<P: EquilibriumProblem>(
     if positive_definite_factor && inverse_iteration(problem, n, ldlt, rel_tol, ws, mode) {
         return Ok(());
     }
+    slice_lowest_mode(problem, hess, scaled, ldlt, rel_tol, ws, mode, false)
+}
+
+/// As [`lowest_mode_with`] without a positive definite factorization (spectrum slicing of the
+/// mass-scaled Hessian); with `warm`, the mode already in `mode` (of a nearby Hessian of the
+/// same problem) is the start of the slicing ([`smallest_eigenpair_near`]).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn slice_lowest_mode<P: EquilibriumProblem>(
+    problem: &P,
+    hess: &P::Hessian,
+    scaled: &mut P::Hessian,
+    ldlt: &mut <P::Hessian as SymmetricMatrix>::Factor,
+    rel_tol: f64,
+    ws: &mut EigenWorkspace,
+    mode: &mut LowestMode,
+    warm: bool,
+) -> Result<(), FactorError> {
+    let n = hess.dim();
+    ws.prepare(problem, n);
     hess.congruence_scaled(&ws.inv_sqrt_m, scaled);
-    let est = smallest_eigenpair::<P::Hessian>(scaled, ldlt, rel_tol)?;
+    let guess = if warm && mode.shape.len() == n {
+        // The M-normalized shape in the scaled coordinates: M^{1/2} v.
+        for i in 0..n {
+            ws.w[0][i] = mode.shape[i] / ws.inv_sqrt_m[i];
+        }
+        Some(&ws.w[0][..])
+    } else {
+        None
+    };
+    let est = smallest_eigenpair_near::<P::Hessian>(scaled, ldlt, rel_tol, guess)?;
     mode.shape.clear();
     mode.shape
         .extend(est.vector.iter().zip(&ws.inv_sqrt_m).map(|(v, s)| v * s));
