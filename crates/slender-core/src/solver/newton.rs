@@ -106,6 +106,10 @@ pub struct NewtonOutcome {
 /// accepted at once; above it, only once Newton stops improving it.
 const FLOOR_ACCEPT: f64 = 1e-6;
 
+/// After a chord final check that lowered the residual by at least this factor without
+/// converging, a second chord step is taken before a new Hessian is assembled.
+const CHORD_AGAIN: f64 = 1e-2;
+
 /// Largest relative step (per DOF magnitude) still considered a change of the state.
 const TINY_STEP: f64 = 1e-13;
 /// Relative step (per DOF magnitude) at which a polishing step is rounding noise: 16 ε.
@@ -168,7 +172,17 @@ pub fn newton<P: EquilibriumProblem>(
             && inertia.is_some_and(|i| i.is_positive_definite())
             && next_decrement_passes(&last, forecast, &info, params)
         {
-            match chord_final_check(problem, state, load, params, ws, &mut last) {
+            let mut check = chord_final_check(problem, state, load, params, ws, &mut last);
+            if matches!(check, ChordCheck::Improved) && last.residual <= CHORD_AGAIN * residual {
+                // The step converged like Newton but the residual is still above the target:
+                // the same factorization gives one more step of the same quality, at the cost
+                // of a gradient instead of a Hessian and its factorization.
+                check = match chord_final_check(problem, state, load, params, ws, &mut last) {
+                    ChordCheck::Rejected => ChordCheck::Improved,
+                    other => other,
+                };
+            }
+            match check {
                 ChordCheck::Converged => {
                     polish(problem, state, load, params, ws, &mut last);
                     return NewtonOutcome {
@@ -590,6 +604,11 @@ fn polish<P: EquilibriumProblem>(
             last.energy = info.energy;
             last.decrement = dot(&ws.grad, &ws.dx).abs();
             last.hessian_lags = true;
+            if r <= floor / params.roundoff_factor {
+                // At the rounding of the term forces themselves (the floor without its safety
+                // factor): no step can do better.
+                return;
+            }
             if halved {
                 continue;
             }

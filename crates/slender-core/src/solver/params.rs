@@ -68,8 +68,10 @@ pub struct SolverParams {
     /// Newton step and test convergence at the new point with a gradient-only assembly and the
     /// chord decrement (the step with the iterate's factorization), instead of assembling and
     /// factoring the Hessian there: one assembly of the Hessian and one factorization fewer per
-    /// solve. The inertia, λ_min and factorization reported are then those of the Hessian one
-    /// below-tolerance step before the returned state (where the stability analysis needs
+    /// solve. If that full step lowered the residual a hundredfold but not yet below the target,
+    /// a second chord step with the same factorization follows before a new Hessian is
+    /// assembled. The inertia, λ_min and factorization reported are then those of the Hessian
+    /// one or two below-tolerance steps before the returned state (where the stability analysis needs
     /// more — an eigenvalue in the null band — the state is measured again). Not part of the
     /// scene file: scene sessions turn it on; benchmarks keep it off.
     #[serde(skip)]
