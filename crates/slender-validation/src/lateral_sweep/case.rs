@@ -256,10 +256,15 @@ fn protocol<S: StripModel>(
     load_steps: usize,
     params: &SolverParams,
 ) -> ProtocolOutcome {
-    // Only the last state's inertia is reported; the stages need no eigenvalue.
+    // Only the last state's inertia is reported; the stages need no eigenvalue, and their
+    // last iterate no Hessian: a stage's converged state is measured (residual and decrement)
+    // by a gradient-only assembly after the full Newton step (`chord_final_check`; its
+    // inertia would lag one step, and no stage reports one). The final re-equilibration
+    // below measures the end state with its own Hessian.
     let params = SolverParams {
         compute_lambda_min: false,
         indefinite_patience: Some(INDEFINITE_PATIENCE),
+        chord_final_check: true,
         ..*params
     };
     let mut state = shell.rest();
@@ -275,6 +280,10 @@ fn protocol<S: StripModel>(
     // The first stage that failed, if any: its report is the one returned.
     let mut failure: Option<SolveReport> = None;
     for k in 0..load_steps {
+        // Gravity steps after the first start from the tangent predictor: the first Newton
+        // step from the last equilibrium, solved with that equilibrium's factorization
+        // (`chord_predictor`), which saves its Hessian assembly and factorization.
+        solver.params.chord_predictor = true;
         let report = solver.solve_in_place(&*shell, &mut state, k as f64 / m, (k + 1) as f64 / m);
         iterations += report.iterations;
         if !report.converged() {
@@ -288,6 +297,11 @@ fn protocol<S: StripModel>(
         let from = sigma * (1.0 - (k - 1) as f64 / m);
         let to = sigma * (1.0 - k as f64 / m);
         shell.rotate_clamp(from, to);
+        // Not for the clamp turns: the first guess there is the rigidly turned strip, whose
+        // Hessian is the last one turned with it, and a step solved with the unturned
+        // factorization would see the turned strip's lateral (bending) motion partly as
+        // in-plane (membrane) motion.
+        solver.params.chord_predictor = false;
         let report = solver.solve_in_place(&*shell, &mut state, 0.0, 1.0);
         iterations += report.iterations;
         if !report.converged() {
@@ -298,6 +312,7 @@ fn protocol<S: StripModel>(
     // Re-equilibrate with the clamp back at 0 (on a converged path this confirms the state in
     // one assembly and measures its residual and inertia).
     shell.ramp_gravity();
+    solver.params.chord_final_check = false;
     let report = solver.solve_in_place(&*shell, &mut state, 1.0, 1.0);
     iterations += report.iterations;
     let converged = failure.is_none() && report.converged();
@@ -306,5 +321,64 @@ fn protocol<S: StripModel>(
         converged,
         report: failure.unwrap_or(report),
         iterations,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::OMEGA_SHELL;
+
+    /// Ramps gravity on the tilted strip in two solves (0 → ½ → 1), the second with or
+    /// without the tangent (chord) predictor; returns the second solve's Newton iterations and
+    /// the free end's centre (m).
+    fn two_gravity_steps<S: StripModel>(shell: &mut S, tangent: bool) -> (usize, Vec3) {
+        let mut state = shell.rest();
+        shell.turn_rigidly(0.2, &mut state);
+        shell.ramp_gravity();
+        let params = SolverParams {
+            compute_lambda_min: false,
+            ..SolverParams::default()
+        };
+        let mut solver = EquilibriumSolver::new(&*shell, &state, params);
+        assert!(solver
+            .solve_in_place(&*shell, &mut state, 0.0, 0.5)
+            .converged());
+        solver.params.chord_predictor = tangent;
+        let report = solver.solve_in_place(&*shell, &mut state, 0.5, 1.0);
+        assert!(report.converged(), "{report:?}");
+        (report.iterations, shell.centre(&state, true))
+    }
+
+    /// The tangent predictor of a gravity step (the first Newton step from the last
+    /// equilibrium, solved with its factorization) saves that step's Newton iteration and
+    /// lands on the same equilibrium, for both shell models (the regular runs of the
+    /// lateral-buckling protocol, where it is used).
+    #[test]
+    fn the_tangent_predictor_saves_an_iteration_and_keeps_the_equilibrium() {
+        for model in [ShellModel::Midedge, ShellModel::Bspline] {
+            let case = LateralBucklingCase {
+                material: OMEGA_SHELL,
+                width_ratio: 0.5,
+                n_length: 8,
+                model,
+            };
+            let mut strip = case.build(17.0).unwrap();
+            let ((plain, end_plain), (tangent, end_tangent), length) = with_strip!(&mut strip, s => (
+                two_gravity_steps(s, false),
+                two_gravity_steps(s, true),
+                s.length(),
+            ));
+            assert!(
+                tangent < plain,
+                "{model:?}: {tangent} iterations with the tangent predictor, {plain} without"
+            );
+            // A lateral deflection of tenths of L: the predictor carried a large step.
+            assert!(end_plain.y.abs() > 0.05 * length, "{end_plain:?}");
+            assert!(
+                (end_tangent - end_plain).norm() < 1e-7 * length,
+                "{model:?}: {end_tangent:?} vs {end_plain:?}"
+            );
+        }
     }
 }
