@@ -224,7 +224,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     target,
                 );
                 if std::mem::take(&mut chord) && params.chord_predictor {
-                    self.chord_step(problem, target);
+                    self.chord_step(problem, load, target);
                 }
                 let mut out = newton(problem, &mut self.candidate, target, &params, &mut self.ws);
                 iterations += out.iterations;
@@ -526,9 +526,15 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
     /// where the step is the one Newton itself would take and keep (the mixed-integration-point
     /// merit leaves that stretch out, see `shell::mixed_update`); for every other model the
     /// merit is the energy.
+    ///
+    /// When the first guess turned the structure rigidly (a strip turned with its clamp,
+    /// [`EquilibriumProblem::turn_free`]), the Hessian there is the previous one turned with
+    /// it: the gradient is turned back, solved with the previous factorization, and the step
+    /// turned forward, which is the turned state's Newton step.
     fn chord_step<P: EquilibriumProblem<State = S, Hessian = M>>(
         &mut self,
         problem: &P,
+        from: f64,
         load: f64,
     ) {
         let n = problem.n_free();
@@ -543,6 +549,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         for i in 0..n {
             self.predictor[i] = -self.ws.grad[i];
         }
+        let turned = problem.turn_free(from, load, &mut self.predictor, true);
         if self
             .ws
             .ldlt
@@ -550,6 +557,9 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             .is_err()
         {
             return;
+        }
+        if turned {
+            problem.turn_free(from, load, &mut self.predictor, false);
         }
         let alpha = problem.max_step(&self.candidate, &self.predictor).min(1.0);
         problem.displace(&self.candidate, &self.predictor, alpha, &mut self.ws.trial);

@@ -279,11 +279,14 @@ fn protocol<S: StripModel>(
     let mut iterations = 0;
     // The first stage that failed, if any: its report is the one returned.
     let mut failure: Option<SolveReport> = None;
+    // Every stage after the first starts from the tangent predictor: the first Newton step
+    // from the last equilibrium (gravity steps) or from the strip turned rigidly with its
+    // clamp (clamp turns, whose Hessian is the last one turned with the strip), solved with
+    // the last equilibrium's factorization (`chord_predictor`, `EquilibriumProblem::turn_free`),
+    // which saves that step's Hessian assembly and factorization. The first stage has no
+    // factorization yet.
+    solver.params.chord_predictor = true;
     for k in 0..load_steps {
-        // Gravity steps after the first start from the tangent predictor: the first Newton
-        // step from the last equilibrium, solved with that equilibrium's factorization
-        // (`chord_predictor`), which saves its Hessian assembly and factorization.
-        solver.params.chord_predictor = true;
         let report = solver.solve_in_place(&*shell, &mut state, k as f64 / m, (k + 1) as f64 / m);
         iterations += report.iterations;
         if !report.converged() {
@@ -297,11 +300,6 @@ fn protocol<S: StripModel>(
         let from = sigma * (1.0 - (k - 1) as f64 / m);
         let to = sigma * (1.0 - k as f64 / m);
         shell.rotate_clamp(from, to);
-        // Not for the clamp turns: the first guess there is the rigidly turned strip, whose
-        // Hessian is the last one turned with it, and a step solved with the unturned
-        // factorization would see the turned strip's lateral (bending) motion partly as
-        // in-plane (membrane) motion.
-        solver.params.chord_predictor = false;
         let report = solver.solve_in_place(&*shell, &mut state, 0.0, 1.0);
         iterations += report.iterations;
         if !report.converged() {
@@ -329,10 +327,10 @@ mod tests {
     use super::*;
     use crate::materials::OMEGA_SHELL;
 
-    /// Ramps gravity on the tilted strip in two solves (0 → ½ → 1), the second with or
-    /// without the tangent (chord) predictor; returns the second solve's Newton iterations and
-    /// the free end's centre (m).
-    fn two_gravity_steps<S: StripModel>(shell: &mut S, tangent: bool) -> (usize, Vec3) {
+    /// Ramps gravity on the tilted strip in two solves (0 → ½ → 1), then turns the clamp back
+    /// half way, the last two solves with or without the tangent (chord) predictor; returns
+    /// their Newton iterations and the free end's centre (m) after each.
+    fn gravity_then_turn<S: StripModel>(shell: &mut S, tangent: bool) -> [(usize, Vec3); 2] {
         let mut state = shell.rest();
         shell.turn_rigidly(0.2, &mut state);
         shell.ramp_gravity();
@@ -347,13 +345,18 @@ mod tests {
         solver.params.chord_predictor = tangent;
         let report = solver.solve_in_place(&*shell, &mut state, 0.5, 1.0);
         assert!(report.converged(), "{report:?}");
-        (report.iterations, shell.centre(&state, true))
+        let gravity = (report.iterations, shell.centre(&state, true));
+        shell.rotate_clamp(0.2, 0.1);
+        let report = solver.solve_in_place(&*shell, &mut state, 0.0, 1.0);
+        assert!(report.converged(), "{report:?}");
+        [gravity, (report.iterations, shell.centre(&state, true))]
     }
 
     /// The tangent predictor of a gravity step (the first Newton step from the last
-    /// equilibrium, solved with its factorization) saves that step's Newton iteration and
-    /// lands on the same equilibrium, for both shell models (the regular runs of the
-    /// lateral-buckling protocol, where it is used).
+    /// equilibrium, solved with its factorization) and of a clamp turn (the same from the
+    /// rigidly turned strip, with the factorization turned with it) saves that step's Newton
+    /// iteration and lands on the same equilibrium, for both shell models (the regular runs
+    /// of the lateral-buckling protocol, where it is used).
     #[test]
     fn the_tangent_predictor_saves_an_iteration_and_keeps_the_equilibrium() {
         for model in [ShellModel::Midedge, ShellModel::Bspline] {
@@ -364,21 +367,26 @@ mod tests {
                 model,
             };
             let mut strip = case.build(17.0).unwrap();
-            let ((plain, end_plain), (tangent, end_tangent), length) = with_strip!(&mut strip, s => (
-                two_gravity_steps(s, false),
-                two_gravity_steps(s, true),
-                s.length(),
-            ));
-            assert!(
-                tangent < plain,
-                "{model:?}: {tangent} iterations with the tangent predictor, {plain} without"
-            );
-            // A lateral deflection of tenths of L: the predictor carried a large step.
-            assert!(end_plain.y.abs() > 0.05 * length, "{end_plain:?}");
-            assert!(
-                (end_tangent - end_plain).norm() < 1e-7 * length,
-                "{model:?}: {end_tangent:?} vs {end_plain:?}"
-            );
+            let (plain, tangent, length) = with_strip!(&mut strip, s => {
+                let plain = gravity_then_turn(s, false);
+                s.ramp_gravity();
+                (plain, gravity_then_turn(s, true), s.length())
+            });
+            for (stage, ((p, end_p), (t, end_t))) in ["gravity", "turn"]
+                .into_iter()
+                .zip(plain.into_iter().zip(tangent))
+            {
+                assert!(
+                    t < p,
+                    "{model:?} {stage}: {t} iterations with the tangent predictor, {p} without"
+                );
+                // A lateral deflection of tenths of L: the predictor carried a large step.
+                assert!(end_p.y.abs() > 0.05 * length, "{end_p:?}");
+                assert!(
+                    (end_t - end_p).norm() < 1e-7 * length,
+                    "{model:?} {stage}: {end_t:?} vs {end_p:?}"
+                );
+            }
         }
     }
 }
