@@ -134,6 +134,26 @@ impl EquilibriumProblem for BsplineShell {
         self.apply_clamps(state);
     }
 
+    fn turn_free(&self, from: f64, to: f64, v: &mut [f64], inverse: bool) -> bool {
+        // The first guess is one rigid turn of every control point only for a strip held at
+        // one end, moved by one clamp motion; the energy is invariant under it and the loads
+        // are linear in the control points.
+        let [m] = self.load_path.motions.as_slice() else {
+            return false;
+        };
+        if self.is_clamped(m.end.other()) {
+            return false;
+        }
+        let turn = m.turn(from, to);
+        let turn = if inverse { turn.inverse() } else { turn };
+        crate::shell::turn_vertex_blocks(
+            v.len(),
+            |i| Some((self.full_of_free[i] / 3, self.full_of_free[i] % 3)),
+            &turn,
+            v,
+        )
+    }
+
     fn max_step(&self, state: &BsplineState, dx: &[f64]) -> f64 {
         let n = state.control_points.len();
         let mut step = vec![crate::geometry::Vec3::zeros(); n];

@@ -66,6 +66,11 @@ impl ClampMotion {
         centre + t + r * (x - centre)
     }
 
+    /// The rotation of the motion from load factor `from` to `to`.
+    pub(crate) fn turn(&self, from: f64, to: f64) -> Rotation3<f64> {
+        self.increment(from, to, 1.0).0
+    }
+
     /// The clamp pose `clamp` (at `from`) moved to load factor `to`.
     pub(crate) fn move_clamp(&self, clamp: &Clamp, from: f64, to: f64) -> Clamp {
         let (r, centre, t) = self.increment(from, to, 1.0);

@@ -511,6 +511,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
             h: grad_d * grad_d.transpose() * ddb + hess_d * db,
             affine: false,
             active: distance_squared.active,
+            first_order: distance_squared.first_order,
         };
         let energy = match mollifier {
             Some(m) if m.v < 1.0 => m * energy,

@@ -25,6 +25,11 @@ pub struct Dual2<const N: usize> {
     /// number their variables so that early quantities depend on a prefix (a face's corners
     /// before the neighbour and the angle), and the products then loop over that prefix only.
     pub active: usize,
+    /// True when only the value and gradient are wanted (`h` stays zero): set on the
+    /// variables of a gradient-only evaluation and inherited by everything computed from
+    /// them, so that the O(N²) Hessian loops are skipped where nobody reads the Hessian (the
+    /// gradient is the same to the bit: it never reads a Hessian).
+    pub first_order: bool,
 }
 
 impl<const N: usize> Dual2<N> {
@@ -36,6 +41,7 @@ impl<const N: usize> Dual2<N> {
             h: SMatrix::zeros(),
             affine: true,
             active: 0,
+            first_order: false,
         }
     }
 
@@ -47,11 +53,19 @@ impl<const N: usize> Dual2<N> {
         d
     }
 
+    /// The same function, marked as wanted to first order only (see
+    /// [`first_order`](Self::first_order)) if `first_order`.
+    #[inline]
+    pub fn with_first_order(mut self, first_order: bool) -> Self {
+        self.first_order = first_order;
+        self
+    }
+
     /// f(self) from f, f′, f″ at the value.
     #[inline]
     fn chain(&self, f: f64, df: f64, d2f: f64) -> Self {
         // Entry loops instead of matrix expressions: no N×N temporaries.
-        let m = self.active;
+        let m = if self.first_order { 0 } else { self.active };
         let mut h = SMatrix::<f64, N, N>::zeros();
         for j in 0..m {
             let gj = self.g[j] * d2f;
@@ -64,7 +78,8 @@ impl<const N: usize> Dual2<N> {
             g: self.g * df,
             h,
             affine: false,
-            active: m,
+            active: self.active,
+            first_order: self.first_order,
         }
     }
 
@@ -72,7 +87,9 @@ impl<const N: usize> Dual2<N> {
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn chain2(&self, o: &Self, f: f64, fa: f64, fb: f64, faa: f64, fab: f64, fbb: f64) -> Self {
-        let m = self.active.max(o.active);
+        let first_order = self.first_order || o.first_order;
+        let active = self.active.max(o.active);
+        let m = if first_order { 0 } else { active };
         let mut h = SMatrix::<f64, N, N>::zeros();
         for j in 0..m {
             let (aj, bj) = (self.g[j], o.g[j]);
@@ -90,7 +107,8 @@ impl<const N: usize> Dual2<N> {
             g: self.g * fa + o.g * fb,
             h,
             affine: false,
-            active: m,
+            active,
+            first_order,
         }
     }
 
@@ -123,16 +141,18 @@ impl<const N: usize> Dual2<N> {
     #[inline]
     pub fn minus(&self, o: &Self) -> Self {
         let affine = self.affine && o.affine;
+        let first_order = self.first_order || o.first_order;
         Self {
             v: self.v - o.v,
             g: self.g - o.g,
-            h: if affine {
+            h: if affine || first_order {
                 SMatrix::zeros()
             } else {
                 self.h - o.h
             },
             affine,
             active: self.active.max(o.active),
+            first_order,
         }
     }
 
@@ -142,13 +162,14 @@ impl<const N: usize> Dual2<N> {
         Self {
             v: self.v * c,
             g: self.g * c,
-            h: if self.affine {
+            h: if self.affine || self.first_order {
                 SMatrix::zeros()
             } else {
                 self.h * c
             },
             affine: self.affine,
             active: self.active,
+            first_order: self.first_order,
         }
     }
 
@@ -175,16 +196,18 @@ impl<const N: usize> std::ops::Add for Dual2<N> {
     #[inline]
     fn add(self, o: Self) -> Self {
         let affine = self.affine && o.affine;
+        let first_order = self.first_order || o.first_order;
         Self {
             v: self.v + o.v,
             g: self.g + o.g,
-            h: if affine {
+            h: if affine || first_order {
                 SMatrix::zeros()
             } else {
                 self.h + o.h
             },
             affine,
             active: self.active.max(o.active),
+            first_order,
         }
     }
 }
@@ -215,6 +238,7 @@ pub fn sum_of_products<const N: usize>(terms: &[(&Dual2<N>, &Dual2<N>, f64)]) ->
         h: SMatrix::<f64, N, N>::zeros(),
         affine: false,
         active: 0,
+        first_order: terms.iter().any(|(a, b, _)| a.first_order || b.first_order),
     };
     for &(a, b, s) in terms {
         let (sa, sb) = (s * a.v, s * b.v);
@@ -228,10 +252,12 @@ pub fn sum_of_products<const N: usize>(terms: &[(&Dual2<N>, &Dual2<N>, f64)]) ->
         // Entry loops, each entry updated in the order h + a.h·sb + b.h·sa + (outer products):
         // matrix expressions here built N×N temporaries, and copying them was a fifth of a
         // shell assembly.
-        for j in 0..m {
+        // First order: the gradient only.
+        let mh = if out.first_order { 0 } else { m };
+        for j in 0..mh {
             let (aj, bj) = (s * a.g[j], s * b.g[j]);
             let outer = !(aj == 0.0 && bj == 0.0);
-            for i in 0..m {
+            for i in 0..mh {
                 let mut x = out.h[(i, j)];
                 if !a.affine {
                     x += a.h[(i, j)] * sb;

@@ -150,6 +150,27 @@ impl EquilibriumProblem for Shell {
         self.set_clamp(new, state);
     }
 
+    fn turn_free(&self, from: f64, to: f64, v: &mut [f64], inverse: bool) -> bool {
+        // Only the clamp rotation's first guess is one rigid turn of the whole strip; the
+        // membrane and bending energies are invariant under it, the edge angles (measured
+        // from the faces) do not turn, and gravity is linear in the positions.
+        let (Some(old), Some(new)) = (self.load_path.clamp_at(from), self.load_path.clamp_at(to))
+        else {
+            return false;
+        };
+        let turn = new.rotation * old.rotation.inverse();
+        let turn = if inverse { turn.inverse() } else { turn };
+        crate::shell::turn_vertex_blocks(
+            v.len(),
+            |i| match self.dofs.split(self.dofs.full(i)) {
+                DofKind::Position(vertex, c) => Some((vertex, c)),
+                DofKind::Angle(_) => None,
+            },
+            &turn,
+            v,
+        )
+    }
+
     fn max_step(&self, state: &ShellState, dx: &[f64]) -> f64 {
         let mut step = state.clone();
         for p in step.positions.iter_mut() {

@@ -224,7 +224,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     target,
                 );
                 if std::mem::take(&mut chord) && params.chord_predictor {
-                    self.chord_step(problem, target);
+                    self.chord_step(problem, load, target);
                 }
                 let mut out = newton(problem, &mut self.candidate, target, &params, &mut self.ws);
                 iterations += out.iterations;
@@ -516,12 +516,25 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
 
     /// Corrects the predictor in `self.candidate` by one chord step: the Newton step with the
     /// factorization of the previous equilibrium's Hessian (no assembly of a new Hessian, no
-    /// new factorization), kept only if it lowers the energy. After a small change of the
-    /// loads (an interactive drag) it makes the start first-order accurate, which saves a
-    /// Newton iteration.
+    /// new factorization), kept only if it lowers the merit the line search uses
+    /// ([`EquilibriumProblem::merit`]). After a change of the loads (an interactive drag, a
+    /// load step of a ramp) it is the tangent predictor, x + H⁻¹·Δf: the first Newton step
+    /// from the last equilibrium, taken without the Hessian assembly and factorization there.
+    ///
+    /// Why the merit and not the energy: over a large load step a shell's linearized step
+    /// stretches its membrane at second order, so its energy rises by orders of magnitude even
+    /// where the step is the one Newton itself would take and keep (the mixed-integration-point
+    /// merit leaves that stretch out, see `shell::mixed_update`); for every other model the
+    /// merit is the energy.
+    ///
+    /// When the first guess turned the structure rigidly (a strip turned with its clamp,
+    /// [`EquilibriumProblem::turn_free`]), the Hessian there is the previous one turned with
+    /// it: the gradient is turned back, solved with the previous factorization, and the step
+    /// turned forward, which is the turned state's Newton step.
     fn chord_step<P: EquilibriumProblem<State = S, Hessian = M>>(
         &mut self,
         problem: &P,
+        from: f64,
         load: f64,
     ) {
         let n = problem.n_free();
@@ -536,6 +549,7 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         for i in 0..n {
             self.predictor[i] = -self.ws.grad[i];
         }
+        let turned = problem.turn_free(from, load, &mut self.predictor, true);
         if self
             .ws
             .ldlt
@@ -544,9 +558,13 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         {
             return;
         }
+        if turned {
+            problem.turn_free(from, load, &mut self.predictor, false);
+        }
         let alpha = problem.max_step(&self.candidate, &self.predictor).min(1.0);
         problem.displace(&self.candidate, &self.predictor, alpha, &mut self.ws.trial);
-        if problem.energy(&self.ws.trial, load) < info.energy {
+        // At α = 0 the merit is the energy (`info.energy`).
+        if problem.merit(&self.ws.trial, load) < info.energy {
             std::mem::swap(&mut self.candidate, &mut self.ws.trial);
         }
     }

@@ -59,8 +59,9 @@ pub struct SolverParams {
     /// Correct the first predictor of a solve that starts where the previous one converged
     /// (a warm re-solve after a small change: an interactive drag) by a chord step with the
     /// previous equilibrium's factorization; it saves about one Newton iteration per edit.
-    /// Not part of the scene file: scene sessions turn it on; benchmarks keep it off (their
-    /// protocols' load paths stay exactly the published ones).
+    /// Not part of the scene file: scene sessions turn it on, and so does the lateral-buckling
+    /// protocol for its gravity steps (the predictor changes where Newton starts, not the load
+    /// path); other benchmarks keep it off.
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub chord_predictor: bool,
@@ -73,7 +74,9 @@ pub struct SolverParams {
     /// assembled. The inertia, λ_min and factorization reported are then those of the Hessian
     /// one or two below-tolerance steps before the returned state (where the stability analysis needs
     /// more — an eigenvalue in the null band — the state is measured again). Not part of the
-    /// scene file: scene sessions turn it on; benchmarks keep it off.
+    /// scene file: scene sessions turn it on, and so do the lateral-buckling protocol's stages
+    /// (not its final re-equilibration, whose inertia is reported); other benchmarks keep it
+    /// off.
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub chord_final_check: bool,

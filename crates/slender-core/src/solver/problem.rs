@@ -119,6 +119,20 @@ pub trait EquilibriumProblem: MassMetric {
         let _ = (state, from, to, guess);
     }
 
+    /// Turns `v`, a vector over the free DOFs (a step or a gradient), by the rotation that
+    /// [`impose_load`](Self::impose_load)'s first guess gives the whole structure from load
+    /// factor `from` to `to` (by its inverse if `inverse`), and returns true; returns false,
+    /// leaving `v` alone, if that first guess is not one rigid turn of every free DOF, or if
+    /// the energy's Hessian does not turn with the structure. Where it does (internal energy
+    /// invariant under rigid rotations, loads linear in the positions), the Hessian at the
+    /// turned state is P H Pᵀ, P this turn: the factorization of H from before the turn then
+    /// solves for the turned state's Newton step (the continuation's chord predictor).
+    /// Default: false.
+    fn turn_free(&self, from: f64, to: f64, v: &mut [f64], inverse: bool) -> bool {
+        let _ = (from, to, v, inverse);
+        false
+    }
+
     /// Refreshes loads that depend on the state but are frozen during a Newton solve (follower
     /// loads, applied lagged) and returns their largest relative change; the solver re-solves
     /// until it is below round-off. Default: no such loads (0).

@@ -256,10 +256,15 @@ fn protocol<S: StripModel>(
     load_steps: usize,
     params: &SolverParams,
 ) -> ProtocolOutcome {
-    // Only the last state's inertia is reported; the stages need no eigenvalue.
+    // Only the last state's inertia is reported; the stages need no eigenvalue, and their
+    // last iterate no Hessian: a stage's converged state is measured (residual and decrement)
+    // by a gradient-only assembly after the full Newton step (`chord_final_check`; its
+    // inertia would lag one step, and no stage reports one). The final re-equilibration
+    // below measures the end state with its own Hessian.
     let params = SolverParams {
         compute_lambda_min: false,
         indefinite_patience: Some(INDEFINITE_PATIENCE),
+        chord_final_check: true,
         ..*params
     };
     let mut state = shell.rest();
@@ -274,6 +279,13 @@ fn protocol<S: StripModel>(
     let mut iterations = 0;
     // The first stage that failed, if any: its report is the one returned.
     let mut failure: Option<SolveReport> = None;
+    // Every stage after the first starts from the tangent predictor: the first Newton step
+    // from the last equilibrium (gravity steps) or from the strip turned rigidly with its
+    // clamp (clamp turns, whose Hessian is the last one turned with the strip), solved with
+    // the last equilibrium's factorization (`chord_predictor`, `EquilibriumProblem::turn_free`),
+    // which saves that step's Hessian assembly and factorization. The first stage has no
+    // factorization yet.
+    solver.params.chord_predictor = true;
     for k in 0..load_steps {
         let report = solver.solve_in_place(&*shell, &mut state, k as f64 / m, (k + 1) as f64 / m);
         iterations += report.iterations;
@@ -298,6 +310,7 @@ fn protocol<S: StripModel>(
     // Re-equilibrate with the clamp back at 0 (on a converged path this confirms the state in
     // one assembly and measures its residual and inertia).
     shell.ramp_gravity();
+    solver.params.chord_final_check = false;
     let report = solver.solve_in_place(&*shell, &mut state, 1.0, 1.0);
     iterations += report.iterations;
     let converged = failure.is_none() && report.converged();
@@ -306,5 +319,74 @@ fn protocol<S: StripModel>(
         converged,
         report: failure.unwrap_or(report),
         iterations,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::OMEGA_SHELL;
+
+    /// Ramps gravity on the tilted strip in two solves (0 → ½ → 1), then turns the clamp back
+    /// half way, the last two solves with or without the tangent (chord) predictor; returns
+    /// their Newton iterations and the free end's centre (m) after each.
+    fn gravity_then_turn<S: StripModel>(shell: &mut S, tangent: bool) -> [(usize, Vec3); 2] {
+        let mut state = shell.rest();
+        shell.turn_rigidly(0.2, &mut state);
+        shell.ramp_gravity();
+        let params = SolverParams {
+            compute_lambda_min: false,
+            ..SolverParams::default()
+        };
+        let mut solver = EquilibriumSolver::new(&*shell, &state, params);
+        assert!(solver
+            .solve_in_place(&*shell, &mut state, 0.0, 0.5)
+            .converged());
+        solver.params.chord_predictor = tangent;
+        let report = solver.solve_in_place(&*shell, &mut state, 0.5, 1.0);
+        assert!(report.converged(), "{report:?}");
+        let gravity = (report.iterations, shell.centre(&state, true));
+        shell.rotate_clamp(0.2, 0.1);
+        let report = solver.solve_in_place(&*shell, &mut state, 0.0, 1.0);
+        assert!(report.converged(), "{report:?}");
+        [gravity, (report.iterations, shell.centre(&state, true))]
+    }
+
+    /// The tangent predictor of a gravity step (the first Newton step from the last
+    /// equilibrium, solved with its factorization) and of a clamp turn (the same from the
+    /// rigidly turned strip, with the factorization turned with it) saves that step's Newton
+    /// iteration and lands on the same equilibrium, for both shell models (the regular runs
+    /// of the lateral-buckling protocol, where it is used).
+    #[test]
+    fn the_tangent_predictor_saves_an_iteration_and_keeps_the_equilibrium() {
+        for model in [ShellModel::Midedge, ShellModel::Bspline] {
+            let case = LateralBucklingCase {
+                material: OMEGA_SHELL,
+                width_ratio: 0.5,
+                n_length: 8,
+                model,
+            };
+            let mut strip = case.build(17.0).unwrap();
+            let (plain, tangent, length) = with_strip!(&mut strip, s => {
+                let plain = gravity_then_turn(s, false);
+                s.ramp_gravity();
+                (plain, gravity_then_turn(s, true), s.length())
+            });
+            for (stage, ((p, end_p), (t, end_t))) in ["gravity", "turn"]
+                .into_iter()
+                .zip(plain.into_iter().zip(tangent))
+            {
+                assert!(
+                    t < p,
+                    "{model:?} {stage}: {t} iterations with the tangent predictor, {p} without"
+                );
+                // A lateral deflection of tenths of L: the predictor carried a large step.
+                assert!(end_p.y.abs() > 0.05 * length, "{end_p:?}");
+                assert!(
+                    (end_t - end_p).norm() < 1e-7 * length,
+                    "{model:?} {stage}: {end_t:?} vs {end_p:?}"
+                );
+            }
+        }
     }
 }
