@@ -96,8 +96,11 @@ pub fn convergence_checks(
         // its band [B = E w h³/12, B = D w] up to a few % while the strip is narrow.
         if w < 1.0 {
             if let Some((beam, plate)) = vlasov_band(material.poisson, w) {
+                // A Γ_c that was not computed is no distance: NaN fails the check.
                 let outside = 100.0
-                    * if at < beam {
+                    * if !at.is_finite() {
+                        f64::NAN
+                    } else if at < beam {
                         beam / at - 1.0
                     } else if at > plate {
                         at / plate - 1.0

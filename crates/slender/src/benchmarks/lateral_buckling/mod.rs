@@ -79,7 +79,8 @@ impl LateralBuckling {
 }
 
 /// The meshes n_L of the Γ_c convergence study: for the mid-edge shell 8/15/30 (15/30/60 in
-/// full), for the B-spline shell 8/16/32 (16/32/64 in full). On 4/8/16 the B-spline Γ_c is not
+/// full), for the B-spline shell 8/16/32 (8/16/32/64 in full: the three finest extrapolate,
+/// and n_L = 8 is the mesh the C¹ shell's targets check). On 4/8/16 the B-spline Γ_c is not
 /// monotone (n_L = 4 lies far below, 8 and 16 above the limit), so no order can be observed
 /// there; from n_L = 8 on it converges monotonically from above (observed p ≈ 1–1.7).
 pub fn convergence_meshes(model: ShellModel, preset: Preset) -> Vec<usize> {
@@ -87,7 +88,7 @@ pub fn convergence_meshes(model: ShellModel, preset: Preset) -> Vec<usize> {
         (ShellModel::Midedge, Preset::Quick) => vec![8, 15, 30],
         (ShellModel::Midedge, Preset::Full) => vec![15, 30, 60],
         (ShellModel::Bspline, Preset::Quick) => vec![8, 16, 32],
-        (ShellModel::Bspline, Preset::Full) => vec![16, 32, 64],
+        (ShellModel::Bspline, Preset::Full) => vec![8, 16, 32, 64],
     }
 }
 
@@ -301,5 +302,26 @@ fn caption(stem: &str) -> String {
                             w/L, Kirchhoff plate and Vlasov beam (both weak-axis stiffnesses)."
             .into(),
         _ => words(stem),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slender_validation::lateral_sweep::acceptance::checked_mesh;
+
+    #[test]
+    fn every_preset_computes_the_mesh_its_targets_check() {
+        for model in [ShellModel::Midedge, ShellModel::Bspline] {
+            for preset in [Preset::Quick, Preset::Full] {
+                let meshes = convergence_meshes(model, preset);
+                assert!(
+                    meshes.contains(&checked_mesh(model)),
+                    "{model:?} {preset:?}: {meshes:?} lacks n_L = {}",
+                    checked_mesh(model)
+                );
+                assert!(meshes.len() >= 3 && meshes.windows(2).all(|w| w[0] < w[1]));
+            }
+        }
     }
 }
