@@ -14,6 +14,16 @@ fn scene(text: &str) -> Scene {
     toml::from_str(text).expect("scene")
 }
 
+/// Largest distance (m) between corresponding points of two shapes.
+fn worst_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| {
+            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
 /// A 1 m PMMA-like cable, d = 4 mm, clamped at both ends (issue 17's case).
 const PUSH: &str = r#"
 [[rods]]
@@ -397,13 +407,7 @@ supports = [ { kind = "clamp", vertex = "start" }, { kind = "pin", vertex = "end
     }
     let there = again.results(0, None, 1.0, 1).rods[0].positions.clone();
     assert_eq!(here.len(), there.len());
-    let worst = here
-        .iter()
-        .zip(&there)
-        .map(|(a, b)| {
-            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-        })
-        .fold(0.0, f64::max);
+    let worst = worst_distance(&here, &there);
     assert!(worst < 1e-9 * 0.6, "saved scene differs by {worst:e} m");
 }
 
@@ -477,13 +481,7 @@ supports = [ { kind = "clamp", vertex = "start" }, { kind = "clamp", vertex = "e
         assert!(cold.run_motion_step(k).converged);
     }
     let there = cold.results(0, None, 1.0, 1).rods[0].positions.clone();
-    let worst = here
-        .iter()
-        .zip(&there)
-        .map(|(a, b)| {
-            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-        })
-        .fold(0.0, f64::max);
+    let worst = worst_distance(&here, &there);
     assert!(
         worst < 1e-9,
         "warm drags and the cold solve differ by {worst:e} m"
