@@ -6,7 +6,7 @@ use crate::error::{require_finite, require_positive, ModelError};
 use crate::geometry::Vec3;
 use crate::rod::Grading;
 
-use super::bending::{edge_curvature, second_fundamental_form, EdgeDirector};
+use super::bending::{edge_curvature_value, second_fundamental_form, EdgeDirector};
 use super::clamp::Clamp;
 use super::dofs::ShellDofs;
 use super::gravity::lumped_vertex_masses;
@@ -211,7 +211,7 @@ impl ShellBuilder {
                             sigma: fe.orientation,
                         }
                     };
-                    edge_curvature(q, i, &d).v
+                    edge_curvature_value(q, i, &d)
                 });
                 second_fundamental_form(&ii)
             })

@@ -8,6 +8,7 @@ pub mod builder;
 pub mod clamp;
 pub mod dofs;
 pub mod dual;
+pub mod edge_jet;
 pub mod equilibrium;
 pub mod gravity;
 pub mod groups;
