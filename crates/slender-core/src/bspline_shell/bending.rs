@@ -135,7 +135,6 @@ impl BendingGeometric {
 
     /// The 3×3 block (k, l) from the two functions' bases and data.
     pub fn block(
-        &self,
         nk: &TensorBasis,
         dk: &FunctionGeometry,
         dl: &FunctionGeometry,
