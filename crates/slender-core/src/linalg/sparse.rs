@@ -141,8 +141,11 @@ impl SymmetricMatrix for SparseSymmetricMatrix {
 
     /// The same additions as the entry-by-entry default, found by one merge walk down each
     /// column of the pattern instead of a binary search per entry (the searches were a tenth
-    /// of a shell assembly). Each entry receives one addition when the DOFs are distinct, so
-    /// the result has the same bits; repeated DOFs take the default path.
+    /// of a shell assembly). The walk steps once and searches only across gaps (a cubic
+    /// B-spline column holds ~150 rows, of which an element touches 48), on slices of the
+    /// column taken once (stores into the values cannot move the pattern). Each entry
+    /// receives one addition when the DOFs are distinct, so the result has the same bits;
+    /// repeated DOFs take the default path.
     fn add_lower_block<const D: usize>(
         &mut self,
         dofs: &[usize; D],
@@ -158,22 +161,38 @@ impl SymmetricMatrix for SparseSymmetricMatrix {
             super::symmetric::lower_block_entries(dofs, value, |i, j, v| self.add(i, j, v));
             return;
         }
+        let pattern = &*self.pattern;
+        // Rows of entries outside the pattern (none unless the pattern is wrong).
+        let mut outside = Vec::new();
         for (cj, &b) in order[..free].iter().enumerate() {
             let j = dofs[b];
-            let (mut k, hi) = (self.pattern.col_ptr[j], self.pattern.col_ptr[j + 1]);
+            let (lo, hi) = (pattern.col_ptr[j], pattern.col_ptr[j + 1]);
             // Rows i ≤ j of this column, ascending, as the pattern stores them.
+            let rows = &pattern.row_idx[lo..hi];
+            let values = &mut self.values[lo..hi];
+            let mut k = 0;
             for &a in &order[..=cj] {
                 let i = dofs[a];
-                while k < hi && self.pattern.row_idx[k] < i {
+                // The element's rows come in runs of consecutive DOFs: the next stored row
+                // is usually the one wanted; across a gap, search the rest of the column.
+                if k < rows.len() && rows[k] < i {
                     k += 1;
+                    if k < rows.len() && rows[k] < i {
+                        k += rows[k..].partition_point(|&r| r < i);
+                    }
                 }
                 // `value` takes the slots lower triangle first, as the default scatter does.
                 let v = value(a.max(b), a.min(b));
-                if k < hi && self.pattern.row_idx[k] == i {
-                    self.values[k] += v;
+                if k < rows.len() && rows[k] == i {
+                    values[k] += v;
                 } else {
-                    self.add(i, j, v);
+                    outside.push(i);
                 }
+            }
+            // As `add` does for an entry outside the pattern (NaN absorbs later additions).
+            for i in outside.drain(..) {
+                debug_assert!(false, "entry ({i}, {j}) outside the sparsity pattern");
+                self.values[pattern.diag[i]] = f64::NAN;
             }
         }
     }
