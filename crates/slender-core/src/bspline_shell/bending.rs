@@ -63,6 +63,7 @@ impl BendingKinematics {
     }
 
     /// ∂b_j/∂P_k (columns j = 11, 12, 22).
+    #[inline]
     pub fn strain_gradients(&self, nk: &TensorBasis) -> Matrix3<f64> {
         Matrix3::from_columns(&[
             self.n * nk[DUU] + self.a_transpose(nk, &self.qr[0]),
@@ -122,6 +123,7 @@ impl BendingGeometric {
     }
 
     /// The per-function matrices of the function with basis `nk`.
+    #[inline]
     pub fn function_data(&self, nk: &TensorBasis) -> FunctionGeometry {
         let m = &self.moments;
         let (k1, k2) = (nk[DU], nk[DV]);
@@ -133,7 +135,9 @@ impl BendingGeometric {
         )
     }
 
-    /// The 3×3 block (k, l) from the two functions' bases and data.
+    /// The 3×3 block (k, l) from the two functions' bases and data (inlined: it runs per
+    /// block and point, and an out-of-line call returns the block through memory).
+    #[inline]
     pub fn block(
         nk: &TensorBasis,
         dk: &FunctionGeometry,
