@@ -45,6 +45,21 @@ pub struct SparseSymmetricMatrix {
     values: Vec<f64>,
 }
 
+/// Where the lower-triangle entries of each term's stencil block sit in the values of one
+/// sparsity pattern, found once for a model's fixed terms so that every assembly scatters
+/// without searching the columns (see [`SymmetricMatrix::add_lower_block_planned`]).
+#[derive(Clone, Debug)]
+pub struct ScatterPlan {
+    pattern: Arc<SparsityPattern>,
+    /// Per term, the value index of entry (a, b ≤ a) at a(a+1)/2 + b ([`NOWHERE`] for a
+    /// fixed slot); empty for a term the plan does not cover (a repeated DOF, an entry
+    /// outside the pattern), which takes the searching scatter.
+    positions: Vec<Vec<u32>>,
+}
+
+/// A [`ScatterPlan`] entry of a fixed slot.
+const NOWHERE: u32 = u32::MAX;
+
 impl SparseSymmetricMatrix {
     /// The zero matrix whose pattern holds the diagonal and every pair (i, j) listed (either
     /// order; duplicates are merged). Indices must be < n.
@@ -79,6 +94,52 @@ impl SparseSymmetricMatrix {
                 max_col_count,
             }),
             values: vec![0.0; nnz],
+        }
+    }
+
+    /// The [`ScatterPlan`] of the terms with these stencils (in the order the assembler
+    /// visits them) into this matrix's pattern.
+    pub fn scatter_plan<'s, const D: usize>(
+        &self,
+        stencils: impl IntoIterator<Item = &'s [usize; D]>,
+    ) -> ScatterPlan {
+        let fixed = crate::assembly::FIXED;
+        let positions = stencils
+            .into_iter()
+            .map(|dofs| {
+                let mut free: Vec<usize> = dofs.iter().copied().filter(|&i| i != fixed).collect();
+                free.sort_unstable();
+                if free.windows(2).any(|w| w[0] == w[1]) || self.values.len() > NOWHERE as usize
+                {
+                    return Vec::new();
+                }
+                let mut out = Vec::with_capacity(D * (D + 1) / 2);
+                for (a, &i) in dofs.iter().enumerate() {
+                    for &j in &dofs[..=a] {
+                        if i == fixed || j == fixed {
+                            out.push(NOWHERE);
+                            continue;
+                        }
+                        match self.position(i, j) {
+                            Some(k) => out.push(k as u32),
+                            None => return Vec::new(),
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
+        ScatterPlan {
+            pattern: self.pattern.clone(),
+            positions,
+        }
+    }
+
+    /// The zero matrix of a plan's pattern (sharing it, so that the plan applies).
+    pub fn zeros_of(plan: &ScatterPlan) -> Self {
+        Self {
+            values: vec![0.0; plan.pattern.row_idx.len()],
+            pattern: plan.pattern.clone(),
         }
     }
 
@@ -194,6 +255,30 @@ impl SymmetricMatrix for SparseSymmetricMatrix {
                 debug_assert!(false, "entry ({i}, {j}) outside the sparsity pattern");
                 self.values[pattern.diag[i]] = f64::NAN;
             }
+        }
+    }
+
+    /// One addition per entry at its planned position (the same additions as
+    /// [`Self::add_lower_block`]) when the plan was made for this pattern and covers the term.
+    fn add_lower_block_planned<const D: usize>(
+        &mut self,
+        plan: &ScatterPlan,
+        term: usize,
+        dofs: &[usize; D],
+        value: impl Fn(usize, usize) -> f64,
+    ) {
+        let positions = match plan.positions.get(term) {
+            Some(p) if p.len() == D * (D + 1) / 2 && Arc::ptr_eq(&plan.pattern, &self.pattern) => p,
+            _ => return self.add_lower_block(dofs, value),
+        };
+        let mut e = 0;
+        for a in 0..D {
+            for (b, &k) in positions[e..e + a + 1].iter().enumerate() {
+                if k != NOWHERE {
+                    self.values[k as usize] += value(a, b);
+                }
+            }
+            e += a + 1;
         }
     }
 
