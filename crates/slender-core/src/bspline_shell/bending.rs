@@ -138,11 +138,7 @@ impl BendingGeometric {
     /// The 3×3 block (k, l) from the two functions' bases and data (inlined: it runs per
     /// block and point, and an out-of-line call returns the block through memory).
     #[inline]
-    pub fn block(
-        nk: &TensorBasis,
-        dk: &FunctionGeometry,
-        dl: &FunctionGeometry,
-    ) -> Matrix3<f64> {
+    pub fn block(nk: &TensorBasis, dk: &FunctionGeometry, dl: &FunctionGeometry) -> Matrix3<f64> {
         dl.2 * nk[DU] + dl.3 * nk[DV] + dl.1 * dk.0 + dk.1.transpose() * dl.0
     }
 }

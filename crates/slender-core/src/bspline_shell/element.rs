@@ -270,7 +270,11 @@ impl<'a, const NB: usize, const D: usize> StencilTerm<BsplineContext<'a>, D>
             if want_hess {
                 bending.reserve(NB * self.bending_points.len());
             }
-            let e = self.bending(ctx, out.grad.as_deref_mut(), want_hess.then_some(&mut bending));
+            let e = self.bending(
+                ctx,
+                out.grad.as_deref_mut(),
+                want_hess.then_some(&mut bending),
+            );
             out.add_energy(e);
         }
         if let Some(h) = out.hess.as_deref_mut() {

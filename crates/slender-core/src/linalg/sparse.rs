@@ -109,8 +109,7 @@ impl SparseSymmetricMatrix {
             .map(|dofs| {
                 let mut free: Vec<usize> = dofs.iter().copied().filter(|&i| i != fixed).collect();
                 free.sort_unstable();
-                if free.windows(2).any(|w| w[0] == w[1]) || self.values.len() > NOWHERE as usize
-                {
+                if free.windows(2).any(|w| w[0] == w[1]) || self.values.len() > NOWHERE as usize {
                     return Vec::new();
                 }
                 let mut out = Vec::with_capacity(D * (D + 1) / 2);
