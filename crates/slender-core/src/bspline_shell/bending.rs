@@ -58,6 +58,7 @@ impl BendingKinematics {
     }
 
     /// A_kᵀ v for a function with basis `n`.
+    #[inline]
     fn a_transpose(&self, nk: &TensorBasis, v: &Vec3) -> Vec3 {
         self.r1.cross(v) * nk[DV] - self.r2.cross(v) * nk[DU]
     }
