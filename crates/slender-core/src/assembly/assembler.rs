@@ -3,7 +3,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::linalg::SymmetricMatrix;
+use crate::linalg::{ScatterPlan, SymmetricMatrix};
 
 use super::stencil::{Stencil, FIXED};
 use super::term::{LocalDerivatives, StencilTerm, TermGroup, TermSet};
@@ -164,11 +164,23 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
     /// Evaluates every term of a group list whose groups are selected, in order, and scatters
     /// its derivatives.
     pub fn terms<C: ?Sized, T: StencilTerm<C, D>, const D: usize>(&mut self, ctx: &C, terms: &[T]) {
+        self.terms_planned(ctx, terms, None);
+    }
+
+    /// [`Self::terms`] with the positions of the terms' Hessian entries precomputed for the
+    /// Hessian's storage (used when the Hessian has the plan's pattern and no part map
+    /// applies; the same additions either way).
+    pub fn terms_planned<C: ?Sized, T: StencilTerm<C, D>, const D: usize>(
+        &mut self,
+        ctx: &C,
+        terms: &[T],
+        plan: Option<&ScatterPlan>,
+    ) {
         let want_grad = self.wants_gradient();
         let want_hess = self.wants_hessian();
         let mut g = SVector::<f64, D>::zeros();
         let mut h = SMatrix::<f64, D, D>::zeros();
-        for term in terms {
+        for (index, term) in terms.iter().enumerate() {
             let selected = TermSet(term.groups().0 & self.selection.0);
             if selected == TermSet::NONE {
                 continue;
@@ -188,7 +200,8 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             };
             term.evaluate(ctx, selected, &mut out);
             let (energy, magnitude) = (out.energy, out.magnitude);
-            self.local(term.stencil(), energy, magnitude, &g, &h);
+            let plan = plan.map(|p| (p, index));
+            self.local_planned(term.stencil(), energy, magnitude, &g, &h, plan);
         }
     }
 
@@ -202,6 +215,19 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         magnitude: f64,
         g: &SVector<f64, D>,
         h: &SMatrix<f64, D, D>,
+    ) {
+        self.local_planned(stencil, energy, magnitude, g, h, None);
+    }
+
+    /// [`Self::local`] for term `plan.1` of a scatter plan.
+    fn local_planned<const D: usize>(
+        &mut self,
+        stencil: &Stencil<D>,
+        energy: f64,
+        magnitude: f64,
+        g: &SVector<f64, D>,
+        h: &SMatrix<f64, D, D>,
+        plan: Option<(&ScatterPlan, usize)>,
     ) {
         // Factors of 1 multiply exactly: plain assemblies are bit-for-bit unchanged.
         let (w, gw, hw) = self.factors();
@@ -224,7 +250,11 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         }
         if let Some(hm) = self.hess.as_deref_mut() {
             // Lower triangle of the stencil (b ≤ a): each unordered pair once.
-            hm.add_lower_block(stencil, |a, b| hw * h[(a, b)]);
+            let value = |a, b| hw * h[(a, b)];
+            match plan {
+                Some((plan, term)) => hm.add_lower_block_planned(plan, term, stencil, value),
+                None => hm.add_lower_block(stencil, value),
+            }
         }
     }
 

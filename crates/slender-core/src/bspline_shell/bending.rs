@@ -58,11 +58,13 @@ impl BendingKinematics {
     }
 
     /// A_kᵀ v for a function with basis `n`.
+    #[inline]
     fn a_transpose(&self, nk: &TensorBasis, v: &Vec3) -> Vec3 {
         self.r1.cross(v) * nk[DV] - self.r2.cross(v) * nk[DU]
     }
 
     /// ∂b_j/∂P_k (columns j = 11, 12, 22).
+    #[inline]
     pub fn strain_gradients(&self, nk: &TensorBasis) -> Matrix3<f64> {
         Matrix3::from_columns(&[
             self.n * nk[DUU] + self.a_transpose(nk, &self.qr[0]),
@@ -122,6 +124,7 @@ impl BendingGeometric {
     }
 
     /// The per-function matrices of the function with basis `nk`.
+    #[inline]
     pub fn function_data(&self, nk: &TensorBasis) -> FunctionGeometry {
         let m = &self.moments;
         let (k1, k2) = (nk[DU], nk[DV]);
@@ -133,13 +136,10 @@ impl BendingGeometric {
         )
     }
 
-    /// The 3×3 block (k, l) from the two functions' bases and data.
-    pub fn block(
-        &self,
-        nk: &TensorBasis,
-        dk: &FunctionGeometry,
-        dl: &FunctionGeometry,
-    ) -> Matrix3<f64> {
+    /// The 3×3 block (k, l) from the two functions' bases and data (inlined: it runs per
+    /// block and point, and an out-of-line call returns the block through memory).
+    #[inline]
+    pub fn block(nk: &TensorBasis, dk: &FunctionGeometry, dl: &FunctionGeometry) -> Matrix3<f64> {
         dl.2 * nk[DU] + dl.3 * nk[DV] + dl.1 * dk.0 + dk.1.transpose() * dl.0
     }
 }

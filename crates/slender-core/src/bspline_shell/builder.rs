@@ -267,6 +267,7 @@ impl BsplineShellBuilder {
         };
         let n_points =
             with_elements!(&elements, t => t.iter().map(|e| e.membrane_points.len()).sum());
+        let scatter = BsplineShell::hessian_plan(&elements, full_of_free.len());
 
         let mut point_loads = Vec::new();
         for (n, load) in self.point_loads.iter().enumerate() {
@@ -304,6 +305,7 @@ impl BsplineShellBuilder {
             free_of_full,
             full_of_free,
             elements,
+            scatter,
             n_points,
             masses,
             gravity: self.gravity,

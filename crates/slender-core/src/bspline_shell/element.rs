@@ -78,23 +78,19 @@ impl<const NB: usize, const D: usize> ElementTerm<NB, D> {
         }
     }
 
-    // The block loops run over the lower triangle of (k, l) pairs and index several
-    // per-function arrays.
-    #[allow(clippy::needless_range_loop)]
-    /// Membrane energy at the membrane points into `out`, its gradient into `g` and the
-    /// lower block triangle of its Hessian into `h`.
+    /// Membrane energy at the membrane points; its gradient is added to `g`, and the
+    /// per-point Hessian factors (point-major, `NB` per point) and geometric stresses are
+    /// appended to `hess` for [`Self::hessian_blocks`].
     fn membrane(
         &self,
         ctx: &BsplineContext<'_>,
         mut g: Option<&mut SVector<f64, D>>,
-        mut h: Option<&mut SMatrix<f64, D, D>>,
+        mut hess: Option<(&mut Vec<MembraneFactors>, &mut Vec<Vector3<f64>>)>,
     ) -> f64 {
         let points = &ctx.state.control_points;
         let remainders = &ctx.state.membrane_remainder;
-        let derivatives = g.is_some() || h.is_some();
+        let derivatives = g.is_some() || hess.is_some();
         let mut energy = 0.0;
-        let mut gm = [Matrix3::<f64>::zeros(); NB];
-        let mut fm = [Matrix3::<f64>::zeros(); NB];
         for (iq, q) in self.membrane_points.iter().enumerate() {
             let jet = SurfaceJet::new(&q.basis, &self.controls, points);
             let d = first_form(&jet.r1, &jet.r2) - q.abar;
@@ -103,53 +99,45 @@ impl<const NB: usize, const D: usize> ElementTerm<NB, D> {
             if !derivatives {
                 continue;
             }
+            let (mut factors, stresses) = match hess.as_mut() {
+                Some((f, s)) => (Some(&mut **f), Some(&mut **s)),
+                None => (None, None),
+            };
             for (k, nk) in q.basis.iter().enumerate() {
-                gm[k] = membrane::strain_gradients(nk, &jet.r1, &jet.r2);
+                let gm = membrane::strain_gradients(nk, &jet.r1, &jet.r2);
                 if let Some(g) = g.as_deref_mut() {
                     let mut rows = g.fixed_rows_mut::<3>(3 * k);
-                    rows += gm[k] * stress;
+                    rows += gm * stress;
+                }
+                if let Some(f) = factors.as_deref_mut() {
+                    f.push(MembraneFactors {
+                        f: gm * q.stiffness,
+                        g: gm,
+                    });
                 }
             }
-            let Some(h) = h.as_deref_mut() else { continue };
-            // Mixed-integration-point update: the geometric stiffness uses the stress of the
-            // linearly updated strain.
-            let geo_stress = match remainders.get(self.first_point + iq) {
-                Some(r) => q.stiffness * (d - r),
-                None => stress,
-            };
-            for k in 0..NB {
-                fm[k] = gm[k] * q.stiffness;
-            }
-            for k in 0..NB {
-                for l in 0..=k {
-                    let mut block = fm[k] * gm[l].transpose();
-                    let c = membrane::geometric_coefficient(&q.basis[k], &q.basis[l], &geo_stress);
-                    block[(0, 0)] += c;
-                    block[(1, 1)] += c;
-                    block[(2, 2)] += c;
-                    let mut view = h.fixed_view_mut::<3, 3>(3 * k, 3 * l);
-                    view += block;
-                }
+            if let Some(s) = stresses {
+                // Mixed-integration-point update: the geometric stiffness uses the stress of
+                // the linearly updated strain.
+                s.push(match remainders.get(self.first_point + iq) {
+                    Some(r) => q.stiffness * (d - r),
+                    None => stress,
+                });
             }
         }
         energy
     }
 
-    #[allow(clippy::needless_range_loop)]
     /// Bending energy at the bending points, as [`Self::membrane`].
     fn bending(
         &self,
         ctx: &BsplineContext<'_>,
         mut g: Option<&mut SVector<f64, D>>,
-        mut h: Option<&mut SMatrix<f64, D, D>>,
+        mut hess: Option<&mut Vec<BendingFactors>>,
     ) -> f64 {
         let points = &ctx.state.control_points;
-        let derivatives = g.is_some() || h.is_some();
+        let derivatives = g.is_some() || hess.is_some();
         let mut energy = 0.0;
-        let mut gb = [Matrix3::<f64>::zeros(); NB];
-        let mut fb = [Matrix3::<f64>::zeros(); NB];
-        let mut data: [FunctionGeometry; NB] =
-            [(0.0, Matrix3::zeros(), Matrix3::zeros(), Matrix3::zeros()); NB];
         for q in &self.bending_points {
             let jet = SurfaceJet::new(&q.basis, &self.controls, points);
             let forms = Forms::new(&jet);
@@ -160,30 +148,91 @@ impl<const NB: usize, const D: usize> ElementTerm<NB, D> {
                 continue;
             }
             let kin = BendingKinematics::new(&jet, &forms);
+            let geo = hess
+                .is_some()
+                .then(|| BendingGeometric::new(&jet, &forms, &moments));
             for (k, nk) in q.basis.iter().enumerate() {
-                gb[k] = kin.strain_gradients(nk);
+                let gb = kin.strain_gradients(nk);
                 if let Some(g) = g.as_deref_mut() {
                     let mut rows = g.fixed_rows_mut::<3>(3 * k);
-                    rows += gb[k] * moments;
+                    rows += gb * moments;
                 }
-            }
-            let Some(h) = h.as_deref_mut() else { continue };
-            let geo = BendingGeometric::new(&jet, &forms, &moments);
-            for k in 0..NB {
-                fb[k] = gb[k] * q.stiffness;
-                data[k] = geo.function_data(&q.basis[k]);
-            }
-            for k in 0..NB {
-                for l in 0..=k {
-                    let block =
-                        fb[k] * gb[l].transpose() + geo.block(&q.basis[k], &data[k], &data[l]);
-                    let mut view = h.fixed_view_mut::<3, 3>(3 * k, 3 * l);
-                    view += block;
+                if let (Some(f), Some(geo)) = (hess.as_deref_mut(), &geo) {
+                    f.push(BendingFactors {
+                        f: gb * q.stiffness,
+                        g: gb,
+                        geometric: geo.function_data(nk),
+                    });
                 }
             }
         }
         energy
     }
+
+    /// Writes the Hessian from the per-point factors of both terms (either list may be
+    /// empty): each 3×3 block (k, l), k ≥ l, is summed over the membrane then the bending
+    /// points in registers and stored once with its mirror, instead of being added into
+    /// `h` point by point (the same sums in the same order).
+    fn hessian_blocks(
+        &self,
+        membrane: &[MembraneFactors],
+        stresses: &[Vector3<f64>],
+        bending: &[BendingFactors],
+        h: &mut SMatrix<f64, D, D>,
+    ) {
+        let membrane_points = &self.membrane_points[..stresses.len()];
+        let bending_points = &self.bending_points[..bending.len() / NB];
+        for k in 0..NB {
+            for l in 0..=k {
+                let mut acc = Matrix3::<f64>::zeros();
+                for ((q, s), m) in membrane_points
+                    .iter()
+                    .zip(stresses)
+                    .zip(membrane.chunks_exact(NB))
+                {
+                    let mut block = m[k].f * m[l].g.transpose();
+                    let c = membrane::geometric_coefficient(&q.basis[k], &q.basis[l], s);
+                    block[(0, 0)] += c;
+                    block[(1, 1)] += c;
+                    block[(2, 2)] += c;
+                    acc += block;
+                }
+                for (q, b) in bending_points.iter().zip(bending.chunks_exact(NB)) {
+                    acc += b[k].f * b[l].g.transpose()
+                        + BendingGeometric::block(&q.basis[k], &b[k].geometric, &b[l].geometric);
+                }
+                if k == l {
+                    // Diagonal blocks are symmetric: the lower triangle stands for both.
+                    for a in 0..3 {
+                        for b in 0..=a {
+                            h[(3 * k + a, 3 * k + b)] = acc[(a, b)];
+                            h[(3 * k + b, 3 * k + a)] = acc[(a, b)];
+                        }
+                    }
+                } else {
+                    h.fixed_view_mut::<3, 3>(3 * k, 3 * l).copy_from(&acc);
+                    h.fixed_view_mut::<3, 3>(3 * l, 3 * k).tr_copy_from(&acc);
+                }
+            }
+        }
+    }
+}
+
+/// What the Hessian blocks need of function k at a membrane point: G_k = ∂a/∂P_k and
+/// F_k = G_k K_m (block (k, l) = F_k G_lᵀ + c_kl I).
+#[derive(Clone, Copy, Debug)]
+struct MembraneFactors {
+    f: Matrix3<f64>,
+    g: Matrix3<f64>,
+}
+
+/// What the Hessian blocks need of function k at a bending point: G_k = ∂b/∂P_k, F_k =
+/// G_k K_b and the geometric per-function matrices.
+#[derive(Clone, Copy, Debug)]
+struct BendingFactors {
+    f: Matrix3<f64>,
+    g: Matrix3<f64>,
+    geometric: FunctionGeometry,
 }
 
 impl<'a, const NB: usize, const D: usize> StencilTerm<BsplineContext<'a>, D>
@@ -204,23 +253,32 @@ impl<'a, const NB: usize, const D: usize> StencilTerm<BsplineContext<'a>, D>
         out: &mut LocalDerivatives<'_, D>,
     ) {
         debug_assert_eq!(D, 3 * NB);
-        // The assembler hands over zeroed outputs: write into them directly (lower block
-        // triangle of the Hessian, mirrored at the end).
+        let want_hess = out.hess.is_some();
+        let mut membrane = Vec::new();
+        let mut stresses = Vec::new();
+        let mut bending = Vec::new();
         if selected.contains(groups::MEMBRANE) {
-            let e = self.membrane(ctx, out.grad.as_deref_mut(), out.hess.as_deref_mut());
+            if want_hess {
+                membrane.reserve(NB * self.membrane_points.len());
+                stresses.reserve(self.membrane_points.len());
+            }
+            let hess = want_hess.then_some((&mut membrane, &mut stresses));
+            let e = self.membrane(ctx, out.grad.as_deref_mut(), hess);
             out.add_energy(e);
         }
         if selected.contains(groups::BENDING) {
-            let e = self.bending(ctx, out.grad.as_deref_mut(), out.hess.as_deref_mut());
+            if want_hess {
+                bending.reserve(NB * self.bending_points.len());
+            }
+            let e = self.bending(
+                ctx,
+                out.grad.as_deref_mut(),
+                want_hess.then_some(&mut bending),
+            );
             out.add_energy(e);
         }
         if let Some(h) = out.hess.as_deref_mut() {
-            // Mirror the lower block triangle (diagonal blocks are symmetric).
-            for a in 0..D {
-                for b in 0..a {
-                    h[(b, a)] = h[(a, b)];
-                }
-            }
+            self.hessian_blocks(&membrane, &stresses, &bending, h);
         }
     }
 }

@@ -23,7 +23,9 @@ pub struct SurfaceJet {
 }
 
 impl SurfaceJet {
-    /// The jet of the surface with control points `points[controls[k]]` and basis `basis[k]`.
+    /// The jet of the surface with control points `points[controls[k]]` and basis `basis[k]`
+    /// (inlined into the element loops, once per point).
+    #[inline]
     pub fn new<const NB: usize>(
         basis: &[TensorBasis; NB],
         controls: &[usize; NB],

@@ -13,6 +13,7 @@ use crate::geometry::Vec3;
 use super::patch::{TensorBasis, DU, DV};
 
 /// ∂a_j/∂P_k for the function with basis `n` (columns j = 11, 12, 22).
+#[inline]
 pub fn strain_gradients(n: &TensorBasis, r1: &Vec3, r2: &Vec3) -> Matrix3<f64> {
     Matrix3::from_columns(&[
         r1 * (2.0 * n[DU]),
@@ -23,6 +24,7 @@ pub fn strain_gradients(n: &TensorBasis, r1: &Vec3, r2: &Vec3) -> Matrix3<f64> {
 
 /// Σ_j S_j ∂²a_j/∂P_k∂P_l (a multiple of the identity, this scalar) for the stress S =
 /// ∂W/∂a (N/m·m², conjugate to (a₁₁, a₁₂, a₂₂)): the membrane's geometric stiffness.
+#[inline]
 pub fn geometric_coefficient(
     nk: &TensorBasis,
     nl: &TensorBasis,

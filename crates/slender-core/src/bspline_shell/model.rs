@@ -5,7 +5,7 @@ use crate::assembly::AssemblyInfo;
 use crate::assembly::{Assembler, TermSet};
 use crate::error::ModelError;
 use crate::geometry::Vec3;
-use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
+use crate::linalg::{ScatterPlan, SparseSymmetricMatrix, SymmetricMatrix};
 use crate::rod::Grading;
 use crate::shell::{Clamp, ShellProperties};
 
@@ -57,6 +57,8 @@ pub struct BsplineShell {
     /// Full index (3k + c) of each free DOF.
     pub(crate) full_of_free: Vec<usize>,
     pub(crate) elements: Elements,
+    /// Where the elements' Hessian entries go in [`Self::sparse_hessian`]'s pattern.
+    pub(crate) scatter: ScatterPlan,
     /// Gauss points in the whole patch.
     pub(crate) n_points: usize,
     /// Control-point masses m_c = ∫ρh N_c dA (kg).
@@ -272,10 +274,17 @@ impl BsplineShell {
         (positions, triangles)
     }
 
-    /// A zero sparse Hessian whose pattern holds every pair of free DOFs of an element.
+    /// A zero sparse Hessian whose pattern holds every pair of free DOFs of an element (the
+    /// pattern of the model's scatter plan).
     pub fn sparse_hessian(&self) -> SparseSymmetricMatrix {
+        SparseSymmetricMatrix::zeros_of(&self.scatter)
+    }
+
+    /// The zero Hessian of `elements` over `n_free` DOFs and the plan of the elements' scatter
+    /// into it (built once with the model).
+    pub(crate) fn hessian_plan(elements: &Elements, n_free: usize) -> ScatterPlan {
         let mut pairs = Vec::new();
-        with_elements!(&self.elements, terms => {
+        with_elements!(elements, terms => {
             for t in terms {
                 let idx: Vec<usize> = t.dofs.iter().copied().filter(|&i| i != crate::assembly::FIXED).collect();
                 for (a, &i) in idx.iter().enumerate() {
@@ -285,7 +294,8 @@ impl BsplineShell {
                 }
             }
         });
-        SparseSymmetricMatrix::from_pattern(self.n_free(), pairs)
+        let hessian = SparseSymmetricMatrix::from_pattern(n_free, pairs);
+        with_elements!(elements, terms => hessian.scatter_plan(terms.iter().map(|t| &t.dofs)))
     }
 
     /// Energy (J) of the selected term groups at load factor `load`.
@@ -321,7 +331,7 @@ impl BsplineShell {
     ) {
         let factor = self.load_path.load_factor(load);
         let ctx = BsplineContext { state: s };
-        with_elements!(&self.elements, terms => asm.terms(&ctx, terms));
+        with_elements!(&self.elements, terms => asm.terms_planned(&ctx, terms, Some(&self.scatter)));
         let points = &s.control_points;
         if asm.selects(groups::GRAVITY) {
             let g = self.gravity * factor;

@@ -11,5 +11,5 @@ pub mod symmetric;
 pub use adaptive::{AdaptiveLdlt, AdaptiveMatrix};
 pub use banded::{BandLdlt, SymmetricBandMatrix};
 pub use eigen::{smallest_eigenpair, smallest_eigenpair_near, EigenEstimate};
-pub use sparse::{SparseLdlt, SparseSymmetricMatrix};
+pub use sparse::{ScatterPlan, SparseLdlt, SparseSymmetricMatrix};
 pub use symmetric::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};

@@ -34,6 +34,21 @@ pub trait SymmetricMatrix: Clone + std::fmt::Debug {
         lower_block_entries(dofs, value, |i, j, v| self.add(i, j, v));
     }
 
+    /// [`Self::add_lower_block`] for term `term` of a
+    /// [`ScatterPlan`](crate::linalg::sparse::ScatterPlan); storages without plans (or given
+    /// a plan of another pattern) scatter as usual.
+    #[inline]
+    fn add_lower_block_planned<const D: usize>(
+        &mut self,
+        plan: &crate::linalg::sparse::ScatterPlan,
+        term: usize,
+        dofs: &[usize; D],
+        value: impl Fn(usize, usize) -> f64,
+    ) {
+        let _ = (plan, term);
+        self.add_lower_block(dofs, value);
+    }
+
     /// Diagonal entry a_ii.
     fn diagonal(&self, i: usize) -> f64;
 
