@@ -4,9 +4,10 @@ use nalgebra::Vector3;
 
 use crate::error::{require_finite, require_positive, ModelError};
 use crate::geometry::Vec3;
+use crate::linalg::SparseSymmetricMatrix;
 use crate::rod::Grading;
 
-use super::bending::{edge_curvature_value, second_fundamental_form, EdgeDirector};
+use super::bending::{edge_curvature_value, second_fundamental_form, EdgeDirector, FACE_VARS};
 use super::clamp::Clamp;
 use super::dofs::ShellDofs;
 use super::gravity::lumped_vertex_masses;
@@ -258,6 +259,9 @@ impl ShellBuilder {
             clamped: self.clamped,
             edge_clamp,
             point_forces,
+            // Set below, once the face terms exist.
+            scatter: SparseSymmetricMatrix::from_pattern(0, Vec::new())
+                .scatter_plan(std::iter::empty::<&[usize; FACE_VARS]>()),
         };
         shell.faces = (0..shell.mesh.faces.len())
             .map(|f| FaceTerm {
@@ -273,6 +277,7 @@ impl ShellBuilder {
             }
         }
         shell.half_bandwidth = bw;
+        shell.scatter = Shell::hessian_plan(&shell.faces, shell.dofs.n_free());
         Ok(shell)
     }
 }

@@ -5,10 +5,10 @@ use std::ops::AddAssign;
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
-use crate::assembly::AssemblyInfo;
 use crate::assembly::{Assembler, LocalDerivatives, Stencil, StencilTerm, TermSet};
+use crate::assembly::{AssemblyInfo, FIXED};
 use crate::geometry::Vec3;
-use crate::linalg::{SparseSymmetricMatrix, SymmetricMatrix};
+use crate::linalg::{ScatterPlan, SparseSymmetricMatrix, SymmetricMatrix};
 use crate::rod::Grading;
 
 use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
@@ -84,6 +84,8 @@ pub struct Shell {
     pub(crate) edge_clamp: Vec<Option<usize>>,
     /// Dead point forces (vertex, force in N at load factor 1), scaled with gravity.
     pub(crate) point_forces: Vec<(usize, Vec3)>,
+    /// Where the face terms' Hessian entries go in [`Self::sparse_hessian`]'s pattern.
+    pub(crate) scatter: ScatterPlan,
 }
 
 impl Shell {
@@ -192,18 +194,26 @@ impl Shell {
     }
 
     /// A zero sparse Hessian whose pattern holds every pair of free DOFs sharing a face
-    /// stencil (the bending stencil contains the membrane one).
+    /// stencil (the bending stencil contains the membrane one): the pattern of the shell's
+    /// scatter plan.
     pub fn sparse_hessian(&self) -> SparseSymmetricMatrix {
+        SparseSymmetricMatrix::zeros_of(&self.scatter)
+    }
+
+    /// The zero Hessian of the face terms over `n_free` DOFs and the plan of their scatter
+    /// into it (built once with the shell).
+    pub(crate) fn hessian_plan(faces: &[FaceTerm], n_free: usize) -> ScatterPlan {
         let mut pairs = Vec::new();
-        for f in 0..self.mesh.faces.len() {
-            let idx: Vec<usize> = self.face_stencil(f).iter().flatten().copied().collect();
+        for t in faces {
+            let idx: Vec<usize> = t.dofs.iter().copied().filter(|&i| i != FIXED).collect();
             for (a, &i) in idx.iter().enumerate() {
                 for &j in &idx[..a] {
                     pairs.push((i, j));
                 }
             }
         }
-        SparseSymmetricMatrix::from_pattern(self.dofs.n_free(), pairs)
+        let hessian = SparseSymmetricMatrix::from_pattern(n_free, pairs);
+        hessian.scatter_plan(faces.iter().map(|t| &t.dofs))
     }
 
     /// Free DOF indices of face `f`'s 21-variable bending stencil (None: fixed or absent).
@@ -294,7 +304,7 @@ impl Shell {
             state: s,
             clamps: s.clamps,
         };
-        asm.terms(&ctx, &self.faces);
+        asm.terms_planned(&ctx, &self.faces, Some(&self.scatter));
         if asm.selects(groups::GRAVITY) {
             let g = self.gravity * gravity_factor;
             for (v, m) in self.vertex_masses.iter().enumerate() {
