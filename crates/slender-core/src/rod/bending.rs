@@ -9,9 +9,9 @@
 
 use nalgebra::Matrix3;
 
-use crate::geometry::{cross_matrix, Vec3};
+use crate::geometry::cross_matrix;
 
-use super::hinge::{scatter_gradient, EdgeHessian, HingeFrame, HingeMatrix, HingeVector};
+use super::hinge::{EdgeGradient, EdgeHessian, HingeFrame, HingeVector};
 
 /// Material curvatures (κ₁, κ₂) of a hinge.
 pub fn material_curvature(h: &HingeFrame) -> [f64; 2] {
@@ -21,77 +21,102 @@ pub fn material_curvature(h: &HingeFrame) -> [f64; 2] {
     ]
 }
 
-/// Gradients of (κ₁, κ₂) over the hinge stencil; when `second` is given, adds
-/// w₁ ∇²κ₁ + w₂ ∇²κ₂ (in edge space) into it.
-pub fn material_curvature_derivatives(
-    h: &HingeFrame,
-    kappa: [f64; 2],
-    second: Option<(&mut EdgeHessian, [f64; 2])>,
-) -> [HingeVector; 2] {
+/// Edge-space gradients of (κ₁, κ₂).
+///
+/// κ₁ = ½ κb·(m₂ᵉ + m₂ᶠ), κ₂ = −½ κb·(m₁ᵉ + m₁ᶠ): with d̃ᵢ = (mᵢᵉ + mᵢᶠ)/χ,
+/// ∂κ₁/∂e = (−κ₁ t̃ + t_f × d̃₂)/|e|, ∂κ₁/∂f = (−κ₁ t̃ − t_e × d̃₂)/|f|, ∂κ₁/∂θ = −½ κb·m₁,
+/// and κ₂ likewise with d̃₁, m₂ and the cross terms' signs flipped.
+pub fn material_curvature_derivatives(h: &HingeFrame, kappa: [f64; 2]) -> [EdgeGradient; 2] {
     let [te, tf] = h.t;
     let [le, lf] = h.len;
     let d1 = (h.m1[0] + h.m1[1]) / h.chi;
     let d2 = (h.m2[0] + h.m2[1]) / h.chi;
     let tt = h.t_tilde;
     let kb = h.kb;
+    [
+        EdgeGradient {
+            e: (tf.cross(&d2) - tt * kappa[0]) / le,
+            f: (-tt * kappa[0] - te.cross(&d2)) / lf,
+            theta: [-0.5 * kb.dot(&h.m1[0]), -0.5 * kb.dot(&h.m1[1])],
+        },
+        EdgeGradient {
+            e: (-tt * kappa[1] - tf.cross(&d1)) / le,
+            f: (te.cross(&d1) - tt * kappa[1]) / lf,
+            theta: [-0.5 * kb.dot(&h.m2[0]), -0.5 * kb.dot(&h.m2[1])],
+        },
+    ]
+}
 
-    let grad = [
-        scatter_gradient(
-            &((-kappa[0] * tt + tf.cross(&d2)) / le),
-            &((-kappa[0] * tt - te.cross(&d2)) / lf),
-            [-0.5 * kb.dot(&h.m1[0]), -0.5 * kb.dot(&h.m1[1])],
-        ),
-        scatter_gradient(
-            &((-kappa[1] * tt - tf.cross(&d1)) / le),
-            &((-kappa[1] * tt + te.cross(&d1)) / lf),
-            [-0.5 * kb.dot(&h.m2[0]), -0.5 * kb.dot(&h.m2[1])],
-        ),
+/// The weighted sum w₁ ∇κ₁ + w₂ ∇κ₂ in edge space, without the two gradients: the formulas of
+/// [`material_curvature_derivatives`] are linear in (κ, d̃, m), so the sum is one evaluation at
+/// the weighted combinations.
+pub fn weighted_curvature_gradient(h: &HingeFrame, kappa: [f64; 2], w: [f64; 2]) -> EdgeGradient {
+    let [te, tf] = h.t;
+    let [le, lf] = h.len;
+    let a = w[0] * kappa[0] + w[1] * kappa[1];
+    let d = ((h.m2[0] + h.m2[1]) * w[0] - (h.m1[0] + h.m1[1]) * w[1]) / h.chi;
+    let tt = h.t_tilde;
+    let half_kb = h.kb * 0.5;
+    let p = [
+        h.m1[0] * w[0] + h.m2[0] * w[1],
+        h.m1[1] * w[0] + h.m2[1] * w[1],
     ];
-
-    if let Some((out, weights)) = second {
-        let id = Matrix3::identity();
-        let tt_tt = tt * tt.transpose();
-        let proj_e = id - te * te.transpose();
-        let proj_f = id - tf * tf.transpose();
-        let mixed = id + te * tf.transpose();
-        let (ee, ff, eff) = (le * le, lf * lf, le * lf);
-        // κ₁ uses d̃₂ and m₂ with sign +1; κ₂ uses d̃₁ and m₁ with the cross terms and director
-        // terms flipped (sign −1).
-        let spec: [(Vec3, [Vec3; 2], f64, [Vec3; 2]); 2] =
-            [(d2, h.m2, 1.0, h.m1), (d1, h.m1, -1.0, h.m2)];
-        for (k, (d, m, sign, m_dtheta)) in spec.into_iter().enumerate() {
-            let kap = kappa[k];
-            let tf_d = tf.cross(&d) * sign;
-            let te_d = te.cross(&d) * sign;
-            let tf_d_tt = tf_d * tt.transpose();
-            let te_d_tt = te_d * tt.transpose();
-            let kb_me = kb * m[0].transpose();
-            let kb_mf = kb * m[1].transpose();
-            let mut hs = EdgeHessian {
-                ee: (tt_tt * (2.0 * kap) - tf_d_tt - tf_d_tt.transpose()) / ee
-                    - proj_e * (kap / (h.chi * ee))
-                    + (kb_me + kb_me.transpose()) * (sign / (4.0 * ee)),
-                ff: (tt_tt * (2.0 * kap) + te_d_tt + te_d_tt.transpose()) / ff
-                    - proj_f * (kap / (h.chi * ff))
-                    + (kb_mf + kb_mf.transpose()) * (sign / (4.0 * ff)),
-                ef: -mixed * (kap / (h.chi * eff))
-                    + (tt_tt * (2.0 * kap) - tf_d_tt + te_d_tt.transpose()
-                        - cross_matrix(&d) * sign)
-                        / eff,
-                ..Default::default()
-            };
-            // θ derivatives: ∂κ₁/∂θ = −½κb·m₁, ∂²κ₁/∂θ² = −½κb·m₂; ∂κ₂/∂θ = −½κb·m₂,
-            // ∂²κ₂/∂θ² = +½κb·m₁.
-            for j in 0..2 {
-                let md = m_dtheta[j];
-                hs.theta_theta[j] = -0.5 * sign * kb.dot(&m[j]);
-                hs.e_theta[j] = (tt * (0.5 * kb.dot(&md)) - tf.cross(&md) / h.chi) / le;
-                hs.f_theta[j] = (tt * (0.5 * kb.dot(&md)) + te.cross(&md) / h.chi) / lf;
-            }
-            out.add_scaled(&hs, weights[k]);
-        }
+    EdgeGradient {
+        e: (tf.cross(&d) - tt * a) / le,
+        f: (-tt * a - te.cross(&d)) / lf,
+        theta: [-half_kb.dot(&p[0]), -half_kb.dot(&p[1])],
     }
-    grad
+}
+
+/// Adds w₁ ∇²κ₁ + w₂ ∇²κ₂ (the curvatures' own second derivatives, in edge space) into `out`.
+///
+/// Each ∇²κₖ (Kaufman et al. 2014 / DisMech) is linear in κₖ, its director sum d̃ and its
+/// directors, so the weighted sum is one evaluation at A = Σ wₖ κₖ, D = Σ sₖ wₖ d̃ₖ,
+/// Mⱼ = Σ sₖ wₖ mₖʲ and Pⱼ = Σ wₖ ∂mₖʲ/∂θ (s = +1 for κ₁ with d̃₂, m₂; −1 for κ₂ with d̃₁, m₁).
+pub fn add_weighted_curvature_hessian(
+    h: &HingeFrame,
+    kappa: [f64; 2],
+    w: [f64; 2],
+    out: &mut EdgeHessian,
+) {
+    let [te, tf] = h.t;
+    let [le, lf] = h.len;
+    let tt = h.t_tilde;
+    let kb = h.kb;
+    let a = w[0] * kappa[0] + w[1] * kappa[1];
+    let d = ((h.m2[0] + h.m2[1]) * w[0] - (h.m1[0] + h.m1[1]) * w[1]) / h.chi;
+    let m = [
+        h.m2[0] * w[0] - h.m1[0] * w[1],
+        h.m2[1] * w[0] - h.m1[1] * w[1],
+    ];
+    let p = [
+        h.m1[0] * w[0] + h.m2[0] * w[1],
+        h.m1[1] * w[0] + h.m2[1] * w[1],
+    ];
+    let id = Matrix3::identity();
+    let tt_tt = tt * tt.transpose() * (2.0 * a);
+    let tf_d_tt = tf.cross(&d) * tt.transpose();
+    let te_d_tt = te.cross(&d) * tt.transpose();
+    let kb_me = kb * m[0].transpose();
+    let kb_mf = kb * m[1].transpose();
+    let (ee, ff, eff) = (le * le, lf * lf, le * lf);
+    let a_chi = a / h.chi;
+    out.ee += (tt_tt - tf_d_tt - tf_d_tt.transpose()) / ee
+        - (id - te * te.transpose()) * (a_chi / ee)
+        + (kb_me + kb_me.transpose()) / (4.0 * ee);
+    out.ff += (tt_tt + te_d_tt + te_d_tt.transpose()) / ff
+        - (id - tf * tf.transpose()) * (a_chi / ff)
+        + (kb_mf + kb_mf.transpose()) / (4.0 * ff);
+    out.ef += (tt_tt - tf_d_tt + te_d_tt.transpose() - cross_matrix(&d)) / eff
+        - (id + te * tf.transpose()) * (a_chi / eff);
+    // θ derivatives: ∂²κ₁/∂θ² = −½κb·m₂, ∂²κ₂/∂θ² = +½κb·m₁; the mixed ones with e and f
+    // through ∂m/∂θ (m₁ for κ₁, m₂ for κ₂).
+    for j in 0..2 {
+        out.theta_theta[j] += -0.5 * kb.dot(&m[j]);
+        let half = 0.5 * kb.dot(&p[j]);
+        out.e_theta[j] += (tt * half - tf.cross(&p[j]) / h.chi) / le;
+        out.f_theta[j] += (tt * half + te.cross(&p[j]) / h.chi) / lf;
+    }
 }
 
 /// Bending stiffnesses and rest data of one hinge.
@@ -106,14 +131,14 @@ pub struct BendingHinge {
 }
 
 impl BendingHinge {
-    /// Bending energy (J) of the hinge. Adds its gradient into `grad`; adds the Gauss–Newton
-    /// part Σ w ∇κ∇κᵀ into the stencil matrix and the curvature part Σ w Δκ ∇²κ into the edge
-    /// blocks of `hess` (the caller chains those to the stencil once for all terms).
+    /// Bending energy (J) of the hinge. Adds its gradient into `grad` and its whole Hessian —
+    /// the Gauss–Newton part Σ w ∇κ∇κᵀ and the curvature part Σ w Δκ ∇²κ — into the edge-space
+    /// `hess` (the caller chains it to the stencil once for all terms).
     pub fn energy(
         &self,
         h: &HingeFrame,
         grad: Option<&mut HingeVector>,
-        hess: Option<(&mut HingeMatrix, &mut EdgeHessian)>,
+        hess: Option<&mut EdgeHessian>,
     ) -> f64 {
         let kappa = material_curvature(h);
         let dk = [kappa[0] - self.rest_kappa[0], kappa[1] - self.rest_kappa[1]];
@@ -122,24 +147,22 @@ impl BendingHinge {
             self.stiffness[1] / self.voronoi_length,
         ];
         let energy = 0.5 * (w[0] * dk[0] * dk[0] + w[1] * dk[1] * dk[1]);
-        if grad.is_none() && hess.is_none() {
-            return energy;
-        }
-        let (hm, edge) = match hess {
-            Some((hm, edge)) => (Some(hm), Some(edge)),
-            None => (None, None),
-        };
-        let dkappa = material_curvature_derivatives(
-            h,
-            kappa,
-            edge.map(|e| (e, [w[0] * dk[0], w[1] * dk[1]])),
-        );
-        if let Some(g) = grad {
-            *g += dkappa[0] * (w[0] * dk[0]) + dkappa[1] * (w[1] * dk[1]);
-        }
-        if let Some(hm) = hm {
-            for k in 0..2 {
-                hm.ger(w[k], &dkappa[k], &dkappa[k], 1.0);
+        let force = [w[0] * dk[0], w[1] * dk[1]];
+        match hess {
+            None => {
+                if let Some(g) = grad {
+                    weighted_curvature_gradient(h, kappa, force).add_scaled_into(g, 1.0);
+                }
+            }
+            Some(edge) => {
+                let dkappa = material_curvature_derivatives(h, kappa);
+                if let Some(g) = grad {
+                    dkappa[0].add_scaled_into(g, force[0]);
+                    dkappa[1].add_scaled_into(g, force[1]);
+                }
+                edge.add_outer(w[0], &dkappa[0]);
+                edge.add_outer(w[1], &dkappa[1]);
+                add_weighted_curvature_hessian(h, kappa, force, edge);
             }
         }
         energy

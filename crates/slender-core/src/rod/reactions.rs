@@ -94,13 +94,10 @@ impl Rod {
             gh.fill(0.0);
             hinge
                 .bending
-                .energy(&frame, Some(&mut gh), None::<(&mut _, &mut EdgeHessian)>);
-            hinge.twisting.energy(
-                &frame,
-                hs.twist(),
-                Some(&mut gh),
-                None::<(&mut _, &mut EdgeHessian)>,
-            );
+                .energy(&frame, Some(&mut gh), None::<&mut EdgeHessian>);
+            hinge
+                .twisting
+                .energy(&frame, hs.twist(), Some(&mut gh), None::<&mut EdgeHessian>);
             let slot = |a: usize| Vec3::new(gh[a], gh[a + 1], gh[a + 2]);
             let v = hinge.vertex;
             g[v] += slot(4);

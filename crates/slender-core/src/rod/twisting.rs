@@ -7,27 +7,32 @@
 
 use crate::geometry::cross_matrix;
 
-use super::hinge::{scatter_gradient, EdgeHessian, HingeFrame, HingeMatrix, HingeVector};
+use super::hinge::{EdgeGradient, EdgeHessian, HingeFrame, HingeVector};
 
-/// Gradient of the twist strain over the hinge stencil; when `second` is given, adds
-/// w ∇²m (in edge space) into it.
-pub fn twist_derivatives(h: &HingeFrame, second: Option<(&mut EdgeHessian, f64)>) -> HingeVector {
+/// Edge-space gradient of the twist strain: ∂m/∂e = κb/(2|e|), ∂m/∂f = κb/(2|f|),
+/// ∂m/∂θ = (−1, 1).
+pub fn twist_derivatives(h: &HingeFrame) -> EdgeGradient {
     let [le, lf] = h.len;
-    let kb = h.kb;
-    let grad = scatter_gradient(&(kb / (2.0 * le)), &(kb / (2.0 * lf)), [-1.0, 1.0]);
-    if let Some((out, weight)) = second {
-        let [te, tf] = h.t;
-        let se = te + h.t_tilde;
-        let sf = tf + h.t_tilde;
-        let hs = EdgeHessian {
-            ee: -(kb * se.transpose() + se * kb.transpose()) / (4.0 * le * le),
-            ff: -(kb * sf.transpose() + sf * kb.transpose()) / (4.0 * lf * lf),
-            ef: (cross_matrix(&te) * (2.0 / h.chi) - kb * h.t_tilde.transpose()) / (2.0 * le * lf),
-            ..Default::default()
-        };
-        out.add_scaled(&hs, weight);
+    EdgeGradient {
+        e: h.kb / (2.0 * le),
+        f: h.kb / (2.0 * lf),
+        theta: [-1.0, 1.0],
     }
-    grad
+}
+
+/// Adds `weight` ∇²m (the twist strain's own second derivatives, in edge space) into `out`.
+pub fn add_weighted_twist_hessian(h: &HingeFrame, weight: f64, out: &mut EdgeHessian) {
+    let [le, lf] = h.len;
+    let [te, tf] = h.t;
+    let kb = h.kb;
+    let se = te + h.t_tilde;
+    let sf = tf + h.t_tilde;
+    let kb_se = kb * se.transpose();
+    let kb_sf = kb * sf.transpose();
+    out.ee -= (kb_se + kb_se.transpose()) * (weight / (4.0 * le * le));
+    out.ff -= (kb_sf + kb_sf.transpose()) * (weight / (4.0 * lf * lf));
+    out.ef += (cross_matrix(&te) * (2.0 / h.chi) - kb * h.t_tilde.transpose())
+        * (weight / (2.0 * le * lf));
 }
 
 /// Torsional stiffness and rest data of one hinge.
@@ -49,7 +54,7 @@ impl TwistingHinge {
         h: &HingeFrame,
         twist: f64,
         grad: Option<&mut HingeVector>,
-        hess: Option<(&mut HingeMatrix, &mut EdgeHessian)>,
+        hess: Option<&mut EdgeHessian>,
     ) -> f64 {
         let w = self.stiffness / self.voronoi_length;
         let dm = twist - self.rest_twist;
@@ -57,16 +62,13 @@ impl TwistingHinge {
         if grad.is_none() && hess.is_none() {
             return energy;
         }
-        let (hm, edge) = match hess {
-            Some((hm, edge)) => (Some(hm), Some(edge)),
-            None => (None, None),
-        };
-        let dtwist = twist_derivatives(h, edge.map(|e| (e, w * dm)));
+        let dtwist = twist_derivatives(h);
         if let Some(g) = grad {
-            *g += dtwist * (w * dm);
+            dtwist.add_scaled_into(g, w * dm);
         }
-        if let Some(hm) = hm {
-            hm.ger(w, &dtwist, &dtwist, 1.0);
+        if let Some(edge) = hess {
+            edge.add_outer(w, &dtwist);
+            add_weighted_twist_hessian(h, w * dm, edge);
         }
         energy
     }

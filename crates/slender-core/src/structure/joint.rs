@@ -111,11 +111,12 @@ impl<'a> StencilTerm<StructureContext<'a>, HINGE_DOFS> for JointHinge {
         let hs = self.hinge_state(ctx.state);
         let frame = HingeFrame::new(&hs);
         let mut edge = EdgeHessian::default();
+        let want_hess = out.hess.is_some();
         if selected.contains(BENDING) {
             let e = self.bending.energy(
                 &frame,
                 out.grad.as_deref_mut(),
-                out.hess.as_deref_mut().map(|h| (h, &mut edge)),
+                want_hess.then_some(&mut edge),
             );
             out.add_energy(e);
         }
@@ -124,7 +125,7 @@ impl<'a> StencilTerm<StructureContext<'a>, HINGE_DOFS> for JointHinge {
                 &frame,
                 hs.twist(),
                 out.grad.as_deref_mut(),
-                out.hess.as_deref_mut().map(|h| (h, &mut edge)),
+                want_hess.then_some(&mut edge),
             );
             out.add_energy(e);
         }
