@@ -249,8 +249,10 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             }
         }
         if let Some(hm) = self.hess.as_deref_mut() {
-            // Lower triangle of the stencil (b ≤ a): each unordered pair once.
-            let value = |a, b| hw * h[(a, b)];
+            // Lower triangle of the stencil (b ≤ a): each unordered pair once, read from the
+            // upper one (column a, rows b ≤ a: contiguous in nalgebra's column-major storage,
+            // where row a is strided; the local Hessian is symmetric).
+            let value = |a, b| hw * h[(b, a)];
             match plan {
                 Some((plan, term)) => hm.add_lower_block_planned(plan, term, stencil, value),
                 None => hm.add_lower_block(stencil, value),

@@ -11,7 +11,7 @@
 //! [`ReferenceFrames`] value is therefore only ever created *adapted* to a set of positions,
 //! and trial states of a line search get frames transported from the accepted state.
 
-use crate::geometry::{parallel_transport, rotate_about_axis, signed_angle, Vec3};
+use crate::geometry::{parallel_transport, signed_angle, Vec3};
 
 pub use super::clamp::GhostEdge;
 
@@ -126,6 +126,10 @@ impl ReferenceFrames {
 /// the frames by less than π, which the solver's step cap guarantees.
 pub(crate) fn updated_ref_twist(left: &EdgeFrame, right: &EdgeFrame, previous: f64) -> f64 {
     let u = parallel_transport(&left.a1, &left.tangent, &right.tangent);
-    let u = rotate_about_axis(&u, &right.tangent, previous);
-    previous + signed_angle(&u, &right.a1, &right.tangent)
+    // The angle in (−π, π] plus the whole turns that bring it within π of `previous`: the
+    // same as rotating u by `previous` and adding the small remainder, without the sine and
+    // cosine of `previous`.
+    let angle = signed_angle(&u, &right.a1, &right.tangent);
+    let turns = ((previous - angle) / std::f64::consts::TAU).round();
+    angle + turns * std::f64::consts::TAU
 }

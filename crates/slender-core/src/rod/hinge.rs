@@ -82,7 +82,7 @@ impl HingeFrame {
         let mut m2 = [Vec3::zeros(); 2];
         for k in 0..2 {
             let a2 = t[k].cross(&s.a1[k]);
-            let (sin, cos) = s.theta[k].sin_cos();
+            let (sin, cos) = crate::geometry::sin_cos(s.theta[k]);
             m1[k] = s.a1[k] * cos + a2 * sin;
             m2[k] = a2 * cos - s.a1[k] * sin;
         }

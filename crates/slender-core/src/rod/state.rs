@@ -86,7 +86,7 @@ impl RodState {
     pub fn material_frame(&self, j: usize) -> [Vec3; 3] {
         let f = self.frames.edges[j];
         let a2 = f.tangent.cross(&f.a1);
-        let (s, c) = self.thetas[j].sin_cos();
+        let (s, c) = crate::geometry::sin_cos(self.thetas[j]);
         [f.a1 * c + a2 * s, a2 * c - f.a1 * s, f.tangent]
     }
 }

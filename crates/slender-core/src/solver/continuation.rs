@@ -10,7 +10,7 @@
 
 use crate::linalg::{SymmetricBandMatrix, SymmetricFactor, SymmetricMatrix};
 
-use super::newton::{newton, IterateMeasures, NewtonWorkspace};
+use super::newton::{newton, DeferredCheck, IterateMeasures, NewtonWorkspace};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
 use super::report::{SolveReport, SolveStatus};
@@ -564,7 +564,14 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         let alpha = problem.max_step(&self.candidate, &self.predictor).min(1.0);
         problem.displace(&self.candidate, &self.predictor, alpha, &mut self.ws.trial);
         // At α = 0 the merit is the energy (`info.energy`).
-        if problem.merit(&self.ws.trial, load) < info.energy {
+        if self.params.deferred_energy_check && problem.merit_is_energy() {
+            // Newton's first measure computes the energy there anyway, and undoes the
+            // predictor if it did not lower it (the state before it stays in `ws.trial`).
+            std::mem::swap(&mut self.candidate, &mut self.ws.trial);
+            self.ws.deferred = Some(DeferredCheck::Predictor {
+                energy: info.energy,
+            });
+        } else if problem.merit(&self.ws.trial, load) < info.energy {
             std::mem::swap(&mut self.candidate, &mut self.ws.trial);
         }
     }

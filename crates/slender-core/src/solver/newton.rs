@@ -26,6 +26,38 @@ pub struct NewtonWorkspace<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     pub(crate) trial_dx: Vec<f64>,
     pub(crate) eigen: EigenWorkspace,
     pub(crate) shift_mode: LowestMode,
+    /// A step taken before its energy was known, to be judged by the next measure (see
+    /// [`SolverParams::deferred_energy_check`]); the state before it is in `trial`.
+    pub(crate) deferred: Option<DeferredCheck>,
+}
+
+/// The sufficient-decrease test still owed by a step taken without evaluating the energy at
+/// its end point (see [`SolverParams::deferred_energy_check`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum DeferredCheck {
+    /// A chord predictor: kept if the energy fell below `energy` (J), the energy before it.
+    Predictor { energy: f64 },
+    /// A full Newton step (saved in `trial_dx`): kept under the Armijo test of
+    /// [`armijo_backtracking`] at α = 1, else backtracked from α = ½.
+    NewtonStep { energy: f64, slope: f64, noise: f64 },
+}
+
+impl DeferredCheck {
+    /// True if the step ending at energy `e` (J) passes.
+    fn passes(&self, e: f64, params: &SolverParams) -> bool {
+        match *self {
+            Self::Predictor { energy } => e < energy,
+            Self::NewtonStep {
+                energy,
+                slope,
+                noise,
+            } => {
+                e.is_finite()
+                    && (e <= energy + params.armijo * slope
+                        || (-slope <= noise && e <= energy + noise))
+            }
+        }
+    }
 }
 
 impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
@@ -50,6 +82,7 @@ impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
                 normalized: 0.0,
                 shape: Vec::with_capacity(n),
             },
+            deferred: None,
         }
     }
 
@@ -148,9 +181,46 @@ pub fn newton<P: EquilibriumProblem>(
     let mut shifted_run = 0;
     // Whether `ws.shift_mode` holds the lowest mode of an earlier iterate of this solve.
     let mut mode_known = false;
+    // Full Newton steps may leave their energy test to the next measure (see
+    // `SolverParams::deferred_energy_check`) until one of them fails it.
+    let mut defer = params.deferred_energy_check && problem.merit_is_energy();
     for iteration in 0..=params.max_iterations {
         let (measures, info) = measure(problem, state, load, params, ws);
         last = measures;
+        if let Some(check) = ws.deferred.take() {
+            if !check.passes(info.energy, params) {
+                // Undo the step (the state before it is in `trial`) and take the line search
+                // it skipped; the next iteration measures where that lands.
+                std::mem::swap(state, &mut ws.trial);
+                defer = false;
+                if let DeferredCheck::NewtonStep {
+                    energy,
+                    slope,
+                    noise,
+                } = check
+                {
+                    ws.dx.copy_from_slice(&ws.trial_dx);
+                    match armijo_backtracking(
+                        problem,
+                        state,
+                        &ws.dx,
+                        energy,
+                        slope,
+                        noise,
+                        0.5,
+                        load,
+                        params,
+                        &mut ws.trial,
+                    ) {
+                        LineSearch::Accepted(_) => std::mem::swap(state, &mut ws.trial),
+                        LineSearch::Failed => {
+                            return failed(iteration, "line search found no decrease", last)
+                        }
+                    }
+                }
+                continue;
+            }
+        }
         let inertia = last.inertia;
         if converged(&last, &info, params, problem, state, ws, previous_residual) {
             polish(problem, state, load, params, ws, &mut last);
@@ -292,6 +362,17 @@ pub fn newton<P: EquilibriumProblem>(
         let slope = dot(&ws.grad, &ws.dx);
         let alpha_max = problem.max_step(state, &ws.dx);
         let noise = 1e3 * eps * info.energy_magnitude.max(info.energy.abs());
+        if defer && positive_definite && alpha_max >= 1.0 && slope < 0.0 {
+            ws.trial_dx.copy_from_slice(&ws.dx);
+            problem.displace(state, &ws.dx, 1.0, &mut ws.trial);
+            std::mem::swap(state, &mut ws.trial);
+            ws.deferred = Some(DeferredCheck::NewtonStep {
+                energy: info.energy,
+                slope,
+                noise,
+            });
+            continue;
+        }
         match armijo_backtracking(
             problem,
             state,

@@ -90,6 +90,19 @@ pub struct SolverParams {
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub indefinite_patience: Option<usize>,
+    /// Take a positive definite Newton step with room for a full step (and the chord
+    /// predictor's step) at once and let the next iterate's assembly, which computes the
+    /// energy anyway, decide on the sufficient decrease, instead of evaluating the energy at
+    /// the trial point first: one energy evaluation fewer per iteration of a warm solve, whose
+    /// full steps are nearly always accepted. A rejected step is undone and backtracked as
+    /// before, and the rest of that solve checks first. Only for problems whose line-search
+    /// merit is their energy ([`EquilibriumProblem::merit_is_energy`]). Not part of the scene
+    /// file: scene sessions turn it on; benchmarks keep it off.
+    ///
+    /// [`EquilibriumProblem::merit_is_energy`]: super::problem::EquilibriumProblem::merit_is_energy
+    #[serde(skip)]
+    #[cfg_attr(feature = "schema", schemars(skip))]
+    pub deferred_energy_check: bool,
 }
 
 impl Default for SolverParams {
@@ -112,6 +125,7 @@ impl Default for SolverParams {
             chord_predictor: false,
             chord_final_check: false,
             indefinite_patience: None,
+            deferred_energy_check: false,
         }
     }
 }

@@ -78,6 +78,14 @@ pub trait EquilibriumProblem: MassMetric {
         self.energy(trial, load)
     }
 
+    /// True if [`merit`](Self::merit) is the energy [`assemble`](Self::assemble) reports, so
+    /// that an assembly at a trial point can stand in for its merit (see
+    /// [`SolverParams::deferred_energy_check`](super::SolverParams::deferred_energy_check)).
+    /// Default false: a model says so explicitly.
+    fn merit_is_energy(&self) -> bool {
+        false
+    }
+
     /// Gradient into `grad` (length [`n_free`](Self::n_free)), Hessian into `hess` (zeroed
     /// here), and Σ over terms of |term gradient| per DOF into `abs_grad` (the round-off scale).
     fn assemble(

@@ -382,6 +382,11 @@ impl EquilibriumProblem for Structure {
         change
     }
 
+    fn merit_is_energy(&self) -> bool {
+        // No `merit` override: the line search measures the energy itself.
+        true
+    }
+
     fn max_step(&self, state: &StructureState, dx: &[f64]) -> f64 {
         self.members
             .iter()

@@ -166,6 +166,7 @@ impl Scene {
         solver.follow_stable = self.unstable == UnstablePolicy::Follow;
         solver.chord_predictor = true;
         solver.chord_final_check = true;
+        solver.deferred_energy_check = true;
         Ok(CompiledScene {
             rods,
             structures,
