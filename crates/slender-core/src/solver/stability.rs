@@ -293,7 +293,12 @@ fn inverse_iteration<M: SymmetricMatrix>(
             *x = 1.0 + ((i as f64 + 1.0) * (0.754_877_666 + 0.31 * k as f64)).fract();
         }
     }
-    let m_dot = |a: &[f64], b: &[f64]| -> f64 { (0..n).map(|i| a[i] * mass[i] * b[i]).sum() };
+    // The loops below run over slices cut to n, so that they carry no bounds checks.
+    let m_dot = |a: &[f64], b: &[f64]| -> f64 {
+        (a[..n].iter().zip(&mass[..n]).zip(&b[..n]))
+            .map(|((a, m), b)| a * m * b)
+            .sum()
+    };
     // Kept vectors scaled to the generic one's M-norm (a well-conditioned projected pencil).
     let target = m_dot(&v[BLOCK - 1], &v[BLOCK - 1]).sqrt();
     for k in 0..first_generic {
@@ -307,9 +312,9 @@ fn inverse_iteration<M: SymmetricMatrix>(
     // True when z = H⁻¹ M v[0] (from a failed residual test): the next sweep's first vector.
     let mut z_ready = false;
     for sweep in 1..=60 {
-        for k in usize::from(z_ready)..BLOCK {
-            for i in 0..n {
-                w[k][i] = mass[i] * v[k][i];
+        for (wk, vk) in w.iter_mut().zip(v.iter()).skip(usize::from(z_ready)) {
+            for ((x, m), y) in wk[..n].iter_mut().zip(&mass[..n]).zip(&vk[..n]) {
+                *x = m * y;
             }
         }
         if z_ready {
@@ -325,12 +330,18 @@ fn inverse_iteration<M: SymmetricMatrix>(
         // (each summed in index order as `m_dot` does): one pass per product would be 18
         // chains of n dependent additions.
         let (mut wmv, mut wmw) = ([[-0.0; BLOCK]; BLOCK], [[-0.0; BLOCK]; BLOCK]);
-        for i in 0..n {
-            for r in 0..BLOCK {
-                let wm = w[r][i] * mass[i];
-                for c in 0..BLOCK {
-                    wmv[r][c] += wm * v[c][i];
-                    wmw[r][c] += wm * w[c][i];
+        {
+            let m = &mass[..n];
+            let (v0, v1, v2) = (&v[0][..n], &v[1][..n], &v[2][..n]);
+            let (w0, w1, w2) = (&w[0][..n], &w[1][..n], &w[2][..n]);
+            for i in 0..n {
+                let (vi, wi) = ([v0[i], v1[i], v2[i]], [w0[i], w1[i], w2[i]]);
+                for r in 0..BLOCK {
+                    let wm = wi[r] * m[i];
+                    for c in 0..BLOCK {
+                        wmv[r][c] += wm * vi[c];
+                        wmw[r][c] += wm * wi[c];
+                    }
                 }
             }
         }
@@ -342,9 +353,11 @@ fn inverse_iteration<M: SymmetricMatrix>(
         let y = l_inv.transpose() * eig.eigenvectors;
         let (mut order, values) = ([0usize, 1, 2], eig.eigenvalues);
         order.sort_by(|&p, &q| values[p].total_cmp(&values[q]));
-        for (slot, &k) in order.iter().enumerate() {
-            for i in 0..n {
-                v[slot][i] = (0..BLOCK).map(|j| w[j][i] * y[(j, k)]).sum();
+        let (w0, w1, w2) = (&w[0][..n], &w[1][..n], &w[2][..n]);
+        for (vs, &k) in v.iter_mut().zip(&order) {
+            let (y0, y1, y2) = (y[(0, k)], y[(1, k)], y[(2, k)]);
+            for (i, x) in vs[..n].iter_mut().enumerate() {
+                *x = w0[i] * y0 + w1[i] * y1 + w2[i] * y2;
             }
         }
         let rho = values[order[0]];
@@ -363,16 +376,16 @@ fn inverse_iteration<M: SymmetricMatrix>(
         if !(rho2 > rho && rho2.is_finite()) {
             continue;
         }
-        for i in 0..n {
-            z[i] = mass[i] * v[0][i];
+        for ((x, m), y) in z[..n].iter_mut().zip(&mass[..n]).zip(&v[0][..n]) {
+            *x = m * y;
         }
         ldlt.solve_in_place(z);
         z_ready = true;
         hess.mul_vec(z, hz);
         let (mut zhz, mut zmz) = (0.0, 0.0);
-        for i in 0..n {
-            zhz += z[i] * hz[i];
-            zmz += z[i] * mass[i] * z[i];
+        for ((z, hz), m) in z[..n].iter().zip(&hz[..n]).zip(&mass[..n]) {
+            zhz += z * hz;
+            zmz += z * m * z;
         }
         // The Rayleigh quotient with `hess` itself (not zᵀMv), like the residual.
         let rho_z = zhz / zmz;
@@ -380,10 +393,10 @@ fn inverse_iteration<M: SymmetricMatrix>(
         if !(rho_z > 0.0 && gap > 0.0 && gap.is_finite()) {
             continue;
         }
-        let rr: f64 = (0..n)
-            .map(|i| {
-                let r = hz[i] - rho_z * mass[i] * z[i];
-                r * r / mass[i]
+        let rr: f64 = (z[..n].iter().zip(&hz[..n]).zip(&mass[..n]))
+            .map(|((z, hz), m)| {
+                let r = hz - rho_z * m * z;
+                r * r / m
             })
             .sum();
         let bound = rr / (zmz * gap);
