@@ -86,7 +86,8 @@ fn eig_residual(a: &SymmetricBandMatrix, est: &EigenEstimate) -> f64 {
 fn storage_add_get_and_mul_vec_match_dense() {
     let mut rng = XorShift::new(1);
     for &n in &[1, 5, 30] {
-        for &bw in &[0, 1, 3, 10] {
+        // 6, 10, 11, 12: the widths with fixed-size loops.
+        for &bw in &[0, 1, 3, 6, 10, 11, 12] {
             let mut a = SymmetricBandMatrix::new(n, bw);
             assert_eq!((a.dim(), a.half_bandwidth()), (n, bw));
             let mut reference = vec![vec![0.0; n]; n];

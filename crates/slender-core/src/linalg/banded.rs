@@ -139,8 +139,22 @@ impl SymmetricBandMatrix {
             y.fill(f64::NAN);
             return;
         }
-        let bw = self.bw;
-        for i in 0..n {
+        match self.bw {
+            6 => self.mul_vec_rows::<6>(x, y),
+            10 => self.mul_vec_rows::<10>(x, y),
+            11 => self.mul_vec_rows::<11>(x, y),
+            12 => self.mul_vec_rows::<12>(x, y),
+            _ => self.mul_vec_rows::<0>(x, y),
+        }
+    }
+
+    /// [`Self::mul_vec`] with the rows i ≥ `BW` of a band of width `BW` (0: any width) in
+    /// fixed-size loops, like the solves; the same operations in the same order (same bits).
+    fn mul_vec_rows<const BW: usize>(&self, x: &[f64], y: &mut [f64]) {
+        let (n, bw) = (self.n, self.bw);
+        debug_assert!(BW == 0 || BW == bw);
+        let head = if BW == 0 { n } else { BW.min(n) };
+        for i in 0..head {
             let row = self.row(i);
             let lo = i.saturating_sub(bw);
             let off = lo + bw - i;
@@ -153,6 +167,20 @@ impl SymmetricBandMatrix {
                 *yj += a * xi;
             }
             y[i] = acc;
+        }
+        for i in head..n {
+            let row = self.row(i);
+            let a: &[f64; BW] = row[..BW].try_into().expect("width BW");
+            let xj: &[f64; BW] = x[i - BW..i].try_into().expect("width BW");
+            let (above, below) = y.split_at_mut(i);
+            let yj: &mut [f64; BW] = (&mut above[i - BW..]).try_into().expect("width BW");
+            let xi = x[i];
+            let mut acc = row[BW] * xi;
+            for k in 0..BW {
+                acc += a[k] * xj[k];
+                yj[k] += a[k] * xi;
+            }
+            below[0] = acc;
         }
     }
 
