@@ -276,3 +276,96 @@ fn a_non_finite_load_range_is_refused_not_stepped_forever() {
         );
     }
 }
+
+/// E(x) = √(1 + x²) − f·x, one DOF: convex (E″ = (1 + x²)^(−3/2) > 0), but far from the
+/// equilibrium x = f/√(1 − f²) the full Newton step overshoots to a higher energy and the line
+/// search must cut it.
+struct Hyperbola {
+    force: f64,
+}
+
+impl slender_core::solver::MassMetric for Hyperbola {
+    fn inertia_metric(&self, _: usize) -> f64 {
+        1.0
+    }
+    fn eigenvalue_scale(&self) -> f64 {
+        1.0
+    }
+}
+
+impl slender_core::solver::EquilibriumProblem for Hyperbola {
+    type State = f64;
+    type Hessian = slender_core::linalg::SymmetricBandMatrix;
+    fn n_free(&self) -> usize {
+        1
+    }
+    fn new_hessian(&self) -> Self::Hessian {
+        slender_core::linalg::SymmetricBandMatrix::new(1, 0)
+    }
+    fn term_groups(&self) -> &[slender_core::assembly::TermGroup] {
+        &[]
+    }
+    fn assemble_selected<M: slender_core::linalg::SymmetricMatrix>(
+        &self,
+        x: &f64,
+        load: f64,
+        asm: &mut slender_core::assembly::Assembler<'_, M>,
+    ) {
+        let s = (1.0 + x * x).sqrt();
+        let g = nalgebra::SVector::<f64, 1>::new(x / s);
+        let h = nalgebra::SMatrix::<f64, 1, 1>::new(1.0 / (s * s * s));
+        asm.local(&[0], s, s, &g, &h);
+        let f = load * self.force;
+        asm.load(f * x, f.abs());
+        asm.generalized_force(0, f);
+    }
+    fn merit_is_energy(&self) -> bool {
+        true
+    }
+    fn difference(&self, a: &f64, b: &f64, out: &mut [f64]) {
+        out[0] = a - b;
+    }
+    fn displace(&self, x: &f64, dx: &[f64], alpha: f64, out: &mut f64) {
+        *out = x + alpha * dx[0];
+    }
+    fn max_step(&self, _: &f64, _: &[f64]) -> f64 {
+        1.0
+    }
+    fn force_length(&self, _: usize) -> f64 {
+        1.0
+    }
+    fn dof_magnitude(&self, _: &f64, _: usize) -> f64 {
+        1.0
+    }
+}
+
+#[test]
+fn a_deferred_energy_test_undoes_a_rejected_full_step_and_backtracks_as_before() {
+    use slender_core::solver::{newton, NewtonWorkspace, SolverParams};
+    let problem = Hyperbola { force: 0.5 };
+    let exact = 0.5 / 0.75_f64.sqrt();
+    let run = |start: f64, deferred: bool| {
+        let params = SolverParams {
+            deferred_energy_check: deferred,
+            ..SolverParams::default()
+        };
+        let mut x = start;
+        let mut ws = NewtonWorkspace::new(&problem, &x);
+        let out = newton(&problem, &mut x, 1.0, &params, &mut ws);
+        assert!(out.converged, "start {start}, deferred {deferred}: {out:?}");
+        assert!((x - exact).abs() < 1e-8, "start {start}: x = {x}");
+        (x, out.iterations)
+    };
+    // From x = 3 the full step lands at x ≈ −11 (energy 16.8 against 1.66) and the line search
+    // accepts α = 1/4. Deferred, the step is taken, judged by the next measure, undone and
+    // backtracked from α = 1/2 to the same point: the same iterates one measure later.
+    let (plain, plain_its) = run(3.0, false);
+    let (deferred, deferred_its) = run(3.0, true);
+    assert_eq!(plain.to_bits(), deferred.to_bits());
+    assert_eq!(deferred_its, plain_its + 1);
+    // Near the equilibrium every full step passes: the same iterates, no extra measure.
+    let (plain, plain_its) = run(0.7, false);
+    let (deferred, deferred_its) = run(0.7, true);
+    assert_eq!(plain.to_bits(), deferred.to_bits());
+    assert_eq!(deferred_its, plain_its);
+}

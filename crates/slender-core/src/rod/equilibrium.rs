@@ -90,6 +90,11 @@ impl EquilibriumProblem for Rod {
         self.refresh_followers(state)
     }
 
+    fn merit_is_energy(&self) -> bool {
+        // No `merit` override: the line search measures the energy itself.
+        true
+    }
+
     fn max_step(&self, state: &RodState, dx: &[f64]) -> f64 {
         self.max_step_by(state, |i| dx[i])
     }
