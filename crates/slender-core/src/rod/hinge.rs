@@ -216,8 +216,7 @@ impl EdgeHessian {
                 view += block.transpose();
             }
         }
-        for k in 0..2 {
-            let tk = THETA_OFFSET[k];
+        for (k, &tk) in THETA_OFFSET.iter().enumerate() {
             for a in 0..3 {
                 let v = self.e_theta[k] * DE_DX[a] + self.f_theta[k] * DF_DX[a];
                 let ra = VERTEX_OFFSET[a];

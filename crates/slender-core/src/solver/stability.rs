@@ -301,10 +301,10 @@ fn inverse_iteration<M: SymmetricMatrix>(
     };
     // Kept vectors scaled to the generic one's M-norm (a well-conditioned projected pencil).
     let target = m_dot(&v[BLOCK - 1], &v[BLOCK - 1]).sqrt();
-    for k in 0..first_generic {
-        let norm = m_dot(&v[k], &v[k]).sqrt();
+    for vk in v.iter_mut().take(first_generic) {
+        let norm = m_dot(vk, vk).sqrt();
         if norm > 0.0 && norm.is_finite() {
-            v[k].iter_mut().for_each(|x| *x *= target / norm);
+            vk.iter_mut().for_each(|x| *x *= target / norm);
         }
     }
     *warm = false;
