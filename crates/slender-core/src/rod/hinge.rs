@@ -98,18 +98,6 @@ impl HingeFrame {
     }
 }
 
-/// Builds a stencil gradient from ∂/∂e, ∂/∂f and ∂/∂θ.
-pub fn scatter_gradient(d_e: &Vec3, d_f: &Vec3, d_theta: [f64; 2]) -> HingeVector {
-    let mut g = HingeVector::zeros();
-    EdgeGradient {
-        e: *d_e,
-        f: *d_f,
-        theta: d_theta,
-    }
-    .add_scaled_into(&mut g, 1.0);
-    g
-}
-
 /// First derivatives of a hinge scalar with respect to (e, f, θ_e, θ_f): the 8 edge-space
 /// variables every hinge energy depends on, chained to the 11 stencil DOFs by
 /// [`Self::add_scaled_into`].
@@ -165,19 +153,6 @@ pub struct EdgeHessian {
 }
 
 impl EdgeHessian {
-    /// Adds `w` times `other`.
-    pub fn add_scaled(&mut self, other: &EdgeHessian, w: f64) {
-        self.ee += other.ee * w;
-        self.ef += other.ef * w;
-        self.ff += other.ff * w;
-        for k in 0..2 {
-            self.e_theta[k] += other.e_theta[k] * w;
-            self.f_theta[k] += other.f_theta[k] * w;
-            self.theta_theta[k] += other.theta_theta[k] * w;
-        }
-        self.theta_ef += other.theta_ef * w;
-    }
-
     /// Adds the outer product `w` g gᵀ (the Gauss–Newton part of a strain with gradient g).
     pub fn add_outer(&mut self, w: f64, g: &EdgeGradient) {
         let (we, wf) = (g.e * w, g.f * w);
