@@ -189,7 +189,7 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             if want_grad {
                 g = SVector::zeros();
             }
-            if want_hess {
+            if want_hess && !T::OVERWRITES_HESSIAN {
                 h = SMatrix::zeros();
             }
             let mut out = LocalDerivatives {

@@ -96,7 +96,13 @@ pub trait StencilTerm<C: ?Sized, const D: usize> {
     /// The global free DOF of each slot.
     fn stencil(&self) -> &Stencil<D>;
 
+    /// True if [`evaluate`](Self::evaluate) *writes* every entry of `out.hess` (when it is
+    /// requested) instead of adding to it: the assembler then does not zero the local Hessian
+    /// before the call (for a rod hinge, 121 entries per term per assembly).
+    const OVERWRITES_HESSIAN: bool = false;
+
     /// Adds the energy of the parts in `selected` (and their derivatives, if requested) to
-    /// `out`. `out.grad`/`out.hess` arrive zeroed for this term.
+    /// `out`. `out.grad` arrives zeroed for this term, and so does `out.hess` unless
+    /// [`OVERWRITES_HESSIAN`](Self::OVERWRITES_HESSIAN) is set.
     fn evaluate(&self, ctx: &C, selected: TermSet, out: &mut LocalDerivatives<'_, D>);
 }

@@ -23,6 +23,8 @@ impl<C: ?Sized, T: StencilTerm<C, D> + FullStencil<D>, const D: usize> StencilTe
         self.0.full_stencil()
     }
 
+    const OVERWRITES_HESSIAN: bool = T::OVERWRITES_HESSIAN;
+
     fn evaluate(&self, ctx: &C, selected: TermSet, out: &mut LocalDerivatives<'_, D>) {
         self.0.evaluate(ctx, selected, out);
     }

@@ -167,12 +167,14 @@ impl EdgeHessian {
         self.theta_ef += w * g.theta[0] * g.theta[1];
     }
 
-    /// Adds these edge-space second derivatives, chained to the stencil DOFs, into `h`.
+    /// Writes these edge-space second derivatives, chained to the stencil DOFs, into `h`:
+    /// every entry of `h` is set (so the assembler need not zero it first, see
+    /// [`StencilTerm::OVERWRITES_HESSIAN`](crate::assembly::StencilTerm::OVERWRITES_HESSIAN)).
     ///
     /// With e = x₁ − x₀ and f = x₂ − x₁ the vertex blocks are
     /// (0,0) = ee, (0,1) = ef − ee, (0,2) = −ef, (1,1) = ee − ef − fe + ff, (1,2) = ef − ff,
     /// (2,2) = ff (and their transposes).
-    pub fn scatter_into(&self, h: &mut HingeMatrix) {
+    pub fn write_into(&self, h: &mut HingeMatrix) {
         let fe = self.ef.transpose();
         let blocks = [
             (0, 0, self.ee),
@@ -184,11 +186,10 @@ impl EdgeHessian {
         ];
         for (a, b, block) in blocks {
             let (ra, rb) = (VERTEX_OFFSET[a], VERTEX_OFFSET[b]);
-            let mut view = h.fixed_view_mut::<3, 3>(ra, rb);
-            view += block;
+            h.fixed_view_mut::<3, 3>(ra, rb).copy_from(&block);
             if a != b {
-                let mut view = h.fixed_view_mut::<3, 3>(rb, ra);
-                view += block.transpose();
+                h.fixed_view_mut::<3, 3>(rb, ra)
+                    .copy_from(&block.transpose());
             }
         }
         for (k, &tk) in THETA_OFFSET.iter().enumerate() {
@@ -196,15 +197,15 @@ impl EdgeHessian {
                 let v = self.e_theta[k] * DE_DX[a] + self.f_theta[k] * DF_DX[a];
                 let ra = VERTEX_OFFSET[a];
                 for c in 0..3 {
-                    h[(ra + c, tk)] += v[c];
-                    h[(tk, ra + c)] += v[c];
+                    h[(ra + c, tk)] = v[c];
+                    h[(tk, ra + c)] = v[c];
                 }
             }
-            h[(tk, tk)] += self.theta_theta[k];
+            h[(tk, tk)] = self.theta_theta[k];
         }
         let (t0, t1) = (THETA_OFFSET[0], THETA_OFFSET[1]);
-        h[(t0, t1)] += self.theta_ef;
-        h[(t1, t0)] += self.theta_ef;
+        h[(t0, t1)] = self.theta_ef;
+        h[(t1, t0)] = self.theta_ef;
     }
 }
 
@@ -237,6 +238,8 @@ impl<'a> crate::assembly::StencilTerm<super::model::RodContext<'a>, HINGE_DOFS> 
         &self.dofs
     }
 
+    const OVERWRITES_HESSIAN: bool = true;
+
     fn evaluate(
         &self,
         ctx: &super::model::RodContext<'a>,
@@ -267,7 +270,28 @@ impl<'a> crate::assembly::StencilTerm<super::model::RodContext<'a>, HINGE_DOFS> 
             out.add_energy(e);
         }
         if let Some(h) = out.hess.as_deref_mut() {
-            edge.scatter_into(h);
+            edge.write_into(h);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `write_into` sets every entry of the stencil Hessian: none of a NaN-filled matrix
+    /// survives, which the assembler relies on when it skips zeroing the hinge's matrix.
+    #[test]
+    fn edge_hessian_writes_every_stencil_entry() {
+        let g = EdgeGradient {
+            e: Vec3::new(0.3, -1.2, 0.7),
+            f: Vec3::new(-0.4, 0.9, 2.1),
+            theta: [0.8, -1.7],
+        };
+        let mut edge = EdgeHessian::default();
+        edge.add_outer(1.5, &g);
+        let mut h = HingeMatrix::from_element(f64::NAN);
+        edge.write_into(&mut h);
+        assert!(h.iter().all(|v| v.is_finite()), "{h}");
     }
 }

@@ -102,6 +102,8 @@ impl<'a> StencilTerm<StructureContext<'a>, HINGE_DOFS> for JointHinge {
         &self.dofs
     }
 
+    const OVERWRITES_HESSIAN: bool = true;
+
     fn evaluate(
         &self,
         ctx: &StructureContext<'a>,
@@ -130,7 +132,7 @@ impl<'a> StencilTerm<StructureContext<'a>, HINGE_DOFS> for JointHinge {
             out.add_energy(e);
         }
         if let Some(h) = out.hess.as_deref_mut() {
-            edge.scatter_into(h);
+            edge.write_into(h);
         }
         // The hinge's angles are ±θ of the stored edges: chain rule on slots 3 and 7.
         for (slot, sign) in [(3, self.sides[0].sign), (7, self.sides[1].sign)] {
