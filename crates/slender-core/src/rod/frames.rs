@@ -130,6 +130,11 @@ pub(crate) fn updated_ref_twist(left: &EdgeFrame, right: &EdgeFrame, previous: f
     // same as rotating u by `previous` and adding the small remainder, without the sine and
     // cosine of `previous`.
     let angle = signed_angle(&u, &right.a1, &right.tangent);
-    let turns = ((previous - angle) / std::f64::consts::TAU).round();
+    let gap = previous - angle;
+    if gap.abs() < std::f64::consts::PI {
+        // No whole turn (what the rounding below gives, without its libm call).
+        return angle;
+    }
+    let turns = (gap / std::f64::consts::TAU).round();
     angle + turns * std::f64::consts::TAU
 }
