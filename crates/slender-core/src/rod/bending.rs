@@ -28,20 +28,20 @@ pub fn material_curvature(h: &HingeFrame) -> [f64; 2] {
 /// and κ₂ likewise with d̃₁, m₂ and the cross terms' signs flipped.
 pub fn material_curvature_derivatives(h: &HingeFrame, kappa: [f64; 2]) -> [EdgeGradient; 2] {
     let [te, tf] = h.t;
-    let [le, lf] = h.len;
-    let d1 = (h.m1[0] + h.m1[1]) / h.chi;
-    let d2 = (h.m2[0] + h.m2[1]) / h.chi;
+    let [ie, if_] = h.inv_len;
+    let d1 = (h.m1[0] + h.m1[1]) * h.inv_chi;
+    let d2 = (h.m2[0] + h.m2[1]) * h.inv_chi;
     let tt = h.t_tilde;
     let kb = h.kb;
     [
         EdgeGradient {
-            e: (tf.cross(&d2) - tt * kappa[0]) / le,
-            f: (-tt * kappa[0] - te.cross(&d2)) / lf,
+            e: (tf.cross(&d2) - tt * kappa[0]) * ie,
+            f: (-tt * kappa[0] - te.cross(&d2)) * if_,
             theta: [-0.5 * kb.dot(&h.m1[0]), -0.5 * kb.dot(&h.m1[1])],
         },
         EdgeGradient {
-            e: (-tt * kappa[1] - tf.cross(&d1)) / le,
-            f: (te.cross(&d1) - tt * kappa[1]) / lf,
+            e: (-tt * kappa[1] - tf.cross(&d1)) * ie,
+            f: (te.cross(&d1) - tt * kappa[1]) * if_,
             theta: [-0.5 * kb.dot(&h.m2[0]), -0.5 * kb.dot(&h.m2[1])],
         },
     ]
@@ -52,9 +52,9 @@ pub fn material_curvature_derivatives(h: &HingeFrame, kappa: [f64; 2]) -> [EdgeG
 /// the weighted combinations.
 pub fn weighted_curvature_gradient(h: &HingeFrame, kappa: [f64; 2], w: [f64; 2]) -> EdgeGradient {
     let [te, tf] = h.t;
-    let [le, lf] = h.len;
+    let [ie, if_] = h.inv_len;
     let a = w[0] * kappa[0] + w[1] * kappa[1];
-    let d = ((h.m2[0] + h.m2[1]) * w[0] - (h.m1[0] + h.m1[1]) * w[1]) / h.chi;
+    let d = ((h.m2[0] + h.m2[1]) * w[0] - (h.m1[0] + h.m1[1]) * w[1]) * h.inv_chi;
     let tt = h.t_tilde;
     let half_kb = h.kb * 0.5;
     let p = [
@@ -62,8 +62,8 @@ pub fn weighted_curvature_gradient(h: &HingeFrame, kappa: [f64; 2], w: [f64; 2])
         h.m1[1] * w[0] + h.m2[1] * w[1],
     ];
     EdgeGradient {
-        e: (tf.cross(&d) - tt * a) / le,
-        f: (-tt * a - te.cross(&d)) / lf,
+        e: (tf.cross(&d) - tt * a) * ie,
+        f: (-tt * a - te.cross(&d)) * if_,
         theta: [-half_kb.dot(&p[0]), -half_kb.dot(&p[1])],
     }
 }
@@ -80,11 +80,11 @@ pub fn add_weighted_curvature_hessian(
     out: &mut EdgeHessian,
 ) {
     let [te, tf] = h.t;
-    let [le, lf] = h.len;
+    let [ie, if_] = h.inv_len;
     let tt = h.t_tilde;
     let kb = h.kb;
     let a = w[0] * kappa[0] + w[1] * kappa[1];
-    let d = ((h.m2[0] + h.m2[1]) * w[0] - (h.m1[0] + h.m1[1]) * w[1]) / h.chi;
+    let d = ((h.m2[0] + h.m2[1]) * w[0] - (h.m1[0] + h.m1[1]) * w[1]) * h.inv_chi;
     let m = [
         h.m2[0] * w[0] - h.m1[0] * w[1],
         h.m2[1] * w[0] - h.m1[1] * w[1],
@@ -99,23 +99,25 @@ pub fn add_weighted_curvature_hessian(
     let te_d_tt = te.cross(&d) * tt.transpose();
     let kb_me = kb * m[0].transpose();
     let kb_mf = kb * m[1].transpose();
-    let (ee, ff, eff) = (le * le, lf * lf, le * lf);
-    let a_chi = a / h.chi;
-    out.ee += (tt_tt - tf_d_tt - tf_d_tt.transpose()) / ee
-        - (id - te * te.transpose()) * (a_chi / ee)
-        + (kb_me + kb_me.transpose()) / (4.0 * ee);
-    out.ff += (tt_tt + te_d_tt + te_d_tt.transpose()) / ff
-        - (id - tf * tf.transpose()) * (a_chi / ff)
-        + (kb_mf + kb_mf.transpose()) / (4.0 * ff);
-    out.ef += (tt_tt - tf_d_tt + te_d_tt.transpose() - cross_matrix(&d)) / eff
-        - (id + te * tf.transpose()) * (a_chi / eff);
+    // Each block carries one factor 1/(|e|²), 1/(|f|²) or 1/(|e||f|), applied once.
+    let a_chi = a * h.inv_chi;
+    out.ee += ((tt_tt - tf_d_tt - tf_d_tt.transpose()) - (id - te * te.transpose()) * a_chi
+        + (kb_me + kb_me.transpose()) * 0.25)
+        * (ie * ie);
+    out.ff += ((tt_tt + te_d_tt + te_d_tt.transpose()) - (id - tf * tf.transpose()) * a_chi
+        + (kb_mf + kb_mf.transpose()) * 0.25)
+        * (if_ * if_);
+    out.ef += ((tt_tt - tf_d_tt + te_d_tt.transpose() - cross_matrix(&d))
+        - (id + te * tf.transpose()) * a_chi)
+        * (ie * if_);
     // θ derivatives: ∂²κ₁/∂θ² = −½κb·m₂, ∂²κ₂/∂θ² = +½κb·m₁; the mixed ones with e and f
     // through ∂m/∂θ (m₁ for κ₁, m₂ for κ₂).
     for j in 0..2 {
         out.theta_theta[j] += -0.5 * kb.dot(&m[j]);
         let half = 0.5 * kb.dot(&p[j]);
-        out.e_theta[j] += (tt * half - tf.cross(&p[j]) / h.chi) / le;
-        out.f_theta[j] += (tt * half + te.cross(&p[j]) / h.chi) / lf;
+        let pj = p[j] * h.inv_chi;
+        out.e_theta[j] += (tt * half - tf.cross(&pj)) * ie;
+        out.f_theta[j] += (tt * half + te.cross(&pj)) * if_;
     }
 }
 

@@ -55,10 +55,15 @@ impl HingeState {
 pub struct HingeFrame {
     /// Edge lengths |e|, |f| (m).
     pub len: [f64; 2],
+    /// Their reciprocals 1/|e|, 1/|f| (1/m): the derivatives divide by them many times, and a
+    /// multiplication costs a fraction of a division.
+    pub inv_len: [f64; 2],
     /// Unit tangents t_e, t_f.
     pub t: [Vec3; 2],
     /// χ = 1 + t_e·t_f.
     pub chi: f64,
+    /// 1/χ.
+    pub inv_chi: f64,
     /// Curvature binormal κb = 2 t_e × t_f / χ (dimensionless, |κb| = 2 tan(φ/2)).
     pub kb: Vec3,
     /// t̃ = (t_e + t_f)/χ.
@@ -75,9 +80,11 @@ impl HingeFrame {
         let e = s.x[1] - s.x[0];
         let f = s.x[2] - s.x[1];
         let len = [e.norm(), f.norm()];
-        let t = [e / len[0], f / len[1]];
+        let inv_len = [1.0 / len[0], 1.0 / len[1]];
+        let t = [e * inv_len[0], f * inv_len[1]];
         let chi = 1.0 + t[0].dot(&t[1]);
-        let kb = t[0].cross(&t[1]) * (2.0 / chi);
+        let inv_chi = 1.0 / chi;
+        let kb = t[0].cross(&t[1]) * (2.0 * inv_chi);
         let mut m1 = [Vec3::zeros(); 2];
         let mut m2 = [Vec3::zeros(); 2];
         for k in 0..2 {
@@ -88,10 +95,12 @@ impl HingeFrame {
         }
         Self {
             len,
+            inv_len,
             t,
             chi,
+            inv_chi,
             kb,
-            t_tilde: (t[0] + t[1]) / chi,
+            t_tilde: (t[0] + t[1]) * inv_chi,
             m1,
             m2,
         }

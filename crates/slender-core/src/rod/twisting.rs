@@ -12,27 +12,27 @@ use super::hinge::{EdgeGradient, EdgeHessian, HingeFrame, HingeVector};
 /// Edge-space gradient of the twist strain: ∂m/∂e = κb/(2|e|), ∂m/∂f = κb/(2|f|),
 /// ∂m/∂θ = (−1, 1).
 pub fn twist_derivatives(h: &HingeFrame) -> EdgeGradient {
-    let [le, lf] = h.len;
+    let [ie, if_] = h.inv_len;
     EdgeGradient {
-        e: h.kb / (2.0 * le),
-        f: h.kb / (2.0 * lf),
+        e: h.kb * (0.5 * ie),
+        f: h.kb * (0.5 * if_),
         theta: [-1.0, 1.0],
     }
 }
 
 /// Adds `weight` ∇²m (the twist strain's own second derivatives, in edge space) into `out`.
 pub fn add_weighted_twist_hessian(h: &HingeFrame, weight: f64, out: &mut EdgeHessian) {
-    let [le, lf] = h.len;
+    let [ie, if_] = h.inv_len;
     let [te, tf] = h.t;
     let kb = h.kb;
     let se = te + h.t_tilde;
     let sf = tf + h.t_tilde;
     let kb_se = kb * se.transpose();
     let kb_sf = kb * sf.transpose();
-    out.ee -= (kb_se + kb_se.transpose()) * (weight / (4.0 * le * le));
-    out.ff -= (kb_sf + kb_sf.transpose()) * (weight / (4.0 * lf * lf));
-    out.ef += (cross_matrix(&te) * (2.0 / h.chi) - kb * h.t_tilde.transpose())
-        * (weight / (2.0 * le * lf));
+    out.ee -= (kb_se + kb_se.transpose()) * (0.25 * weight * ie * ie);
+    out.ff -= (kb_sf + kb_sf.transpose()) * (0.25 * weight * if_ * if_);
+    out.ef += (cross_matrix(&te) * (2.0 * h.inv_chi) - kb * h.t_tilde.transpose())
+        * (0.5 * weight * ie * if_);
 }
 
 /// Torsional stiffness and rest data of one hinge.
