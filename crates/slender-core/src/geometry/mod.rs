@@ -24,7 +24,13 @@ pub fn parallel_transport(u: &Vec3, from: &Vec3, to: &Vec3) -> Vec3 {
     // The rotation about b = from × to that takes `from` to `to` (Rodrigues' formula with
     // sin = |b| and 1 − cos = |b|²/(1 + cos)): no square root, no trigonometry.
     let bu = b.cross(u);
-    u + bu + b.cross(&bu) / (1.0 + from.dot(to))
+    u + bu + b.cross(&bu) * (1.0 / (1.0 + from.dot(to)))
+}
+
+/// `v / |v|`, with one division (nalgebra's `normalize` divides each component).
+#[inline]
+pub fn unit(v: &Vec3) -> Vec3 {
+    v * (1.0 / v.norm())
 }
 
 /// Signed angle (rad, in (−π, π]) from `u` to `v` about `axis` (right-hand rule). `u` and `v`

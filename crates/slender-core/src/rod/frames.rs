@@ -11,7 +11,7 @@
 //! [`ReferenceFrames`] value is therefore only ever created *adapted* to a set of positions,
 //! and trial states of a line search get frames transported from the accepted state.
 
-use crate::geometry::{parallel_transport, signed_angle, Vec3};
+use crate::geometry::{parallel_transport, signed_angle, unit, Vec3};
 
 pub use super::clamp::GhostEdge;
 
@@ -29,7 +29,7 @@ impl EdgeFrame {
     pub fn transported_to(&self, tangent: &Vec3) -> Self {
         let a1 = parallel_transport(&self.a1, &self.tangent, tangent);
         // Re-orthonormalize: transport is exact in exact arithmetic only.
-        let a1 = (a1 - tangent * tangent.dot(&a1)).normalize();
+        let a1 = unit(&(a1 - tangent * tangent.dot(&a1)));
         Self {
             tangent: *tangent,
             a1,
@@ -92,7 +92,7 @@ impl ReferenceFrames {
         out.edges.clear();
         out.edges
             .extend(self.edges.iter().enumerate().map(|(j, f)| {
-                let t = (positions[j + 1] - positions[j]).normalize();
+                let t = unit(&(positions[j + 1] - positions[j]));
                 f.transported_to(&t)
             }));
         out.ghost_start = self.ghost_start;
@@ -111,7 +111,7 @@ impl ReferenceFrames {
     /// only need the new frames and the old twist).
     pub(crate) fn transport_in_place(&mut self, positions: &[Vec3], hinges: &[(EdgeId, EdgeId)]) {
         for (j, f) in self.edges.iter_mut().enumerate() {
-            let t = (positions[j + 1] - positions[j]).normalize();
+            let t = unit(&(positions[j + 1] - positions[j]));
             *f = f.transported_to(&t);
         }
         for (k, &(l, r)) in hinges.iter().enumerate() {

@@ -101,12 +101,14 @@ impl Rod {
             let e = x[j + 1] - x[j];
             let de = disp(j + 1) - disp(j);
             let len = e.norm();
-            let t = e / len;
+            let inv_len = 1.0 / len;
+            let t = e * inv_len;
             let along = t.dot(&de);
             let across = de - t * along;
-            let turn = across.norm() / len;
+            let across_len = across.norm();
+            let turn = across_len * inv_len;
             let dir = if turn > 0.0 {
-                let axis = t.cross(&across) / (turn * len);
+                let axis = t.cross(&across) * (1.0 / across_len);
                 crate::geometry::rotate_about_axis(&t, &axis, turn)
             } else {
                 t

@@ -18,7 +18,8 @@ pub fn stretching_energy(
     let len = e.norm();
     let strain = len / rest_length - 1.0;
     let energy = 0.5 * ea * rest_length * strain * strain;
-    let t = e / len;
+    let inv_len = 1.0 / len;
+    let t = e * inv_len;
     if let Some(g) = grad {
         let de = t * (ea * strain);
         g.fixed_rows_mut::<3>(0).sub_assign(&de);
@@ -27,7 +28,7 @@ pub fn stretching_energy(
     if let Some(h) = hess {
         let tt = t * t.transpose();
         // ∂²E/∂e² = EA/|ē| t⊗t + EA ε (I − t⊗t)/|e|.
-        let hee = tt * (ea / rest_length) + (Matrix3::identity() - tt) * (ea * strain / len);
+        let hee = tt * (ea / rest_length) + (Matrix3::identity() - tt) * (ea * strain * inv_len);
         h.fixed_view_mut::<3, 3>(0, 0).add_assign(&hee);
         h.fixed_view_mut::<3, 3>(3, 3).add_assign(&hee);
         h.fixed_view_mut::<3, 3>(0, 3).sub_assign(&hee);
