@@ -122,8 +122,9 @@ impl Rod {
     /// `dx(i)`.
     pub fn max_step_by(&self, state: &RodState, dx: impl Fn(usize) -> f64 + Copy) -> f64 {
         let (turn, change) = self.max_edge_rotation(state, dx);
-        let theta = (0..self.dofs.n_free())
-            .filter(|&i| self.dofs.is_angle(i))
+        let theta = (0..self.n_edges())
+            .map(|j| self.dofs.theta(j))
+            .filter(|&i| i != super::dofs::FIXED)
             .map(|i| dx(i).abs())
             .fold(0.0, f64::max);
         let mut alpha: f64 = 1.0;

@@ -180,25 +180,32 @@ impl Rod {
             }
             d
         };
-        // The largest turn is found by comparing the points (cos, sin)·r of the turns, all in
-        // the upper half-plane: one atan2 for the largest instead of one per edge.
-        let (mut best_sin, mut best_cos) = (0.0_f64, 1.0_f64);
-        let mut max_stretch: f64 = 0.0;
+        // The largest turn and the largest relative change are found without a square root
+        // or a division per edge, from squared lengths; both are taken once, for the winners.
+        // A turn θ ∈ [0, π] with sin θ ∝ |e × (e + de)| = s and cos θ ∝ e·(e + de) = c is
+        // larger when cot θ·|cot θ| = c|c|/s² is smaller, compared cross-multiplied.
+        let (mut best_s2, mut best_c) = (0.0_f64, 1.0_f64);
+        let mut best_reversed = false;
+        let (mut best_de2, mut best_e2) = (0.0_f64, 1.0_f64);
         for j in 0..n {
             let e = s.positions[j + 1] - s.positions[j];
             let de = disp(j + 1) - disp(j);
-            let len = e.norm();
-            // Rotation of the edge direction ≈ |de⊥|/|e|, exact angle for the full step.
             let new = e + de;
-            let (sin, cos) = (e.cross(&new).norm(), e.dot(&new));
-            // Counter-clockwise of the best so far is a larger angle in [0, π]; a reversed
-            // edge (sin = 0, cos < 0) is the largest, π, which that test cannot see.
-            let reversed = sin == 0.0 && cos < 0.0;
-            if reversed || best_cos * sin - best_sin * cos > 0.0 {
-                (best_sin, best_cos) = (sin, cos);
+            let (s2, c) = (e.cross(&new).norm_squared(), e.dot(&new));
+            // A reversed edge (sin = 0, cos < 0) is the largest turn, π.
+            if !best_reversed {
+                if s2 == 0.0 && c < 0.0 {
+                    (best_s2, best_c, best_reversed) = (s2, c, true);
+                } else if c * c.abs() * best_s2 < best_c * best_c.abs() * s2 {
+                    (best_s2, best_c) = (s2, c);
+                }
             }
-            max_stretch = max_stretch.max(de.norm() / len);
+            let (de2, e2) = (de.norm_squared(), e.norm_squared());
+            if de2 * best_e2 > best_de2 * e2 {
+                (best_de2, best_e2) = (de2, e2);
+            }
         }
-        (best_sin.atan2(best_cos), max_stretch)
+        let max_stretch = best_de2.sqrt() / best_e2.sqrt();
+        (best_s2.sqrt().atan2(best_c), max_stretch)
     }
 }
