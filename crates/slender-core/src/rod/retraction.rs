@@ -97,9 +97,11 @@ impl Rod {
             }
             d
         };
-        let new_edge = |j: usize| -> Vec3 {
+        // Edge j's new vector from its end vertices' steps `dj` and `dj1` (each vertex's step
+        // is computed once and carried along the walks below).
+        let new_edge = |j: usize, dj: Vec3, dj1: Vec3| -> Vec3 {
             let e = x[j + 1] - x[j];
-            let de = disp(j + 1) - disp(j);
+            let de = dj1 - dj;
             let len = e.norm();
             let inv_len = 1.0 / len;
             let t = e * inv_len;
@@ -130,12 +132,18 @@ impl Rod {
             let first = fixed[0];
             let last = fixed[fixed.len() - 1];
             // Free tail before the first support: walk backward.
+            let mut d_hi = disp(first);
             for j in (0..first).rev() {
-                p[j] = p[j + 1] - new_edge(j);
+                let d_lo = disp(j);
+                p[j] = p[j + 1] - new_edge(j, d_lo, d_hi);
+                d_hi = d_lo;
             }
             // Free tail after the last support: walk forward.
+            let mut d_lo = disp(last);
             for j in last..n {
-                p[j + 1] = p[j] + new_edge(j);
+                let d_hi = disp(j + 1);
+                p[j + 1] = p[j] + new_edge(j, d_lo, d_hi);
+                d_lo = d_hi;
             }
             // Segments between supports: blend the two walks.
             for w in fixed.windows(2) {
@@ -147,11 +155,14 @@ impl Rod {
                 // walk shifted by its closure gap p_b − (p_a + Σ e), so the blend adds the gap
                 // in proportion to the arc length from a (each edge is computed once).
                 let mut forward = p[a];
+                let mut d_lo = disp(a);
                 for j in a..b - 1 {
-                    forward += new_edge(j);
+                    let d_hi = disp(j + 1);
+                    forward += new_edge(j, d_lo, d_hi);
                     p[j + 1] = forward;
+                    d_lo = d_hi;
                 }
-                let gap = p[b] - (forward + new_edge(b - 1));
+                let gap = p[b] - (forward + new_edge(b - 1, d_lo, disp(b)));
                 let s_total: f64 = self.rest_lengths[a..b].iter().sum();
                 let mut s_from_b = 0.0;
                 for j in (a + 1..b).rev() {
