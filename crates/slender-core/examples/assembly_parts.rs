@@ -1,7 +1,7 @@
 //! One piece of the warm drag of `drag_loop` at a time, repeated at the drag scene's
 //! equilibrium, for instruction counts per piece:
 //! `PART=gradient N=1000 valgrind --tool=callgrind target/release/examples/assembly_parts`
-//! (PART: hessian, gradient, energy, displace, factor, solve). Prints the wall time per call.
+//! (PART: hessian, gradient, energy, displace, factor, solve, block3). Prints the wall time per call.
 
 use slender_core::assembly::{Assembler, TermSet};
 use slender_core::linalg::{SymmetricFactor, SymmetricMatrix};
@@ -46,6 +46,7 @@ supports = [ { kind = "clamp", vertex = "start" }, { kind = "clamp", vertex = "e
         .collect();
     let mut out = state.clone();
     let mut b = vec![0.0; n];
+    let (mut b1, mut b2) = (vec![0.0; n], vec![0.0; n]);
     let mut acc = 0.0;
     let t = std::time::Instant::now();
     for _ in 0..reps {
@@ -70,6 +71,13 @@ supports = [ { kind = "clamp", vertex = "start" }, { kind = "clamp", vertex = "e
                 b.copy_from_slice(&grad);
                 ldlt.solve_in_place(&mut b);
                 acc += b[0];
+            }
+            "block3" => {
+                b.copy_from_slice(&grad);
+                b1.copy_from_slice(&grad);
+                b2.copy_from_slice(&dx);
+                ldlt.solve_block_in_place([&mut b[..], &mut b1[..], &mut b2[..]]);
+                acc += b[0] + b1[0] + b2[0];
             }
             "dump" => {
                 let mut moved = state.clone();
