@@ -71,6 +71,13 @@ impl SymmetricMatrix for AdaptiveMatrix {
         }
     }
 
+    fn diagonal_into(&self, out: &mut [f64]) {
+        match self {
+            Self::Band(m) => SymmetricMatrix::diagonal_into(m, out),
+            Self::Sparse(m) => SymmetricMatrix::diagonal_into(m, out),
+        }
+    }
+
     fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
         match self {
             Self::Band(m) => m.mul_vec(x, y),

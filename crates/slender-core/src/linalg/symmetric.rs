@@ -52,6 +52,13 @@ pub trait SymmetricMatrix: Clone + std::fmt::Debug {
     /// Diagonal entry a_ii.
     fn diagonal(&self, i: usize) -> f64;
 
+    /// The whole diagonal into `out` (length n).
+    fn diagonal_into(&self, out: &mut [f64]) {
+        for (i, d) in out.iter_mut().enumerate() {
+            *d = self.diagonal(i);
+        }
+    }
+
     /// max |a_ii| (0 for the empty matrix).
     fn max_abs_diagonal(&self) -> f64 {
         (0..self.dim()).fold(0.0, |m, i| m.max(self.diagonal(i).abs()))

@@ -115,6 +115,29 @@ impl EquilibriumProblem for Rod {
             state.positions[f / 4].amax().max(self.length)
         }
     }
+
+    fn dof_scales(&self, state: &RodState, force_length: &mut [f64], magnitude: &mut [f64]) {
+        self.dof_scales_each(state, |i, l, m| {
+            force_length[i] = l;
+            magnitude[i] = m;
+        });
+    }
+}
+
+impl Rod {
+    /// Calls `f(i, force_length, dof_magnitude)` for every free DOF i, in order (the values of
+    /// [`EquilibriumProblem::force_length`] and [`EquilibriumProblem::dof_magnitude`]).
+    pub fn dof_scales_each(&self, state: &RodState, mut f: impl FnMut(usize, f64, f64)) {
+        for i in 0..self.dofs.n_free() {
+            let full = self.dofs.full_index(i);
+            if full % 4 == 3 {
+                let m = state.thetas[full / 4].abs().max(std::f64::consts::PI);
+                f(i, self.length, m);
+            } else {
+                f(i, 1.0, state.positions[full / 4].amax().max(self.length));
+            }
+        }
+    }
 }
 
 impl Rod {

@@ -29,6 +29,20 @@ pub struct NewtonWorkspace<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     /// A step taken before its energy was known, to be judged by the next measure (see
     /// [`SolverParams::deferred_energy_check`]); the state before it is in `trial`.
     pub(crate) deferred: Option<DeferredCheck>,
+    /// The per-DOF scales of the last round-off floor.
+    pub(crate) scales: FloorScales,
+}
+
+/// The per-DOF scales a residual's round-off floor is made of, refilled at every measured
+/// point (buffers reused).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FloorScales {
+    /// [`EquilibriumProblem::force_length`] of each DOF (m).
+    force_length: Vec<f64>,
+    /// [`EquilibriumProblem::dof_magnitude`] of each DOF (m or rad).
+    magnitude: Vec<f64>,
+    /// The Hessian's diagonal.
+    diagonal: Vec<f64>,
 }
 
 /// The sufficient-decrease test still owed by a step taken without evaluating the energy at
@@ -83,6 +97,7 @@ impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
                 shape: Vec::with_capacity(n),
             },
             deferred: None,
+            scales: FloorScales::default(),
         }
     }
 
@@ -407,15 +422,20 @@ fn measure<P: EquilibriumProblem>(
 ) -> (IterateMeasures, crate::solver::AssemblyInfo) {
     let n = problem.n_free();
     let info = problem.assemble(state, load, &mut ws.grad, &mut ws.hess, &mut ws.abs_grad);
-    let (residual, floor) =
-        residual_and_floor(problem, state, params, &ws.grad, &ws.abs_grad, |i| {
-            ws.hess.diagonal(i)
-        });
+    let (residual, floor) = residual_and_floor(
+        problem,
+        state,
+        params,
+        &ws.grad,
+        &ws.abs_grad,
+        &ws.hess,
+        &mut ws.scales,
+    );
     let force_scale = if info.external_force > 0.0 {
         info.external_force
     } else {
         0.5 * (0..n)
-            .map(|i| ws.abs_grad[i] / problem.force_length(i))
+            .map(|i| ws.abs_grad[i] / ws.scales.force_length[i])
             .fold(0.0, f64::max)
     };
     // The unshifted factorization gives the inertia and, if it exists, the Newton step.
@@ -463,14 +483,14 @@ fn full_step_trial<P: EquilibriumProblem>(
     );
     problem.assemble_selected(&ws.trial, load, &mut asm);
     let info = asm.finish();
-    let hess = &ws.hess;
     let (residual, floor) = residual_and_floor(
         problem,
         &ws.trial,
         params,
         &ws.trial_grad,
         &ws.abs_grad,
-        |i| hess.diagonal(i),
+        &ws.hess,
+        &mut ws.scales,
     );
     (info, residual, floor)
 }
@@ -532,7 +552,7 @@ fn chord_final_check<P: EquilibriumProblem>(
         info.external_force
     } else {
         0.5 * (0..n)
-            .map(|i| ws.abs_grad[i] / problem.force_length(i))
+            .map(|i| ws.abs_grad[i] / ws.scales.force_length[i])
             .fold(0.0, f64::max)
     };
     for i in 0..n {
@@ -564,22 +584,33 @@ fn chord_final_check<P: EquilibriumProblem>(
     }
 }
 
-/// Largest residual force (N) and its round-off floor (N) from a gradient and its Σ|term|.
+/// Largest residual force (N) and its round-off floor (N) from a gradient and its Σ|term|,
+/// with the DOF scales and `hess`'s diagonal (the floor's stiffness scale) gathered into
+/// `scales` first.
+#[allow(clippy::too_many_arguments)]
 fn residual_and_floor<P: EquilibriumProblem>(
     problem: &P,
     state: &P::State,
     params: &SolverParams,
     grad: &[f64],
     abs_grad: &[f64],
-    diagonal: impl Fn(usize) -> f64,
+    hess: &P::Hessian,
+    scales: &mut FloorScales,
 ) -> (f64, f64) {
     let eps = f64::EPSILON;
+    let n = grad.len();
+    // resize() only allocates the first time.
+    scales.force_length.resize(n, 0.0);
+    scales.magnitude.resize(n, 0.0);
+    scales.diagonal.resize(n, 0.0);
+    problem.dof_scales(state, &mut scales.force_length, &mut scales.magnitude);
+    hess.diagonal_into(&mut scales.diagonal);
     let mut residual: f64 = 0.0;
     let mut floor: f64 = 0.0;
-    for i in 0..grad.len() {
-        let len = problem.force_length(i);
+    for i in 0..n {
+        let len = scales.force_length[i];
         residual = residual.max(grad[i].abs() / len);
-        let noise = abs_grad[i] + diagonal(i).abs() * problem.dof_magnitude(state, i);
+        let noise = abs_grad[i] + scales.diagonal[i].abs() * scales.magnitude[i];
         floor = floor.max(params.roundoff_factor * eps * noise / len);
     }
     (residual, floor)

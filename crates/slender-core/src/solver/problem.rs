@@ -174,4 +174,20 @@ pub trait EquilibriumProblem: MassMetric {
 
     /// Typical magnitude of DOF `i` (m or rad), for the round-off floor of the gradient.
     fn dof_magnitude(&self, state: &Self::State, i: usize) -> f64;
+
+    /// [`force_length`](Self::force_length) (m) and [`dof_magnitude`](Self::dof_magnitude)
+    /// (m or rad) of every free DOF at once, into `force_length` and `magnitude` (length n):
+    /// the solver's round-off floor reads both for every DOF at every iterate, and a model can
+    /// produce them in one pass (a structure: one dispatch per member instead of two per DOF).
+    /// The default asks DOF by DOF; an override must give the same values.
+    fn dof_scales(&self, state: &Self::State, force_length: &mut [f64], magnitude: &mut [f64]) {
+        for (i, (l, m)) in force_length
+            .iter_mut()
+            .zip(magnitude.iter_mut())
+            .enumerate()
+        {
+            *l = self.force_length(i);
+            *m = self.dof_magnitude(state, i);
+        }
+    }
 }

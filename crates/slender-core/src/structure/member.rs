@@ -258,6 +258,17 @@ impl Member {
             r => EquilibriumProblem::dof_magnitude(r, framed!(state), i))
     }
 
+    /// Calls `f(i, force_length, dof_magnitude)` for every own free DOF i, in order: one
+    /// dispatch on the model for all of them.
+    pub fn dof_scales_each(&self, state: &MemberState, mut f: impl FnMut(usize, f64, f64)) {
+        by_model!(self, r => r.dof_scales_each(der!(state), f), r => {
+            let s = framed!(state);
+            for i in 0..r.n_free() {
+                f(i, EquilibriumProblem::force_length(r, i), EquilibriumProblem::dof_magnitude(r, s, i));
+            }
+        })
+    }
+
     /// See [`MassMetric::inertia_metric`].
     pub fn inertia_metric(&self, i: usize) -> f64 {
         by_model!(self, r => r.inertia_metric(i), r => MassMetric::inertia_metric(r, i))

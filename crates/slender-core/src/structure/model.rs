@@ -406,6 +406,20 @@ impl EquilibriumProblem for Structure {
         let (m, local) = self.dofs.owner[i];
         self.members[m].dof_magnitude(&state.members[m], local)
     }
+
+    fn dof_scales(&self, state: &StructureState, force_length: &mut [f64], magnitude: &mut [f64]) {
+        // Each global DOF takes its scales from its owner, as the per-DOF methods do.
+        for (m, member) in self.members.iter().enumerate() {
+            let map = &self.dofs.maps[m];
+            member.dof_scales_each(&state.members[m], |i, l, mag| {
+                let g = map[i].dof;
+                if g != crate::assembly::FIXED && self.dofs.owner[g] == (m, i) {
+                    force_length[g] = l;
+                    magnitude[g] = mag;
+                }
+            });
+        }
+    }
 }
 
 #[cfg(feature = "testing")]
