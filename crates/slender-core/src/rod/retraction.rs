@@ -198,9 +198,12 @@ impl Rod {
         let (mut best_s2, mut best_c) = (0.0_f64, 1.0_f64);
         let mut best_reversed = false;
         let (mut best_de2, mut best_e2) = (0.0_f64, 1.0_f64);
+        let mut d_lo = disp(0);
         for j in 0..n {
             let e = s.positions[j + 1] - s.positions[j];
-            let de = disp(j + 1) - disp(j);
+            let d_hi = disp(j + 1);
+            let de = d_hi - d_lo;
+            d_lo = d_hi;
             let new = e + de;
             let (s2, c) = (e.cross(&new).norm_squared(), e.dot(&new));
             // A reversed edge (sin = 0, cos < 0) is the largest turn, π.
