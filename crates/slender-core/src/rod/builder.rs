@@ -301,6 +301,7 @@ impl RodBuilder {
             ghost_start,
             ghost_end,
             ref_twist: Vec::with_capacity(topology.len()),
+            lengths: super::frames::EdgeLength::of_polyline(&positions),
         };
         for &(l, r) in &hinge_edges {
             let t = updated_ref_twist(&frames.edge(l), &frames.edge(r), 0.0);

@@ -60,6 +60,37 @@ pub struct ReferenceFrames {
     pub(crate) ghost_end: Option<GhostEdge>,
     /// Reference twist (rad) of each hinge, in the rod's hinge order.
     pub(crate) ref_twist: Vec<f64>,
+    /// Length |e| (m) and its reciprocal (1/m) of each real edge at the positions the frames
+    /// are adapted to (the tangent is e·(1/|e|)): the energy terms of an edge and of the two
+    /// hinges beside it read them instead of measuring the edge three times.
+    pub(crate) lengths: Vec<EdgeLength>,
+}
+
+/// The length of an edge vector e and its reciprocal, as [`EdgeLength::of`] measures them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeLength {
+    /// |e| (m).
+    pub length: f64,
+    /// 1/|e| (1/m).
+    pub inv_length: f64,
+}
+
+impl EdgeLength {
+    /// The length of `e` and the unit tangent e·(1/|e|).
+    #[inline]
+    pub fn of(e: &Vec3) -> (Self, Vec3) {
+        let length = e.norm();
+        let inv_length = 1.0 / length;
+        (Self { length, inv_length }, e * inv_length)
+    }
+
+    /// The lengths of the edges of a polyline.
+    pub(crate) fn of_polyline(positions: &[Vec3]) -> Vec<Self> {
+        positions
+            .windows(2)
+            .map(|p| Self::of(&(p[1] - p[0])).0)
+            .collect()
+    }
 }
 
 impl ReferenceFrames {
@@ -90,11 +121,12 @@ impl ReferenceFrames {
         out: &mut ReferenceFrames,
     ) {
         out.edges.clear();
-        out.edges
-            .extend(self.edges.iter().enumerate().map(|(j, f)| {
-                let t = unit(&(positions[j + 1] - positions[j]));
-                f.transported_to(&t)
-            }));
+        out.lengths.clear();
+        for (j, f) in self.edges.iter().enumerate() {
+            let (length, t) = EdgeLength::of(&(positions[j + 1] - positions[j]));
+            out.edges.push(f.transported_to(&t));
+            out.lengths.push(length);
+        }
         out.ghost_start = self.ghost_start;
         out.ghost_end = self.ghost_end;
         out.ref_twist.clear();
@@ -111,8 +143,9 @@ impl ReferenceFrames {
     /// only need the new frames and the old twist).
     pub(crate) fn transport_in_place(&mut self, positions: &[Vec3], hinges: &[(EdgeId, EdgeId)]) {
         for (j, f) in self.edges.iter_mut().enumerate() {
-            let t = unit(&(positions[j + 1] - positions[j]));
+            let (length, t) = EdgeLength::of(&(positions[j + 1] - positions[j]));
             *f = f.transported_to(&t);
+            self.lengths[j] = length;
         }
         for (k, &(l, r)) in hinges.iter().enumerate() {
             self.ref_twist[k] = updated_ref_twist(&self.edge(l), &self.edge(r), self.ref_twist[k]);

@@ -41,6 +41,9 @@ pub struct HingeState {
     pub theta: [f64; 2],
     /// Reference twist (rad): signed angle about t_f from the transport of a₁ᵉ to a₁ᶠ.
     pub ref_twist: f64,
+    /// Unit tangent and length of edges e and f when already measured (a rod's real edges,
+    /// from its frames); `None`: [`HingeFrame::new`] measures them from `x`, the same way.
+    pub edges: [Option<(Vec3, super::frames::EdgeLength)>; 2],
 }
 
 impl HingeState {
@@ -77,11 +80,16 @@ pub struct HingeFrame {
 impl HingeFrame {
     /// Derives the frame quantities of a hinge state.
     pub fn new(s: &HingeState) -> Self {
-        let e = s.x[1] - s.x[0];
-        let f = s.x[2] - s.x[1];
-        let len = [e.norm(), f.norm()];
-        let inv_len = [1.0 / len[0], 1.0 / len[1]];
-        let t = [e * inv_len[0], f * inv_len[1]];
+        let measure = |k: usize| {
+            s.edges[k].unwrap_or_else(|| {
+                let (length, t) = super::frames::EdgeLength::of(&(s.x[k + 1] - s.x[k]));
+                (t, length)
+            })
+        };
+        let [(t0, l0), (t1, l1)] = [measure(0), measure(1)];
+        let len = [l0.length, l1.length];
+        let inv_len = [l0.inv_length, l1.inv_length];
+        let t = [t0, t1];
         let chi = 1.0 + t[0].dot(&t[1]);
         let inv_chi = 1.0 / chi;
         let kb = t[0].cross(&t[1]) * (2.0 * inv_chi);

@@ -186,11 +186,26 @@ impl Rod {
             EdgeId::Real(j) => (s.positions[j + 1], s.thetas[j]),
             _ => self.ghost_point(s, v, true),
         };
+        // A real edge's tangent and length as the frames measured them (they are adapted to
+        // the positions); a ghost edge is measured by the hinge.
+        let measured = |id: EdgeId| match id {
+            EdgeId::Real(j) => {
+                let m = (s.frames.edges[j].tangent, s.frames.lengths[j]);
+                debug_assert!(
+                    (m.1.length - (s.positions[j + 1] - s.positions[j]).norm()).abs()
+                        <= 1e-12 * m.1.length,
+                    "edge {j}: frames not adapted to the positions"
+                );
+                Some(m)
+            }
+            _ => None,
+        };
         HingeState {
             x: [x0, s.positions[v], x2],
             a1: [s.frames.edge(l).a1, s.frames.edge(r).a1],
             theta: [theta_l, theta_r],
             ref_twist: s.frames.ref_twist[k],
+            edges: [measured(l), measured(r)],
         }
     }
 

@@ -124,6 +124,7 @@ impl Rod {
                 ghost_start: ghost(rest.frames.ghost_start, snap.clamps[0]),
                 ghost_end: ghost(rest.frames.ghost_end, snap.clamps[1]),
                 ref_twist: vec![0.0; self.hinges.len()],
+                lengths: super::frames::EdgeLength::of_polyline(&snap.positions),
             },
             load_angles: if snap.load_angles.len() == self.moments.len() {
                 snap.load_angles.clone()

@@ -57,6 +57,7 @@ impl RodState {
                 ghost_start: ghost(&self.frames.ghost_start),
                 ghost_end: ghost(&self.frames.ghost_end),
                 ref_twist: self.frames.ref_twist.clone(),
+                lengths: self.frames.lengths.clone(),
             },
             load_angles: self.load_angles.clone(),
             followers: self

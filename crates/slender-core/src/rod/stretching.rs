@@ -4,6 +4,8 @@ use nalgebra::{Matrix3, SMatrix, SVector};
 
 use crate::geometry::Vec3;
 
+use super::frames::EdgeLength;
+
 /// Stretching energy (J) of the edge from `x0` to `x1` with rest length `rest_length` (m)
 /// and axial stiffness `ea` (N); adds gradient and Hessian over `[x0, x1]` when asked.
 pub fn stretching_energy(
@@ -14,12 +16,22 @@ pub fn stretching_energy(
     grad: Option<&mut SVector<f64, 6>>,
     hess: Option<&mut SMatrix<f64, 6, 6>>,
 ) -> f64 {
-    let e = x1 - x0;
-    let len = e.norm();
+    let (length, t) = EdgeLength::of(&(x1 - x0));
+    stretching_energy_measured(length, &t, rest_length, ea, grad, hess)
+}
+
+/// [`stretching_energy`] of an edge already measured: its length and unit tangent `t`.
+pub fn stretching_energy_measured(
+    length: EdgeLength,
+    t: &Vec3,
+    rest_length: f64,
+    ea: f64,
+    grad: Option<&mut SVector<f64, 6>>,
+    hess: Option<&mut SMatrix<f64, 6, 6>>,
+) -> f64 {
+    let (len, inv_len) = (length.length, length.inv_length);
     let strain = len / rest_length - 1.0;
     let energy = 0.5 * ea * rest_length * strain * strain;
-    let inv_len = 1.0 / len;
-    let t = e * inv_len;
     if let Some(g) = grad {
         let de = t * (ea * strain);
         g.fixed_rows_mut::<3>(0).sub_assign(&de);
@@ -68,10 +80,11 @@ impl<'a> crate::assembly::StencilTerm<super::model::RodContext<'a>, 6> for Stret
         _selected: crate::assembly::TermSet,
         out: &mut crate::assembly::LocalDerivatives<'_, 6>,
     ) {
-        let x = &ctx.state.positions;
-        let e = stretching_energy(
-            &x[self.edge],
-            &x[self.edge + 1],
+        // The edge as the frames measured it (they are adapted to the positions).
+        let frames = &ctx.state.frames;
+        let e = stretching_energy_measured(
+            frames.lengths[self.edge],
+            &frames.edges[self.edge].tangent,
             self.rest_length,
             self.ea,
             out.grad.as_deref_mut(),

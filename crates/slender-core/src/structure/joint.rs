@@ -84,6 +84,7 @@ impl JointHinge {
                 r1.thetas()[s1.edge] * s1.sign,
             ],
             ref_twist: state.joint_twists[self.index],
+            edges: [None, None],
         }
     }
 
