@@ -267,26 +267,21 @@ impl<'a> crate::assembly::StencilTerm<super::model::RodContext<'a>, HINGE_DOFS> 
         let frame = HingeFrame::new(&hs);
         // Bending and twisting second derivatives are gathered in edge space and chained to
         // the stencil once for both terms.
-        let mut edge = EdgeHessian::default();
-        let want_hess = out.hess.is_some();
+        // Only a Hessian evaluation needs (and zeroes) the edge-space accumulator.
+        let mut edge = out.hess.is_some().then(EdgeHessian::default);
         if selected.contains(super::groups::BENDING) {
-            let e = self.bending.energy(
-                &frame,
-                out.grad.as_deref_mut(),
-                want_hess.then_some(&mut edge),
-            );
+            let e = self
+                .bending
+                .energy(&frame, out.grad.as_deref_mut(), edge.as_mut());
             out.add_energy(e);
         }
         if selected.contains(super::groups::TWISTING) {
-            let e = self.twisting.energy(
-                &frame,
-                hs.twist(),
-                out.grad.as_deref_mut(),
-                want_hess.then_some(&mut edge),
-            );
+            let e =
+                self.twisting
+                    .energy(&frame, hs.twist(), out.grad.as_deref_mut(), edge.as_mut());
             out.add_energy(e);
         }
-        if let Some(h) = out.hess.as_deref_mut() {
+        if let (Some(h), Some(edge)) = (out.hess.as_deref_mut(), &edge) {
             edge.write_into(h);
         }
     }

@@ -326,21 +326,23 @@ fn inverse_iteration<M: SymmetricMatrix>(
             ldlt.solve_block_in_place([&mut w0[..], &mut w1[..], &mut w2[..]]);
         }
         z_ready = false;
-        // Projected pencil: A = Wᵀ H W = Wᵀ M V, B = Wᵀ M W. The 18 M-products in one pass
+        // Projected pencil: A = Wᵀ H W = Wᵀ M V, B = Wᵀ M W. The M-products nine at a time
         // (each summed in index order as `m_dot` does): one pass per product would be 18
-        // chains of n dependent additions.
+        // chains of n dependent additions, one pass for all 18 spills its accumulators.
         let (mut wmv, mut wmw) = ([[-0.0; BLOCK]; BLOCK], [[-0.0; BLOCK]; BLOCK]);
         {
             let m = &mass[..n];
-            let (v0, v1, v2) = (&v[0][..n], &v[1][..n], &v[2][..n]);
             let (w0, w1, w2) = (&w[0][..n], &w[1][..n], &w[2][..n]);
-            for i in 0..n {
-                let (vi, wi) = ([v0[i], v1[i], v2[i]], [w0[i], w1[i], w2[i]]);
-                for r in 0..BLOCK {
-                    let wm = wi[r] * m[i];
-                    for c in 0..BLOCK {
-                        wmv[r][c] += wm * vi[c];
-                        wmw[r][c] += wm * wi[c];
+            let vs: [&[f64]; BLOCK] = [&v[0][..n], &v[1][..n], &v[2][..n]];
+            for (x, acc) in [(vs, &mut wmv), ([w0, w1, w2], &mut wmw)] {
+                let [x0, x1, x2] = x;
+                for i in 0..n {
+                    let (xi, wi) = ([x0[i], x1[i], x2[i]], [w0[i], w1[i], w2[i]]);
+                    for r in 0..BLOCK {
+                        let wm = wi[r] * m[i];
+                        for c in 0..BLOCK {
+                            acc[r][c] += wm * xi[c];
+                        }
                     }
                 }
             }
