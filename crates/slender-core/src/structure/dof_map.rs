@@ -28,6 +28,9 @@ pub struct GlobalDofs {
     pub(super) inertia: Vec<f64>,
     /// Σ c² over the member DOFs of each global DOF (averages a difference over them).
     pub(super) weight: Vec<f64>,
+    /// Per member: `Some(offset)` if its own DOF i is global DOF offset + i with coefficient
+    /// 1 for every i (a rod with no ties), so that its step is a plain slice of the global one.
+    pub(super) offsets: Vec<Option<usize>>,
 }
 
 impl GlobalDofs {
@@ -86,12 +89,23 @@ impl GlobalDofs {
                 }
             }
         }
+        let offsets = maps
+            .iter()
+            .map(|map| {
+                let first = map.first().map_or(0, |s| s.dof);
+                map.iter()
+                    .enumerate()
+                    .all(|(i, s)| s.dof != FIXED && s.dof == first + i && s.coef == 1.0)
+                    .then_some(first)
+            })
+            .collect();
         Self {
             maps,
             n_free,
             owner,
             inertia,
             weight,
+            offsets,
         }
     }
 
