@@ -237,25 +237,46 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             self.scatter_mapped(stencil, remap, g, h);
             return;
         }
-        for (a, &i) in stencil.iter().enumerate() {
-            if i == FIXED {
-                continue;
-            }
-            if let Some(gr) = self.grad.as_deref_mut() {
-                gr[i] += gw * g[a];
-            }
-            if let Some(ab) = self.abs_grad.as_deref_mut() {
-                ab[i] += (gw * g[a]).abs();
-            }
+        // Unit factors (a plain assembly) take a path without the multiplications by them,
+        // which are exact: the same values either way.
+        if gw == 1.0 {
+            self.scatter_gradient(stencil, |a| g[a]);
+        } else {
+            self.scatter_gradient(stencil, |a| gw * g[a]);
         }
         if let Some(hm) = self.hess.as_deref_mut() {
             // Lower triangle of the stencil (b ≤ a): each unordered pair once, read from the
             // upper one (column a, rows b ≤ a: contiguous in nalgebra's column-major storage,
             // where row a is strided; the local Hessian is symmetric).
-            let value = |a, b| hw * h[(b, a)];
-            match plan {
-                Some((plan, term)) => hm.add_lower_block_planned(plan, term, stencil, value),
-                None => hm.add_lower_block(stencil, value),
+            if hw == 1.0 {
+                let value = |a, b| h[(b, a)];
+                match plan {
+                    Some((plan, term)) => hm.add_lower_block_planned(plan, term, stencil, value),
+                    None => hm.add_lower_block(stencil, value),
+                }
+            } else {
+                let value = |a, b| hw * h[(b, a)];
+                match plan {
+                    Some((plan, term)) => hm.add_lower_block_planned(plan, term, stencil, value),
+                    None => hm.add_lower_block(stencil, value),
+                }
+            }
+        }
+    }
+
+    /// Adds the stencil gradient `g(a)` (already weighted) into the gradient and its
+    /// magnitude into the round-off scale.
+    #[inline(always)]
+    fn scatter_gradient<const D: usize>(&mut self, stencil: &Stencil<D>, g: impl Fn(usize) -> f64) {
+        for (a, &i) in stencil.iter().enumerate() {
+            if i == FIXED {
+                continue;
+            }
+            if let Some(gr) = self.grad.as_deref_mut() {
+                gr[i] += g(a);
+            }
+            if let Some(ab) = self.abs_grad.as_deref_mut() {
+                ab[i] += g(a).abs();
             }
         }
     }
