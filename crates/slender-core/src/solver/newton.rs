@@ -676,11 +676,6 @@ fn polish<P: EquilibriumProblem>(
         if last.inertia.is_none() {
             return;
         }
-        // Already at the rounding of the term forces themselves (the floor without its safety
-        // factor), the test that ends polishing below: no step can do better.
-        if last.residual <= last.floor / params.roundoff_factor {
-            return;
-        }
         // A step of a few ulps of every DOF only moves the state by its rounding: the residual
         // it reaches is round-off noise, not an improvement worth an assembly.
         if (0..ws.dx.len())
