@@ -122,8 +122,8 @@ impl Rod {
         p.clone_from(x);
         let fixed = &self.anchors;
         if fixed.is_empty() {
-            for v in 0..=n {
-                p[v] += disp(v);
+            for (v, pv) in p.iter_mut().enumerate() {
+                *pv += disp(v);
             }
         } else {
             for &a in fixed {
