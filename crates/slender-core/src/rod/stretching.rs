@@ -7,7 +7,8 @@ use crate::geometry::Vec3;
 use super::frames::EdgeLength;
 
 /// Stretching energy (J) of the edge from `x0` to `x1` with rest length `rest_length` (m)
-/// and axial stiffness `ea` (N); adds gradient and Hessian over `[x0, x1]` when asked.
+/// and axial stiffness `ea` (N); adds the gradient over `[x0, x1]` and writes the Hessian
+/// (every entry) when asked.
 pub fn stretching_energy(
     x0: &Vec3,
     x1: &Vec3,
@@ -38,36 +39,9 @@ pub fn stretching_energy_measured(
         g.fixed_rows_mut::<3>(3).add_assign(&de);
     }
     if let Some(h) = hess {
-        let hee = edge_hessian(t, rest_length, ea, strain, inv_len);
-        h.fixed_view_mut::<3, 3>(0, 0).add_assign(&hee);
-        h.fixed_view_mut::<3, 3>(3, 3).add_assign(&hee);
-        h.fixed_view_mut::<3, 3>(0, 3).sub_assign(&hee);
-        h.fixed_view_mut::<3, 3>(3, 0).sub_assign(&hee);
-    }
-    energy
-}
-
-/// ∂²E/∂e² = EA/|ē| t⊗t + EA ε (I − t⊗t)/|e| (N/m) for strain ε and 1/|e| = `inv_len`.
-#[inline]
-fn edge_hessian(t: &Vec3, rest_length: f64, ea: f64, strain: f64, inv_len: f64) -> Matrix3<f64> {
-    let tt = t * t.transpose();
-    tt * (ea / rest_length) + (Matrix3::identity() - tt) * (ea * strain * inv_len)
-}
-
-/// [`stretching_energy_measured`] writing (not adding) its Hessian: every entry of `hess` is
-/// set, with the values the adding version gives a zeroed matrix.
-fn stretching_energy_written(
-    length: EdgeLength,
-    t: &Vec3,
-    rest_length: f64,
-    ea: f64,
-    grad: Option<&mut SVector<f64, 6>>,
-    hess: Option<&mut SMatrix<f64, 6, 6>>,
-) -> f64 {
-    let energy = stretching_energy_measured(length, t, rest_length, ea, grad, None);
-    if let Some(h) = hess {
-        let strain = length.length / rest_length - 1.0;
-        let hee = edge_hessian(t, rest_length, ea, strain, length.inv_length);
+        // ∂²E/∂e² = EA/|ē| t⊗t + EA ε (I − t⊗t)/|e|, with e = x₁ − x₀.
+        let tt = t * t.transpose();
+        let hee = tt * (ea / rest_length) + (Matrix3::identity() - tt) * (ea * strain * inv_len);
         h.fixed_view_mut::<3, 3>(0, 0).copy_from(&hee);
         h.fixed_view_mut::<3, 3>(3, 3).copy_from(&hee);
         h.fixed_view_mut::<3, 3>(0, 3).copy_from(&-hee);
@@ -111,7 +85,7 @@ impl<'a> crate::assembly::StencilTerm<super::model::RodContext<'a>, 6> for Stret
     ) {
         // The edge as the frames measured it (they are adapted to the positions).
         let frames = &ctx.state.frames;
-        let e = stretching_energy_written(
+        let e = stretching_energy_measured(
             frames.lengths[self.edge],
             &frames.edges[self.edge].tangent,
             self.rest_length,
