@@ -25,22 +25,39 @@ impl FramedCore {
         rotation: Vec3,
         translation: Vec3,
     ) -> Result<(), ModelError> {
-        let path = RodLoadPath {
-            loads: [1.0, 1.0],
-            gravity_from: None,
-            motions: vec![SupportMotion {
-                vertices: vertices.to_vec(),
+        // The last path's vectors are reused: an interactive drag sets a motion per edit.
+        let mut path = std::mem::take(&mut self.load_path);
+        path.loads = [1.0, 1.0];
+        path.gravity_from = None;
+        path.motions.truncate(1);
+        if path.motions.is_empty() {
+            path.motions.push(SupportMotion {
+                vertices: Vec::new(),
                 pivot,
                 rotation,
                 translation,
-            }],
-        };
+            });
+        }
+        let m = &mut path.motions[0];
+        m.vertices.clear();
+        m.vertices.extend_from_slice(vertices);
+        m.pivot = pivot;
+        m.rotation = rotation;
+        m.translation = translation;
+        // On an error `set_load_path` leaves the plain ramp (the path taken above).
         self.set_load_path(path)
     }
 
-    /// Back to the plain load ramp.
+    /// Back to the plain load ramp (vectors kept for reuse: a motion that holds no vertex
+    /// moves nothing).
     pub fn clear_load_path(&mut self) {
-        self.load_path = RodLoadPath::default();
+        self.load_path.loads = RodLoadPath::default().loads;
+        self.load_path.gravity_from = None;
+        for m in self.load_path.motions.iter_mut() {
+            m.vertices.clear();
+            m.rotation = Vec3::zeros();
+            m.translation = Vec3::zeros();
+        }
     }
 
     /// Moves the supports of `state` along the load path from `from` to `to`.
@@ -78,8 +95,13 @@ impl FramedCore {
         to: f64,
         guess: bool,
     ) {
+        if motion.vertices.is_empty() {
+            // A cleared motion: nothing moves (every weight below would be 0).
+            return;
+        }
         let n = self.n_edges();
-        let old = state.clone();
+        // The moment loads' angles are continued from the frames before the move.
+        let old = (!self.moments.is_empty()).then(|| state.clone());
         for v in 0..=n {
             let w = if motion.vertices.contains(&v) {
                 1.0
@@ -118,6 +140,8 @@ impl FramedCore {
                 }
             }
         }
-        self.continue_moment_angles(&old, state);
+        if let Some(old) = old {
+            self.continue_moment_angles(&old, state);
+        }
     }
 }

@@ -130,12 +130,11 @@ impl FramedCore {
                 if b <= a + 1 {
                     continue;
                 }
+                // The forward walk is kept in p (no buffer), then blended in place.
                 let mut forward = x[a];
-                let mut fwd = Vec::with_capacity(b - a + 1);
-                fwd.push(forward);
-                for j in a..b {
+                for j in a..b - 1 {
                     forward += new_edge(j);
-                    fwd.push(forward);
+                    p[j + 1] = forward;
                 }
                 let mut backward = x[b];
                 let s_total: f64 = self.rest_lengths[a..b].iter().sum();
@@ -145,7 +144,7 @@ impl FramedCore {
                     s_from_b += self.rest_lengths[j];
                     if j > a {
                         let wb = 1.0 - s_from_b / s_total;
-                        p[j] = fwd[j - a] * (1.0 - wb) + backward * wb;
+                        p[j] = p[j] * (1.0 - wb) + backward * wb;
                     }
                 }
             }

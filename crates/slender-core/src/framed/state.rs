@@ -10,7 +10,7 @@ use crate::geometry::Vec3;
 /// Frame j is a unit quaternion p_j, the rotation R_j = [d₁ d₂ d₃] whose columns are the
 /// material directors (d₃ the section normal; d₁, d₂ the directions of `ei1`'s and `ei2`'s
 /// bending). It sits on edge j of a Cosserat rod and on node j of an SE(3) beam.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct FramedState {
     pub(crate) positions: Vec<Vec3>,
     pub(crate) frames: Vec<UnitQuaternion<f64>>,
@@ -19,6 +19,26 @@ pub struct FramedState {
     pub(crate) clamp_frames: [Option<UnitQuaternion<f64>>; 2],
     /// Unwrapped twist angles (rad) of each moment load about its two fixed axes.
     pub(crate) moment_angles: Vec<[f64; 2]>,
+}
+
+/// Written out so that `clone_from` reuses the buffers (a derived one allocates a clone): the
+/// solvers copy states into their workspaces on every re-solve.
+impl Clone for FramedState {
+    fn clone(&self) -> Self {
+        Self {
+            positions: self.positions.clone(),
+            frames: self.frames.clone(),
+            clamp_frames: self.clamp_frames,
+            moment_angles: self.moment_angles.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.positions.clone_from(&source.positions);
+        self.frames.clone_from(&source.frames);
+        self.clamp_frames = source.clamp_frames;
+        self.moment_angles.clone_from(&source.moment_angles);
+    }
 }
 
 impl FramedState {

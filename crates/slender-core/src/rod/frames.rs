@@ -50,7 +50,7 @@ pub enum EdgeId {
 
 /// Reference frames of all edges plus the reference twist of every hinge, adapted to one set
 /// of positions.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct ReferenceFrames {
     /// One frame per real edge.
     pub(crate) edges: Vec<EdgeFrame>,
@@ -64,6 +64,27 @@ pub struct ReferenceFrames {
     /// are adapted to (the tangent is e·(1/|e|)): the energy terms of an edge and of the two
     /// hinges beside it read them instead of measuring the edge three times.
     pub(crate) lengths: Vec<EdgeLength>,
+}
+
+/// Written out so that `clone_from` reuses the buffers (a derived one allocates a clone).
+impl Clone for ReferenceFrames {
+    fn clone(&self) -> Self {
+        Self {
+            edges: self.edges.clone(),
+            ghost_start: self.ghost_start,
+            ghost_end: self.ghost_end,
+            ref_twist: self.ref_twist.clone(),
+            lengths: self.lengths.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.edges.clone_from(&source.edges);
+        self.ghost_start = source.ghost_start;
+        self.ghost_end = source.ghost_end;
+        self.ref_twist.clone_from(&source.ref_twist);
+        self.lengths.clone_from(&source.lengths);
+    }
 }
 
 /// The length of an edge vector e and its reciprocal, as [`EdgeLength::of`] measures them.

@@ -5,7 +5,7 @@ use crate::geometry::Vec3;
 use super::frames::{EdgeFrame, GhostEdge, ReferenceFrames};
 
 /// Positions, edge angles and adapted reference frames of a rod.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct RodState {
     pub(super) positions: Vec<Vec3>,
     pub(super) thetas: Vec<f64>,
@@ -14,6 +14,28 @@ pub struct RodState {
     pub(super) load_angles: Vec<f64>,
     /// Current dead-load stand-ins of the follower loads (see `follower.rs`).
     pub(super) followers: Vec<super::follower::FollowerState>,
+}
+
+/// Written out so that `clone_from` reuses the buffers (a derived one allocates a clone): the
+/// solvers copy states into their workspaces on every re-solve.
+impl Clone for RodState {
+    fn clone(&self) -> Self {
+        Self {
+            positions: self.positions.clone(),
+            thetas: self.thetas.clone(),
+            frames: self.frames.clone(),
+            load_angles: self.load_angles.clone(),
+            followers: self.followers.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.positions.clone_from(&source.positions);
+        self.thetas.clone_from(&source.thetas);
+        self.frames.clone_from(&source.frames);
+        self.load_angles.clone_from(&source.load_angles);
+        self.followers.clone_from(&source.followers);
+    }
 }
 
 impl RodState {

@@ -194,6 +194,10 @@ pub struct Session {
     unstable: UnstablePolicy,
     /// Pose of the moving support when the current motion stage started.
     stage_start: Option<SupportPose>,
+    /// Buffers of [`Self::move_support`], kept so that an interactive drag allocates nothing
+    /// but its report: the vertices a support holds in one part, the structures re-solved.
+    held: Vec<usize>,
+    affected: Vec<usize>,
 }
 
 impl Session {
@@ -258,6 +262,8 @@ impl Session {
             shells,
             unstable,
             stage_start: None,
+            held: Vec::new(),
+            affected: Vec::new(),
         };
         for k in 0..me.runs.len() {
             me.stabilize(k);
@@ -448,10 +454,11 @@ impl Session {
         support: usize,
         target: SupportPose,
     ) -> Result<EditReport, SceneError> {
-        let path = format!("rods[{rod}].supports[{support}]");
+        // Formatted only for an error: a drag's edits allocate nothing but their report.
+        let path = || format!("rods[{rod}].supports[{support}]");
         let Some(cur) = self.pose(rod, support) else {
             return Err(SceneError::new(
-                path,
+                path(),
                 format!(
                     "no such support (rods: {}, supports of this rod: {})",
                     self.scene.rods.len(),
@@ -462,22 +469,22 @@ impl Session {
         if target.position.iter().any(|c| !c.is_finite())
             || target.rotation.matrix().iter().any(|c| !c.is_finite())
         {
-            return Err(SceneError::new(path, "the target pose must be finite"));
+            return Err(SceneError::new(path(), "the target pose must be finite"));
         }
         let rotation = rotation_vector(&(target.rotation * cur.rotation.inverse()));
         let translation = target.position - cur.position;
         let crod = &self.scene.rods[rod];
-        let sup = crod.supports[support].clone();
+        let sup = &crod.supports[support];
         match sup.kind {
             SupportKind::Pin | SupportKind::Slider if rotation.norm() > 1e-12 => {
                 return Err(SceneError::new(
-                    format!("{path}.rotation"),
+                    format!("{}.rotation", path()),
                     "a pin or slider has no orientation: only translate it",
                 ));
             }
             SupportKind::TwistHold if translation.norm() > 0.0 => {
                 return Err(SceneError::new(
-                    format!("{path}.position"),
+                    format!("{}.position", path()),
                     "a twist hold has no position: only turn it about its edge",
                 ));
             }
@@ -494,7 +501,7 @@ impl Session {
             .max(1.0);
         if !(steps <= MAX_EDIT_STEPS) {
             return Err(SceneError::new(
-                path,
+                path(),
                 format!(
                     "the move ({:.3e} m, {:.3e} rad) is too large for one edit (at most {} m and {} rad)",
                     translation.norm(),
@@ -505,7 +512,9 @@ impl Session {
             ));
         }
         // Set the load paths of the parts holding the support.
-        let mut affected: Vec<usize> = Vec::new();
+        let mut affected = std::mem::take(&mut self.affected);
+        affected.clear();
+        let held = &mut self.held;
         for part in &crod.parts {
             let k = part.structure;
             let structure = &mut self.scene.structures[k];
@@ -514,12 +523,13 @@ impl Session {
             let ms = &run.state.members[part.member];
             match sup.kind {
                 SupportKind::Clamp | SupportKind::Pin | SupportKind::Clip => {
-                    let held: Vec<usize> = sup
-                        .held
-                        .iter()
-                        .filter(|&&h| part.contains(h))
-                        .map(|&h| local(h))
-                        .collect();
+                    held.clear();
+                    held.extend(
+                        sup.held
+                            .iter()
+                            .filter(|&&h| part.contains(h))
+                            .map(|&h| local(h)),
+                    );
                     if held.is_empty() {
                         continue;
                     }
@@ -530,8 +540,8 @@ impl Session {
                     };
                     structure
                         .member_mut(part.member)
-                        .set_support_motion(&held, pivot, rotation, translation)
-                        .map_err(|e| SceneError::model(path.clone(), e))?;
+                        .set_support_motion(held, pivot, rotation, translation)
+                        .map_err(|e| SceneError::model(path(), e))?;
                 }
                 SupportKind::Slider => {
                     if !part.contains(sup.vertex) {
@@ -610,6 +620,7 @@ impl Session {
                     ),
                 };
             }
+            self.affected = affected;
             return Ok(summary);
         }
         self.poses[rod][support] = target;
@@ -619,6 +630,7 @@ impl Session {
         }
         let mut r = self.summary(&affected, None);
         r.followed_unstable_mode = followed;
+        self.affected = affected;
         Ok(r)
     }
 

@@ -26,12 +26,30 @@ pub enum Member {
 }
 
 /// The state of a member.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub enum MemberState {
     /// A discrete elastic rod's state.
     Der(RodState),
     /// A Cosserat rod's or SE(3) beam's state.
     Framed(FramedState),
+}
+
+/// Written out so that `clone_from` between states of the same model reuses the buffers.
+impl Clone for MemberState {
+    fn clone(&self) -> Self {
+        match self {
+            Self::Der(s) => Self::Der(s.clone()),
+            Self::Framed(s) => Self::Framed(s.clone()),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        match (self, source) {
+            (Self::Der(a), Self::Der(b)) => a.clone_from(b),
+            (Self::Framed(a), Self::Framed(b)) => a.clone_from(b),
+            (a, b) => *a = b.clone(),
+        }
+    }
 }
 
 impl MemberState {
@@ -211,6 +229,24 @@ impl Member {
         }
     }
 
+    /// [`Self::displace_by`] with the member's own step as a slice (a member whose DOFs are a
+    /// contiguous range of the structure's): the framed models take it as it is, without a
+    /// gathered copy.
+    pub fn displace_slice(
+        &self,
+        state: &MemberState,
+        dx: &[f64],
+        alpha: f64,
+        out: &mut MemberState,
+    ) {
+        match (self, out) {
+            (Self::Der(r), MemberState::Der(o)) => r.retract_by(der!(state), |i| dx[i], alpha, o),
+            (Self::Cosserat(r), MemberState::Framed(o)) => r.displace(framed!(state), dx, alpha, o),
+            (Self::Se3(r), MemberState::Framed(o)) => r.displace(framed!(state), dx, alpha, o),
+            _ => unreachable!("member and state of different models"),
+        }
+    }
+
     /// The chart (see [`EquilibriumProblem::chart`]) with the member's step given by `dx`.
     pub fn chart_by(&self, state: &MemberState, dx: impl Fn(usize) -> f64, out: &mut MemberState) {
         match (self, out) {
@@ -245,6 +281,13 @@ impl Member {
     pub fn max_step_by(&self, state: &MemberState, dx: impl Fn(usize) -> f64 + Copy) -> f64 {
         by_model!(self, r => r.max_step_by(der!(state), dx),
             r => r.max_step(framed!(state), &gather(EquilibriumProblem::n_free(r), dx)))
+    }
+
+    /// [`Self::max_step_by`] with the member's own step as a slice (see
+    /// [`Self::displace_slice`]).
+    pub fn max_step_slice(&self, state: &MemberState, dx: &[f64]) -> f64 {
+        by_model!(self, r => r.max_step_by(der!(state), |i| dx[i]),
+            r => r.max_step(framed!(state), dx))
     }
 
     /// See [`EquilibriumProblem::force_length`].

@@ -25,12 +25,28 @@ use super::joint::JointHinge;
 use super::member::{Member, MemberState};
 
 /// The state of a structure: its members' states and the joint hinges' reference twists.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct StructureState {
     /// One state per member.
     pub members: Vec<MemberState>,
     /// Reference twist (rad) of each joint hinge, continued like a rod's.
     pub(super) joint_twists: Vec<f64>,
+}
+
+/// Written out so that `clone_from` reuses the buffers (a derived one allocates a clone): the
+/// solvers copy states into their workspaces on every re-solve.
+impl Clone for StructureState {
+    fn clone(&self) -> Self {
+        Self {
+            members: self.members.clone(),
+            joint_twists: self.joint_twists.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.members.clone_from(&source.members);
+        self.joint_twists.clone_from(&source.joint_twists);
+    }
 }
 
 /// What structure-level supports do along the load path (member supports move with their
@@ -316,9 +332,12 @@ impl EquilibriumProblem for Structure {
             // The same values either way (coefficients of 1 multiply exactly); the slice
             // spares the map lookups of every DOF of every step.
             match self.dofs.offsets[m] {
-                Some(o) => {
-                    member.displace_by(&state.members[m], |i| dx[o + i], alpha, &mut out.members[m])
-                }
+                Some(o) => member.displace_slice(
+                    &state.members[m],
+                    &dx[o..o + member.n_free()],
+                    alpha,
+                    &mut out.members[m],
+                ),
                 None => member.displace_by(
                     &state.members[m],
                     |i| self.dofs.gather(m, i, dx),
@@ -399,7 +418,7 @@ impl EquilibriumProblem for Structure {
             .iter()
             .enumerate()
             .map(|(m, member)| match self.dofs.offsets[m] {
-                Some(o) => member.max_step_by(&state.members[m], |i| dx[o + i]),
+                Some(o) => member.max_step_slice(&state.members[m], &dx[o..o + member.n_free()]),
                 None => member.max_step_by(&state.members[m], |i| self.dofs.gather(m, i, dx)),
             })
             .fold(1.0, f64::min)
