@@ -128,13 +128,21 @@ impl Rod {
     /// Calls `f(i, force_length, dof_magnitude)` for every free DOF i, in order (the values of
     /// [`EquilibriumProblem::force_length`] and [`EquilibriumProblem::dof_magnitude`]).
     pub fn dof_scales_each(&self, state: &RodState, mut f: impl FnMut(usize, f64, f64)) {
+        // A vertex's coordinates share one magnitude: measured once per vertex (the free DOFs
+        // of a vertex are consecutive).
+        let mut vertex = usize::MAX;
+        let mut magnitude = 0.0;
         for i in 0..self.dofs.n_free() {
             let full = self.dofs.full_index(i);
             if full % 4 == 3 {
                 let m = state.thetas[full / 4].abs().max(std::f64::consts::PI);
                 f(i, self.length, m);
             } else {
-                f(i, 1.0, state.positions[full / 4].amax().max(self.length));
+                if full / 4 != vertex {
+                    vertex = full / 4;
+                    magnitude = state.positions[vertex].amax().max(self.length);
+                }
+                f(i, 1.0, magnitude);
             }
         }
     }
