@@ -663,6 +663,23 @@ impl SymmetricMatrix for SymmetricBandMatrix {
                 return;
             }
         }
+        // Increasing DOFs (a stretch stencil: two vertices with an edge angle between them):
+        // entry (a, b), b ≤ a, lies in band row dofs[a] at column dofs[b], with no ordering
+        // test per entry. FIXED is the largest index, so only the last slot could be fixed,
+        // and the bound on it excludes that. One addition per entry: the same bits.
+        if D >= 2
+            && dofs.windows(2).all(|w| w[0] < w[1])
+            && dofs[D - 1] < self.n
+            && dofs[D - 1] - dofs[0] <= bw
+        {
+            for (a, &r) in dofs.iter().enumerate() {
+                let row = &mut self.data[r * bw + bw..];
+                for (b, &c) in dofs[..=a].iter().enumerate() {
+                    row[c] += value(a, b);
+                }
+            }
+            return;
+        }
         let (lo, hi) = dofs
             .iter()
             .filter(|&&i| i != crate::assembly::FIXED)

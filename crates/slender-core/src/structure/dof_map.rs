@@ -31,6 +31,10 @@ pub struct GlobalDofs {
     /// Per member: `Some(offset)` if its own DOF i is global DOF offset + i with coefficient
     /// 1 for every i (a rod with no ties), so that its step is a plain slice of the global one.
     pub(super) offsets: Vec<Option<usize>>,
+    /// Per member: `Some(offset)` as in `offsets` if, besides, the member owns every one of
+    /// those global DOFs (no other member shares them), so that its DOF scales are written
+    /// to the slice directly.
+    pub(super) owned_offsets: Vec<Option<usize>>,
 }
 
 impl GlobalDofs {
@@ -98,6 +102,13 @@ impl GlobalDofs {
                     .all(|(i, s)| s.dof != FIXED && s.dof == first + i && s.coef == 1.0)
                     .then_some(first)
             })
+            .collect::<Vec<_>>();
+        let owned_offsets = offsets
+            .iter()
+            .enumerate()
+            .map(|(m, offset)| {
+                offset.filter(|&o| (0..maps[m].len()).all(|i| owner[o + i] == (m, i)))
+            })
             .collect();
         Self {
             maps,
@@ -106,6 +117,7 @@ impl GlobalDofs {
             inertia,
             weight,
             offsets,
+            owned_offsets,
         }
     }
 

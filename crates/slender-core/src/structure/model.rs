@@ -437,6 +437,16 @@ impl EquilibriumProblem for Structure {
     fn dof_scales(&self, state: &StructureState, force_length: &mut [f64], magnitude: &mut [f64]) {
         // Each global DOF takes its scales from its owner, as the per-DOF methods do.
         for (m, member) in self.members.iter().enumerate() {
+            if let Some(o) = self.dofs.owned_offsets[m] {
+                // Own DOF i is global DOF o + i, owned by this member: no lookups.
+                let n = member.n_free();
+                let (lengths, magnitudes) = (&mut force_length[o..o + n], &mut magnitude[o..o + n]);
+                member.dof_scales_each(&state.members[m], |i, l, mag| {
+                    lengths[i] = l;
+                    magnitudes[i] = mag;
+                });
+                continue;
+            }
             let map = &self.dofs.maps[m];
             member.dof_scales_each(&state.members[m], |i, l, mag| {
                 let g = map[i].dof;
