@@ -174,6 +174,7 @@ impl Rod {
         d
     }
 
+    #[inline]
     pub(super) fn hinge_state(&self, s: &RodState, hinge: &Hinge) -> HingeState {
         let k = hinge.index;
         let v = hinge.vertex;
