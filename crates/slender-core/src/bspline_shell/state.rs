@@ -8,7 +8,7 @@ use crate::shell::Clamp;
 
 /// Control points (m, clamped rows included), clamp poses, and the second-order strain of
 /// the Newton step that produced the state.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct BsplineState {
     /// Control points, index i·n_v + j (i along the length, j across).
     pub control_points: Vec<Vec3>,
@@ -20,4 +20,22 @@ pub struct BsplineState {
     /// (the mixed-integration-point update, see [`crate::shell::mixed_update`]); empty when
     /// the state was not produced by a step (r = 0 everywhere: the exact Hessian).
     pub membrane_remainder: Vec<Vector3<f64>>,
+}
+/// Written out so that `clone_from` reuses the buffers (a derived one allocates a clone): the
+/// solvers copy states into their workspaces on every re-solve.
+impl Clone for BsplineState {
+    fn clone(&self) -> Self {
+        Self {
+            control_points: self.control_points.clone(),
+            clamps: self.clamps,
+            membrane_remainder: self.membrane_remainder.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.control_points.clone_from(&source.control_points);
+        self.clamps = source.clamps;
+        self.membrane_remainder
+            .clone_from(&source.membrane_remainder);
+    }
 }

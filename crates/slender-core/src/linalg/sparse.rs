@@ -11,7 +11,7 @@
 
 use std::sync::Arc;
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::MemStack;
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
@@ -20,6 +20,8 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
+use std::mem::MaybeUninit;
+use std::sync::Mutex;
 
 use super::symmetric::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
 
@@ -346,9 +348,33 @@ pub struct SparseLdlt {
     symbolic: Option<Arc<SymbolicCholesky<usize>>>,
     l_values: Vec<f64>,
     shifted: Vec<f64>,
+    /// The pivots D of the last factorization, in the permuted order.
+    pivots: Vec<f64>,
+    /// faer's scratch memory for the numeric factorization, kept between calls.
+    factor_scratch: Vec<MaybeUninit<u8>>,
+    solve_scratch: SolveScratch,
     inertia: Inertia,
     factored: bool,
     symbolic_analyses: usize,
+}
+
+/// faer's scratch memory for solves, kept between calls so that a re-solve allocates nothing;
+/// behind a mutex because solves take `&self` (the factor stays `Sync`). A clone starts empty.
+#[derive(Debug, Default)]
+struct SolveScratch(Mutex<Vec<MaybeUninit<u8>>>);
+
+impl Clone for SolveScratch {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+/// `buffer` grown to at least the bytes `req` needs at any alignment.
+fn reserve_scratch(buffer: &mut Vec<MaybeUninit<u8>>, req: faer::dyn_stack::StackReq) {
+    let bytes = req.unaligned_bytes_required();
+    if buffer.len() < bytes {
+        buffer.resize(bytes, MaybeUninit::uninit());
+    }
 }
 
 impl SparseLdlt {
@@ -375,23 +401,23 @@ impl SparseLdlt {
         self.inertia
     }
 
-    fn pivots(&self, symbolic: &SymbolicCholesky<usize>) -> Vec<f64> {
+    /// The pivots D of the factor in `l_values` into `d`.
+    fn pivots_into(l_values: &[f64], symbolic: &SymbolicCholesky<usize>, d: &mut Vec<f64>) {
+        d.clear();
         match symbolic.raw() {
             SymbolicCholeskyRaw::Simplicial(s) => {
                 let col_ptr = s.col_ptr();
-                (0..s.nrows()).map(|k| self.l_values[col_ptr[k]]).collect()
+                d.extend((0..s.nrows()).map(|k| l_values[col_ptr[k]]));
             }
             // Each supernode stores its columns as one dense column-major block whose leading
             // square part is the diagonal block; D sits on that block's diagonal.
             SymbolicCholeskyRaw::Supernodal(s) => {
-                let mut d = Vec::with_capacity(s.nrows());
                 for k in 0..s.n_supernodes() {
                     let ncols = s.supernode_end()[k] - s.supernode_begin()[k];
                     let nrows = ncols + s.supernode(k).pattern().len();
                     let start = s.col_ptr_for_val()[k];
-                    d.extend((0..ncols).map(|j| self.l_values[start + j * nrows + j]));
+                    d.extend((0..ncols).map(|j| l_values[start + j * nrows + j]));
                 }
-                d
             }
         }
     }
@@ -440,14 +466,14 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
         }
         let matrix = SparseColMatRef::new(a.symbolic(), &self.shifted);
         let req = symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
-        let mut mem = MemBuffer::new(req);
+        reserve_scratch(&mut self.factor_scratch, req);
         let result = symbolic.factorize_numeric_ldlt(
             &mut self.l_values,
             matrix,
             Side::Upper,
             LdltRegularization::default(),
             Par::Seq,
-            MemStack::new(&mut mem),
+            MemStack::new(&mut self.factor_scratch),
             Default::default(),
         );
         if let Err(LdltError::ZeroPivot { index }) = result {
@@ -466,12 +492,22 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
             };
             self.shifted[a.pattern.diag[row]].abs()
         };
-        let pivots = self.pivots(&symbolic);
+        let mut pivots = std::mem::take(&mut self.pivots);
+        Self::pivots_into(&self.l_values, &symbolic, &mut pivots);
         let inertia = Inertia::from_pivots(
             pivots.iter().enumerate().map(|(k, &d)| (d, diag_of(k))),
             rtol,
-        )
-        .map_err(|index| FactorError::NonFinite { index })?;
+        );
+        self.pivots = pivots;
+        let inertia = inertia.map_err(|index| FactorError::NonFinite { index })?;
+        // The solves' scratch is sized here, with the factor, not by the first solve.
+        reserve_scratch(
+            self.solve_scratch
+                .0
+                .get_mut()
+                .unwrap_or_else(|poisoned| poisoned.into_inner()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        );
         self.inertia = inertia;
         self.factored = true;
         Ok(inertia)
@@ -490,9 +526,18 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
             });
         }
         let ldlt = LdltRef::<usize, f64>::new(symbolic, &self.l_values);
-        let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        // A panic elsewhere cannot leave the scratch inconsistent (it holds no state).
+        let mut scratch = self
+            .solve_scratch
+            .0
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        reserve_scratch(
+            &mut scratch,
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        );
         let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
-        ldlt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+        ldlt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut scratch));
         Ok(())
     }
 }

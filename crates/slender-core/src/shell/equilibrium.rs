@@ -172,25 +172,20 @@ impl EquilibriumProblem for Shell {
     }
 
     fn max_step(&self, state: &ShellState, dx: &[f64]) -> f64 {
-        let mut step = state.clone();
-        for p in step.positions.iter_mut() {
-            p.fill(0.0);
-        }
-        step.angles.fill(0.0);
         let mut alpha: f64 = 1.0;
         for (i, d) in dx.iter().enumerate() {
-            match self.dofs.split(self.dofs.full(i)) {
-                DofKind::Position(v, c) => step.positions[v][c] = *d,
-                DofKind::Angle(_) => {
-                    if d.abs() > MAX_ANGLE_STEP {
-                        alpha = alpha.min(MAX_ANGLE_STEP / d.abs());
-                    }
-                }
+            if self.dofs.is_angle(i) && d.abs() > MAX_ANGLE_STEP {
+                alpha = alpha.min(MAX_ANGLE_STEP / d.abs());
             }
         }
+        // A vertex's step (0 for a held coordinate), looked up rather than gathered into a
+        // copy of the state.
+        let step = |v: usize| -> crate::geometry::Vec3 {
+            crate::geometry::Vec3::from_fn(|c, _| self.dofs.vertex(v, c).map_or(0.0, |i| dx[i]))
+        };
         for [a, b] in &self.mesh.edges {
             let e = state.positions[*b] - state.positions[*a];
-            let de = (step.positions[*b] - step.positions[*a]).norm();
+            let de = (step(*b) - step(*a)).norm();
             let change = de / e.norm();
             if change > MAX_EDGE_CHANGE {
                 alpha = alpha.min(MAX_EDGE_CHANGE / change);

@@ -9,7 +9,7 @@ use super::clamp::Clamp;
 /// Positions (m) of all vertices (clamped ones included) and angles (rad) of all edges
 /// (clamped edges keep 0: their director is the clamp normal), and the memory of the Newton
 /// update.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct ShellState {
     /// Vertex positions (m).
     pub positions: Vec<Vec3>,
@@ -24,4 +24,24 @@ pub struct ShellState {
     /// Newton step that produced this state (see [`mixed_update`](super::mixed_update));
     /// empty when the state was not produced by a step (then r = 0 on every face).
     pub membrane_remainder: Vec<Vector3<f64>>,
+}
+/// Written out so that `clone_from` reuses the buffers (a derived one allocates a clone): the
+/// solvers copy states into their workspaces on every re-solve.
+impl Clone for ShellState {
+    fn clone(&self) -> Self {
+        Self {
+            positions: self.positions.clone(),
+            angles: self.angles.clone(),
+            clamps: self.clamps,
+            membrane_remainder: self.membrane_remainder.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.positions.clone_from(&source.positions);
+        self.angles.clone_from(&source.angles);
+        self.clamps = source.clamps;
+        self.membrane_remainder
+            .clone_from(&source.membrane_remainder);
+    }
 }

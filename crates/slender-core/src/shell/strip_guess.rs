@@ -77,9 +77,11 @@ pub fn both_ends_guess(
             }
         })
         .collect();
+    // The length of the centre line scaled by 1 + β, as `polyline_length` measures it, without
+    // a copy per bisection step.
     let length = |beta: f64| -> f64 {
-        let scaled: Vec<Vec3> = c.iter().zip(&d).map(|(ci, di)| ci + di * beta).collect();
-        polyline_length(&scaled) - before
+        let at = |i: usize| c[i] + d[i] * beta;
+        (1..rows).map(|i| (at(i) - at(i - 1)).norm()).sum::<f64>() - before
     };
     // The length grows monotonically with the deflection's scale 1 + β on [−1, ∞): bisect
     // for its root (a straight strip has no deflection to scale: then nothing changes).
