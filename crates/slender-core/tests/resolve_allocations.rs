@@ -110,6 +110,26 @@ fn warm_drags_of_every_rod_model_allocate_only_their_report() {
     }
 }
 
+#[test]
+fn warm_gravity_changes_allocate_only_their_report() {
+    for model in ["der", "cosserat", "se3"] {
+        let mut session = Session::new(cable(model, true)).expect("the scene solves");
+        let mut counts = Vec::with_capacity(6);
+        for k in 0..6 {
+            let before = allocations();
+            let report = session
+                .set_gravity([0.0, 0.0, -9.81 * (1.0 + 0.01 * (k % 2) as f64)])
+                .expect("a valid gravity");
+            counts.push(allocations() - before);
+            assert!(report.converged, "{report:?}");
+        }
+        assert!(
+            counts[2..].iter().all(|&c| c <= 1),
+            "{model}: allocations per gravity change {counts:?}, expected at most 1 (the report)"
+        );
+    }
+}
+
 /// The counter sees allocations: without this, a counter that never counts would pass the
 /// test above.
 #[test]

@@ -675,7 +675,10 @@ impl Session {
         }
         let g = Vec3::from(g);
         let old = Vec3::from(self.spec.gravity);
-        let ks: Vec<usize> = (0..self.runs.len()).collect();
+        // Every structure is re-solved (the list kept in the move's buffer: no allocation).
+        let mut ks = std::mem::take(&mut self.affected);
+        ks.clear();
+        ks.extend(0..self.runs.len());
         for s in self.scene.structures.iter_mut() {
             for m in 0..s.members().len() {
                 s.member_mut(m)
@@ -727,6 +730,7 @@ impl Session {
             for run in self.runs.iter_mut() {
                 run.restore();
             }
+            self.affected = ks;
             return Ok(summary);
         }
         self.spec.gravity = [g.x, g.y, g.z];
@@ -737,6 +741,7 @@ impl Session {
         }
         let mut r = self.summary(&ks, None);
         r.followed_unstable_mode = followed;
+        self.affected = ks;
         Ok(r)
     }
 
