@@ -99,19 +99,12 @@ impl Rod {
         };
         // Edge j's new vector from its end vertices' steps `dj` and `dj1` (each vertex's step
         // is computed once and carried along the walks below).
-        // The state's frames are adapted to its positions: they hold each edge's length, its
-        // reciprocal and its tangent e·(1/|e|), measured as this would measure them.
-        let lengths = &state.frames.lengths;
-        let frames = &state.frames.edges;
-        debug_assert!(
-            (0..self.n_edges()).all(|j| !((lengths[j].length - (x[j + 1] - x[j]).norm()).abs()
-                > 1e-12 * lengths[j].length)),
-            "retraction from a state whose frames are not adapted to its positions"
-        );
         let new_edge = |j: usize, dj: Vec3, dj1: Vec3| -> Vec3 {
+            let e = x[j + 1] - x[j];
             let de = dj1 - dj;
-            let (len, inv_len) = (lengths[j].length, lengths[j].inv_length);
-            let t = frames[j].tangent;
+            let len = e.norm();
+            let inv_len = 1.0 / len;
+            let t = e * inv_len;
             let along = t.dot(&de);
             let across = de - t * along;
             let across_len = across.norm();
