@@ -9,7 +9,7 @@ use nalgebra::UnitQuaternion;
 
 use crate::error::ModelError;
 use crate::geometry::Vec3;
-use crate::rod::{RodLoadPath, SupportMotion};
+use crate::rod::SupportMotion;
 
 use super::core::FramedCore;
 use super::state::FramedState;
@@ -27,23 +27,7 @@ impl FramedCore {
     ) -> Result<(), ModelError> {
         // The last path's vectors are reused: an interactive drag sets a motion per edit.
         let mut path = std::mem::take(&mut self.load_path);
-        path.loads = [1.0, 1.0];
-        path.gravity_from = None;
-        path.motions.truncate(1);
-        if path.motions.is_empty() {
-            path.motions.push(SupportMotion {
-                vertices: Vec::new(),
-                pivot,
-                rotation,
-                translation,
-            });
-        }
-        let m = &mut path.motions[0];
-        m.vertices.clear();
-        m.vertices.extend_from_slice(vertices);
-        m.pivot = pivot;
-        m.rotation = rotation;
-        m.translation = translation;
+        path.set_single_motion(vertices, pivot, rotation, translation);
         // On an error `set_load_path` leaves the plain ramp (the path taken above).
         self.set_load_path(path)
     }
@@ -51,13 +35,7 @@ impl FramedCore {
     /// Back to the plain load ramp (vectors kept for reuse: a motion that holds no vertex
     /// moves nothing).
     pub fn clear_load_path(&mut self) {
-        self.load_path.loads = RodLoadPath::default().loads;
-        self.load_path.gravity_from = None;
-        for m in self.load_path.motions.iter_mut() {
-            m.vertices.clear();
-            m.rotation = Vec3::zeros();
-            m.translation = Vec3::zeros();
-        }
+        self.load_path.clear();
     }
 
     /// Moves the supports of `state` along the load path from `from` to `to`.

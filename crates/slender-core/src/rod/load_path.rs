@@ -90,6 +90,47 @@ impl Default for RodLoadPath {
 }
 
 impl RodLoadPath {
+    /// Makes this path full loads with the one support motion given, in place: the vectors of
+    /// the path are reused, so that an interactive drag, which sets a motion per edit,
+    /// allocates nothing here. Not checked against a model.
+    pub fn set_single_motion(
+        &mut self,
+        vertices: &[usize],
+        pivot: Vec3,
+        rotation: Vec3,
+        translation: Vec3,
+    ) {
+        self.loads = [1.0, 1.0];
+        self.gravity_from = None;
+        self.motions.truncate(1);
+        if self.motions.is_empty() {
+            self.motions.push(SupportMotion {
+                vertices: Vec::new(),
+                pivot,
+                rotation,
+                translation,
+            });
+        }
+        let m = &mut self.motions[0];
+        m.vertices.clear();
+        m.vertices.extend_from_slice(vertices);
+        m.pivot = pivot;
+        m.rotation = rotation;
+        m.translation = translation;
+    }
+
+    /// Back to the plain load ramp, in place (the vectors kept for reuse: a motion that holds
+    /// no vertex moves nothing).
+    pub fn clear(&mut self) {
+        self.loads = Self::default().loads;
+        self.gravity_from = None;
+        for m in self.motions.iter_mut() {
+            m.vertices.clear();
+            m.rotation = Vec3::zeros();
+            m.translation = Vec3::zeros();
+        }
+    }
+
     /// Full loads, the supports moved by `motions` as λ goes from 0 to 1.
     pub fn support_motion(motions: Vec<SupportMotion>) -> Self {
         Self {
@@ -172,24 +213,8 @@ impl Rod {
         translation: Vec3,
     ) -> Result<(), ModelError> {
         let mut path = std::mem::take(&mut self.load_path);
-        path.loads = [1.0, 1.0];
-        path.gravity_from = None;
-        path.motions.truncate(1);
-        if path.motions.is_empty() {
-            path.motions.push(SupportMotion {
-                vertices: Vec::new(),
-                pivot,
-                rotation,
-                translation,
-            });
-        }
-        let m = &mut path.motions[0];
-        m.vertices.clear();
-        m.vertices.extend_from_slice(vertices);
-        m.pivot = pivot;
-        m.rotation = rotation;
-        m.translation = translation;
-        let checked = m.check(self);
+        path.set_single_motion(vertices, pivot, rotation, translation);
+        let checked = path.motions[0].check(self);
         if checked.is_ok() {
             self.load_path = path;
         } else {
@@ -200,13 +225,7 @@ impl Rod {
 
     /// Back to the plain load ramp (vectors kept for reuse).
     pub fn clear_load_path(&mut self) {
-        self.load_path.loads = [0.0, 1.0];
-        self.load_path.gravity_from = None;
-        for m in self.load_path.motions.iter_mut() {
-            m.vertices.clear();
-            m.rotation = Vec3::zeros();
-            m.translation = Vec3::zeros();
-        }
+        self.load_path.clear();
     }
 
     /// A state like `state` with the support moved by the whole of `motion` (λ from 0 to 1),
