@@ -351,21 +351,46 @@ pub struct SparseLdlt {
     /// The pivots D of the last factorization, in the permuted order.
     pivots: Vec<f64>,
     /// faer's scratch memory for the numeric factorization, kept between calls.
-    factor_scratch: Vec<MaybeUninit<u8>>,
+    factor_scratch: FactorScratch,
     solve_scratch: SolveScratch,
     inertia: Inertia,
     factored: bool,
     symbolic_analyses: usize,
 }
 
+/// faer's scratch memory for the numeric factorization, kept between calls. A clone starts
+/// empty; `Debug` shows its size, not its bytes.
+#[derive(Default)]
+struct FactorScratch(Vec<MaybeUninit<u8>>);
+
+impl Clone for FactorScratch {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for FactorScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "FactorScratch({} bytes)", self.0.len())
+    }
+}
+
 /// faer's scratch memory for solves, kept between calls so that a re-solve allocates nothing;
-/// behind a mutex because solves take `&self` (the factor stays `Sync`). A clone starts empty.
-#[derive(Debug, Default)]
+/// behind a mutex because solves take `&self` (the factor stays `Sync`). A clone starts empty;
+/// `Debug` shows its size, not its bytes.
+#[derive(Default)]
 struct SolveScratch(Mutex<Vec<MaybeUninit<u8>>>);
 
 impl Clone for SolveScratch {
     fn clone(&self) -> Self {
         Self::default()
+    }
+}
+
+impl std::fmt::Debug for SolveScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let bytes = self.0.lock().map_or(0, |b| b.len());
+        write!(f, "SolveScratch({bytes} bytes)")
     }
 }
 
@@ -466,14 +491,14 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
         }
         let matrix = SparseColMatRef::new(a.symbolic(), &self.shifted);
         let req = symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
-        reserve_scratch(&mut self.factor_scratch, req);
+        reserve_scratch(&mut self.factor_scratch.0, req);
         let result = symbolic.factorize_numeric_ldlt(
             &mut self.l_values,
             matrix,
             Side::Upper,
             LdltRegularization::default(),
             Par::Seq,
-            MemStack::new(&mut self.factor_scratch),
+            MemStack::new(&mut self.factor_scratch.0),
             Default::default(),
         );
         if let Err(LdltError::ZeroPivot { index }) = result {
