@@ -92,6 +92,13 @@ impl SymmetricMatrix for AdaptiveMatrix {
         }
     }
 
+    fn gershgorin_bounds_in(&self, radius: &mut Vec<f64>) -> (f64, f64) {
+        match self {
+            Self::Band(m) => m.gershgorin_bounds_in(radius),
+            Self::Sparse(m) => SymmetricMatrix::gershgorin_bounds_in(m, radius),
+        }
+    }
+
     fn first_non_finite(&self) -> Option<usize> {
         match self {
             Self::Band(m) => SymmetricMatrix::first_non_finite(m),

@@ -200,11 +200,17 @@ impl SymmetricBandMatrix {
     /// Gershgorin bounds (lower, upper): every eigenvalue λ satisfies lower ≤ λ ≤ upper.
     /// Returns (0, 0) for the empty matrix. Allocates an n-vector of row radii.
     pub fn gershgorin_bounds(&self) -> (f64, f64) {
+        self.gershgorin_bounds_in(&mut Vec::new())
+    }
+
+    /// [`Self::gershgorin_bounds`] with the row radii in `radius` (resized, reused).
+    pub fn gershgorin_bounds_in(&self, radius: &mut Vec<f64>) -> (f64, f64) {
         if self.n == 0 {
             return (0.0, 0.0);
         }
         let bw = self.bw;
-        let mut radius = vec![0.0; self.n];
+        radius.clear();
+        radius.resize(self.n, 0.0);
         for i in 0..self.n {
             let row = self.row(i);
             let lo = i.saturating_sub(bw);
@@ -710,6 +716,10 @@ impl SymmetricMatrix for SymmetricBandMatrix {
 
     fn gershgorin_bounds(&self) -> (f64, f64) {
         SymmetricBandMatrix::gershgorin_bounds(self)
+    }
+
+    fn gershgorin_bounds_in(&self, radius: &mut Vec<f64>) -> (f64, f64) {
+        SymmetricBandMatrix::gershgorin_bounds_in(self, radius)
     }
 
     fn first_non_finite(&self) -> Option<usize> {

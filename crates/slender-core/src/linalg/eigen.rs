@@ -82,6 +82,36 @@ pub fn smallest_eigenpair_near<M: SymmetricMatrix>(
     rel_tol: f64,
     guess: Option<&[f64]>,
 ) -> Result<EigenEstimate, FactorError> {
+    let mut scratch = EigenScratch::default();
+    let (value, iterations) = smallest_eigenpair_near_in(a, ws, rel_tol, guess, &mut scratch)?;
+    Ok(EigenEstimate {
+        value,
+        vector: scratch.vector,
+        iterations,
+    })
+}
+
+/// The buffers of [`smallest_eigenpair_near_in`], reused between calls (a solver that slices
+/// the spectrum at every indefinite iterate then allocates nothing for it).
+#[derive(Clone, Debug, Default)]
+pub struct EigenScratch {
+    /// The eigenvector estimate (unit 2-norm) of the last call.
+    pub vector: Vec<f64>,
+    /// A v, and the guess while it is normalized.
+    av: Vec<f64>,
+    /// The Gershgorin row radii.
+    radius: Vec<f64>,
+}
+
+/// [`smallest_eigenpair_near`] into reused buffers: returns the eigenvalue estimate and the
+/// factorizations spent; the eigenvector is left in `scratch.vector`.
+pub fn smallest_eigenpair_near_in<M: SymmetricMatrix>(
+    a: &M,
+    ws: &mut M::Factor,
+    rel_tol: f64,
+    guess: Option<&[f64]>,
+    scratch: &mut EigenScratch,
+) -> Result<(f64, usize), FactorError> {
     let n = a.dim();
     if n == 0 {
         return Err(FactorError::EmptyMatrix);
@@ -89,24 +119,26 @@ pub fn smallest_eigenpair_near<M: SymmetricMatrix>(
     if let Some(index) = a.first_non_finite() {
         return Err(FactorError::NonFinite { index });
     }
-    let (g_lo, g_hi) = a.gershgorin_bounds();
+    let EigenScratch {
+        vector: v,
+        av,
+        radius,
+    } = scratch;
+    let (g_lo, g_hi) = a.gershgorin_bounds_in(radius);
     let s = g_lo.abs().max(g_hi.abs());
-    let mut v = start_vector(n);
+    start_vector_into(v, n);
     let warm = guess.is_some_and(|g| {
         g.len() == n && {
-            let mut w = g.to_vec();
-            normalize(&mut w).is_ok() && {
-                v = w;
+            av.clear();
+            av.extend_from_slice(g);
+            normalize(av).is_ok() && {
+                std::mem::swap(v, av);
                 true
             }
         }
     });
     if s == 0.0 {
-        return Ok(EigenEstimate {
-            value: 0.0,
-            vector: v,
-            iterations: 0,
-        });
+        return Ok((0.0, 0));
     }
     let rel_tol = if rel_tol.is_nan() {
         f64::EPSILON
@@ -130,7 +162,8 @@ pub fn smallest_eigenpair_near<M: SymmetricMatrix>(
     };
     let _ = s;
 
-    let mut av = vec![0.0; n];
+    av.clear();
+    av.resize(n, 0.0);
     let mut slicer = Slicer {
         a,
         ws,
@@ -140,7 +173,7 @@ pub fn smallest_eigenpair_near<M: SymmetricMatrix>(
 
     // Initial bracket: Gershgorin below; the diagonal entries and the start vector's Rayleigh
     // quotient are Rayleigh quotients, hence upper bounds on λ_min.
-    let (mut rho, mut res) = rayleigh(a, &v, &mut av);
+    let (mut rho, mut res) = rayleigh(a, v, av);
     let mut lo = g_lo;
     let mut hi = (0..n).fold(rho, |m, i| m.min(a.diagonal(i))).max(lo);
     let mut have_vector = false;
@@ -173,8 +206,8 @@ pub fn smallest_eigenpair_near<M: SymmetricMatrix>(
             Slice::Below(shift) => {
                 lo = lo.max(shift);
                 for _ in 0..INNER_STEPS {
-                    inverse_step::<M>(slicer.ws, &mut v)?;
-                    (rho, res) = rayleigh(a, &v, &mut av);
+                    inverse_step::<M>(slicer.ws, v)?;
+                    (rho, res) = rayleigh(a, v, av);
                     hi = hi.min(rho);
                 }
                 have_vector = true;
@@ -209,8 +242,8 @@ pub fn smallest_eigenpair_near<M: SymmetricMatrix>(
         }
         if factored {
             for _ in 0..FINAL_STEPS {
-                inverse_step::<M>(slicer.ws, &mut v)?;
-                (rho, res) = rayleigh(a, &v, &mut av);
+                inverse_step::<M>(slicer.ws, v)?;
+                (rho, res) = rayleigh(a, v, av);
                 if res <= target {
                     break;
                 }
@@ -218,12 +251,8 @@ pub fn smallest_eigenpair_near<M: SymmetricMatrix>(
         }
     }
 
-    Ok(EigenEstimate {
-        // max/min rather than clamp: no panic even if rounding left hi a hair below lo.
-        value: rho.max(lo).min(hi),
-        vector: v,
-        iterations: slicer.factorizations,
-    })
+    // max/min rather than clamp: no panic even if rounding left hi a hair below lo.
+    Ok((rho.max(lo).min(hi), slicer.factorizations))
 }
 
 /// Outcome of one slicing factorization at the (possibly nudged) shift it carries.
@@ -299,17 +328,15 @@ fn rayleigh<M: SymmetricMatrix>(a: &M, v: &[f64], av: &mut [f64]) -> (f64, f64) 
 
 /// Deterministic unit start vector: entries in [0.5, 1.5) from a fixed xorshift sequence, so
 /// that it is not orthogonal to a structured eigenvector (as a constant vector could be).
-fn start_vector(n: usize) -> Vec<f64> {
+fn start_vector_into(v: &mut Vec<f64>, n: usize) {
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut v: Vec<f64> = (0..n)
-        .map(|_| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            0.5 + (state >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect();
+    v.clear();
+    v.extend((0..n).map(|_| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        0.5 + (state >> 11) as f64 / (1u64 << 53) as f64
+    }));
     let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
     v.iter_mut().for_each(|x| *x /= norm);
-    v
 }

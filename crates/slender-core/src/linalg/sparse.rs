@@ -302,11 +302,16 @@ impl SymmetricMatrix for SparseSymmetricMatrix {
     }
 
     fn gershgorin_bounds(&self) -> (f64, f64) {
+        self.gershgorin_bounds_in(&mut Vec::new())
+    }
+
+    fn gershgorin_bounds_in(&self, radius: &mut Vec<f64>) -> (f64, f64) {
         let n = self.pattern.n;
         if n == 0 {
             return (0.0, 0.0);
         }
-        let mut radius = vec![0.0; n];
+        radius.clear();
+        radius.resize(n, 0.0);
         for (i, j, v) in self.entries() {
             if i != j {
                 radius[i] += v.abs();

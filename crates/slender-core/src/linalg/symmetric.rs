@@ -70,6 +70,14 @@ pub trait SymmetricMatrix: Clone + std::fmt::Debug {
     /// Gershgorin bounds (lower, upper) on the eigenvalues; (0, 0) for the empty matrix.
     fn gershgorin_bounds(&self) -> (f64, f64);
 
+    /// [`Self::gershgorin_bounds`] with the row radii summed in `radius` (resized, and reused
+    /// between calls so that a repeated bound allocates nothing). Storages without such a
+    /// variant allocate as `gershgorin_bounds` does.
+    fn gershgorin_bounds_in(&self, radius: &mut Vec<f64>) -> (f64, f64) {
+        let _ = radius;
+        self.gershgorin_bounds()
+    }
+
     /// Index of a row (or column) holding a NaN or infinite stored entry, if any.
     fn first_non_finite(&self) -> Option<usize>;
 

@@ -7,7 +7,7 @@
 //! and scale with the mesh, so we solve H v = λ M v with the lumped mass matrix M: λ is the
 //! square of the lowest natural frequency (1/s²), a physical and mesh-independent quantity.
 
-use crate::linalg::eigen::smallest_eigenpair_near;
+use crate::linalg::eigen::{smallest_eigenpair_near_in, EigenScratch};
 use crate::linalg::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
 
 use super::problem::{EquilibriumProblem, MassMetric};
@@ -93,6 +93,8 @@ pub struct EigenWorkspace {
     /// H⁻¹ M v and H z for the residual bound of [`inverse_iteration`].
     z: Vec<f64>,
     hz: Vec<f64>,
+    /// The buffers of the spectrum slicing ([`slice_lowest_mode`]).
+    slicing: EigenScratch,
     /// True when `v` holds the Ritz vectors of the last converged inverse iteration of this
     /// size: a warm re-solve (an interactive drag) then starts from them and converges in one
     /// to three sweeps instead of a dozen.
@@ -204,12 +206,18 @@ pub(crate) fn slice_lowest_mode<P: EquilibriumProblem>(
     } else {
         None
     };
-    let est = smallest_eigenpair_near::<P::Hessian>(scaled, ldlt, rel_tol, guess)?;
+    let (value, _) =
+        smallest_eigenpair_near_in::<P::Hessian>(scaled, ldlt, rel_tol, guess, &mut ws.slicing)?;
     mode.shape.clear();
-    mode.shape
-        .extend(est.vector.iter().zip(&ws.inv_sqrt_m).map(|(v, s)| v * s));
-    mode.value = est.value;
-    mode.normalized = est.value / problem.eigenvalue_scale();
+    mode.shape.extend(
+        ws.slicing
+            .vector
+            .iter()
+            .zip(&ws.inv_sqrt_m)
+            .map(|(v, s)| v * s),
+    );
+    mode.value = value;
+    mode.normalized = value / problem.eigenvalue_scale();
     Ok(())
 }
 
