@@ -5,10 +5,10 @@
 //! structures ([`EditReport::structures`](slender_core::scene::EditReport)), returned to the
 //! caller.
 //!
-//! Shell strips are not covered: a drag of one still allocates about two dozen small vectors
-//! (the both-ends first guess's row centres and arc lengths, and the spectrum slicing's start
-//! vectors when an iterate is indefinite); their factorization, solves and state copies no
-//! longer allocate.
+//! Shell strips are not covered: a drag of a mid-edge strip still allocates nine times (the
+//! both-ends first guess's short vectors, and the report), a B-spline strip's about 450 times
+//! (its assembly); their factorization, solves, spectrum slicing and state copies no longer
+//! allocate.
 
 use slender_core::geometry::Vec3;
 use slender_core::scene::{Scene, Session};
