@@ -52,6 +52,27 @@ pub struct ElementTerm<const NB: usize, const D: usize> {
 pub struct BsplineContext<'a> {
     /// The state.
     pub state: &'a BsplineState,
+    /// The elements' Hessian factors, one element at a time: buffers kept for the whole
+    /// assembly instead of three new vectors per element.
+    scratch: std::cell::RefCell<ElementScratch>,
+}
+
+impl<'a> BsplineContext<'a> {
+    /// The context of an assembly at `state`.
+    pub fn new(state: &'a BsplineState) -> Self {
+        Self {
+            state,
+            scratch: Default::default(),
+        }
+    }
+}
+
+/// See [`BsplineContext`].
+#[derive(Default)]
+struct ElementScratch {
+    membrane: Vec<MembraneFactors>,
+    stresses: Vec<Vector3<f64>>,
+    bending: Vec<BendingFactors>,
 }
 
 impl<const NB: usize, const D: usize> ElementTerm<NB, D> {
@@ -254,15 +275,21 @@ impl<'a, const NB: usize, const D: usize> StencilTerm<BsplineContext<'a>, D>
     ) {
         debug_assert_eq!(D, 3 * NB);
         let want_hess = out.hess.is_some();
-        let mut membrane = Vec::new();
-        let mut stresses = Vec::new();
-        let mut bending = Vec::new();
+        let mut scratch = ctx.scratch.borrow_mut();
+        let ElementScratch {
+            membrane,
+            stresses,
+            bending,
+        } = &mut *scratch;
+        membrane.clear();
+        stresses.clear();
+        bending.clear();
         if selected.contains(groups::MEMBRANE) {
             if want_hess {
                 membrane.reserve(NB * self.membrane_points.len());
                 stresses.reserve(self.membrane_points.len());
             }
-            let hess = want_hess.then_some((&mut membrane, &mut stresses));
+            let hess = want_hess.then_some((&mut *membrane, &mut *stresses));
             let e = self.membrane(ctx, out.grad.as_deref_mut(), hess);
             out.add_energy(e);
         }
@@ -273,12 +300,12 @@ impl<'a, const NB: usize, const D: usize> StencilTerm<BsplineContext<'a>, D>
             let e = self.bending(
                 ctx,
                 out.grad.as_deref_mut(),
-                want_hess.then_some(&mut bending),
+                want_hess.then_some(&mut *bending),
             );
             out.add_energy(e);
         }
         if let Some(h) = out.hess.as_deref_mut() {
-            self.hessian_blocks(&membrane, &stresses, &bending, h);
+            self.hessian_blocks(membrane, stresses, bending, h);
         }
     }
 }

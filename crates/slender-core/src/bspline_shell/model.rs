@@ -330,7 +330,7 @@ impl BsplineShell {
         asm: &mut Assembler<'_, M>,
     ) {
         let factor = self.load_path.load_factor(load);
-        let ctx = BsplineContext { state: s };
+        let ctx = BsplineContext::new(s);
         with_elements!(&self.elements, terms => asm.terms_planned(&ctx, terms, Some(&self.scatter)));
         let points = &s.control_points;
         if asm.selects(groups::GRAVITY) {
