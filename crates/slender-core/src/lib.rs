@@ -27,6 +27,7 @@ pub mod lie;
 pub mod linalg;
 pub mod rod;
 pub mod scene;
+pub mod scratch;
 pub mod se3;
 pub mod shell;
 pub mod solver;

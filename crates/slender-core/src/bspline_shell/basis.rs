@@ -104,10 +104,15 @@ impl KnotVector {
     /// Greville abscissae: the parameter "position" of each control point, (t_{i+1} + … +
     /// t_{i+p})/p. Control points placed at x(ξ*_i) reproduce the linear map x(ξ) exactly.
     pub fn greville(&self) -> Vec<f64> {
-        let p = self.degree;
         (0..self.n_functions())
-            .map(|i| self.knots[i + 1..=i + p].iter().sum::<f64>() / p as f64)
+            .map(|i| self.greville_at(i))
             .collect()
+    }
+
+    /// The Greville abscissa of function `i` (see [`Self::greville`]).
+    pub fn greville_at(&self, i: usize) -> f64 {
+        let p = self.degree;
+        self.knots[i + 1..=i + p].iter().sum::<f64>() / p as f64
     }
 
     /// The integral of each basis function over the whole parameter range:

@@ -311,6 +311,9 @@ impl BsplineShellBuilder {
             gravity: self.gravity,
             point_loads,
             load_path: Default::default(),
+            element_scratch: Default::default(),
+            step_scratch: Default::default(),
+            guess: Default::default(),
         })
     }
 }

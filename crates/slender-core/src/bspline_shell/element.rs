@@ -52,24 +52,24 @@ pub struct ElementTerm<const NB: usize, const D: usize> {
 pub struct BsplineContext<'a> {
     /// The state.
     pub state: &'a BsplineState,
-    /// The elements' Hessian factors, one element at a time: buffers kept for the whole
-    /// assembly instead of three new vectors per element.
-    scratch: std::cell::RefCell<ElementScratch>,
+    /// The elements' Hessian factors, one element at a time, in buffers the model keeps
+    /// between assemblies.
+    scratch: std::cell::RefCell<&'a mut ElementScratch>,
 }
 
 impl<'a> BsplineContext<'a> {
-    /// The context of an assembly at `state`.
-    pub fn new(state: &'a BsplineState) -> Self {
+    /// The context of an assembly at `state`, with the model's element buffers.
+    pub fn new(state: &'a BsplineState, scratch: &'a mut ElementScratch) -> Self {
         Self {
             state,
-            scratch: Default::default(),
+            scratch: std::cell::RefCell::new(scratch),
         }
     }
 }
 
-/// See [`BsplineContext`].
+/// The buffers of one element's Hessian factors (see [`BsplineContext`]).
 #[derive(Default)]
-struct ElementScratch {
+pub struct ElementScratch {
     membrane: Vec<MembraneFactors>,
     stresses: Vec<Vector3<f64>>,
     bending: Vec<BendingFactors>,
@@ -280,7 +280,7 @@ impl<'a, const NB: usize, const D: usize> StencilTerm<BsplineContext<'a>, D>
             membrane,
             stresses,
             bending,
-        } = &mut *scratch;
+        } = &mut **scratch;
         membrane.clear();
         stresses.clear();
         bending.clear();

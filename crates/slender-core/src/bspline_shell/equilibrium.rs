@@ -90,41 +90,33 @@ impl EquilibriumProblem for BsplineShell {
         if guess {
             let (n_u, n_v) = (self.patch.n_u(), self.patch.n_v());
             let length = self.properties.length;
-            let stations: Vec<f64> = self
-                .patch
-                .knots_u
-                .greville()
-                .iter()
-                .take(n_u)
-                .map(|g| g / length)
-                .collect();
-            let mut held = vec![false; n_u];
-            for end in StripEnd::BOTH {
-                if self.is_clamped(end) {
-                    for r in end.held_rows(n_u) {
-                        held[r] = true;
+            let knots = &self.patch.knots_u;
+            self.guess.with(|rows| {
+                rows.stations.clear();
+                rows.stations
+                    .extend((0..n_u).map(|i| knots.greville_at(i) / length));
+                rows.held.clear();
+                rows.held.resize(n_u, false);
+                for end in StripEnd::BOTH {
+                    if self.is_clamped(end) {
+                        for r in end.held_rows(n_u) {
+                            rows.held[r] = true;
+                        }
                     }
                 }
-            }
-            for m in motions {
-                if self.is_clamped(m.end.other()) {
-                    // Held at both ends: the length-preserving guess (`shell::strip_guess`).
-                    both_ends_guess(
-                        &mut state.control_points,
-                        n_v,
-                        &stations,
-                        &held,
-                        m,
-                        from,
-                        to,
-                    );
-                } else {
-                    // Held at one end only, the strip turns rigidly with its clamp.
-                    for p in state.control_points.iter_mut() {
-                        *p = m.carry(p, from, to, 1.0);
+                for m in motions {
+                    if self.is_clamped(m.end.other()) {
+                        // Held at both ends: the length-preserving guess
+                        // (`shell::strip_guess`).
+                        both_ends_guess(&mut state.control_points, n_v, m, from, to, rows);
+                    } else {
+                        // Held at one end only, the strip turns rigidly with its clamp.
+                        for p in state.control_points.iter_mut() {
+                            *p = m.carry(p, from, to, 1.0);
+                        }
                     }
                 }
-            }
+            });
             state.membrane_remainder.clear();
         }
         for m in motions {
@@ -155,32 +147,34 @@ impl EquilibriumProblem for BsplineShell {
     }
 
     fn max_step(&self, state: &BsplineState, dx: &[f64]) -> f64 {
-        let n = state.control_points.len();
-        let mut step = vec![crate::geometry::Vec3::zeros(); n];
-        for (d, &f) in dx.iter().zip(&self.full_of_free) {
-            step[f / 3][f % 3] = *d;
-        }
-        let (n_u, n_v) = (self.patch.n_u(), self.patch.n_v());
-        let mut alpha: f64 = 1.0;
-        let mut edge = |a: usize, b: usize| {
-            let e = (state.control_points[b] - state.control_points[a]).norm();
-            let de = (step[b] - step[a]).norm();
-            if de > MAX_EDGE_CHANGE * e {
-                alpha = alpha.min(MAX_EDGE_CHANGE * e / de);
+        self.step_scratch.with(|step| {
+            step.clear();
+            step.resize(state.control_points.len(), crate::geometry::Vec3::zeros());
+            for (d, &f) in dx.iter().zip(&self.full_of_free) {
+                step[f / 3][f % 3] = *d;
             }
-        };
-        for i in 0..n_u {
-            for j in 0..n_v {
-                let c = self.patch.control(i, j);
-                if i + 1 < n_u {
-                    edge(c, self.patch.control(i + 1, j));
+            let (n_u, n_v) = (self.patch.n_u(), self.patch.n_v());
+            let mut alpha: f64 = 1.0;
+            let mut edge = |a: usize, b: usize| {
+                let e = (state.control_points[b] - state.control_points[a]).norm();
+                let de = (step[b] - step[a]).norm();
+                if de > MAX_EDGE_CHANGE * e {
+                    alpha = alpha.min(MAX_EDGE_CHANGE * e / de);
                 }
-                if j + 1 < n_v {
-                    edge(c, self.patch.control(i, j + 1));
+            };
+            for i in 0..n_u {
+                for j in 0..n_v {
+                    let c = self.patch.control(i, j);
+                    if i + 1 < n_u {
+                        edge(c, self.patch.control(i + 1, j));
+                    }
+                    if j + 1 < n_v {
+                        edge(c, self.patch.control(i, j + 1));
+                    }
                 }
             }
-        }
-        alpha
+            alpha
+        })
     }
 
     fn force_length(&self, _i: usize) -> f64 {

@@ -7,10 +7,12 @@ use crate::error::ModelError;
 use crate::geometry::Vec3;
 use crate::linalg::{ScatterPlan, SparseSymmetricMatrix, SymmetricMatrix};
 use crate::rod::Grading;
+use crate::scratch::Scratch;
+use crate::shell::strip_guess::StripGuess;
 use crate::shell::{Clamp, ShellProperties};
 
 use super::clamp::StripEnd;
-use super::element::{BsplineContext, ElementTerm};
+use super::element::{BsplineContext, ElementScratch, ElementTerm};
 use super::gravity::add_gravity;
 use super::groups;
 use super::load_path::BsplineLoadPath;
@@ -66,6 +68,10 @@ pub struct BsplineShell {
     pub(crate) gravity: Vec3,
     pub(crate) point_loads: Vec<PointLoadTerm>,
     pub(crate) load_path: BsplineLoadPath,
+    /// Working memory of the assembly, the step cap and the first guess, kept between calls.
+    pub(crate) element_scratch: Scratch<ElementScratch>,
+    pub(crate) step_scratch: Scratch<Vec<Vec3>>,
+    pub(crate) guess: Scratch<StripGuess>,
 }
 
 impl BsplineShell {
@@ -330,8 +336,10 @@ impl BsplineShell {
         asm: &mut Assembler<'_, M>,
     ) {
         let factor = self.load_path.load_factor(load);
-        let ctx = BsplineContext::new(s);
-        with_elements!(&self.elements, terms => asm.terms_planned(&ctx, terms, Some(&self.scatter)));
+        self.element_scratch.with(|scratch| {
+            let ctx = BsplineContext::new(s, scratch);
+            with_elements!(&self.elements, terms => asm.terms_planned(&ctx, terms, Some(&self.scatter)));
+        });
         let points = &s.control_points;
         if asm.selects(groups::GRAVITY) {
             let g = self.gravity * factor;

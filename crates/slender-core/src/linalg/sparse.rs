@@ -11,6 +11,7 @@
 
 use std::sync::Arc;
 
+use crate::scratch::Scratch;
 use faer::dyn_stack::MemStack;
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::sparse::linalg::cholesky::{
@@ -21,7 +22,6 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use std::mem::MaybeUninit;
-use std::sync::Mutex;
 
 use super::symmetric::{FactorError, Inertia, SymmetricFactor, SymmetricMatrix};
 
@@ -356,47 +356,12 @@ pub struct SparseLdlt {
     /// The pivots D of the last factorization, in the permuted order.
     pivots: Vec<f64>,
     /// faer's scratch memory for the numeric factorization, kept between calls.
-    factor_scratch: FactorScratch,
-    solve_scratch: SolveScratch,
+    factor_scratch: Scratch<Vec<MaybeUninit<u8>>>,
+    /// faer's scratch memory for solves, kept between calls (solves take `&self`).
+    solve_scratch: Scratch<Vec<MaybeUninit<u8>>>,
     inertia: Inertia,
     factored: bool,
     symbolic_analyses: usize,
-}
-
-/// faer's scratch memory for the numeric factorization, kept between calls. A clone starts
-/// empty; `Debug` shows its size, not its bytes.
-#[derive(Default)]
-struct FactorScratch(Vec<MaybeUninit<u8>>);
-
-impl Clone for FactorScratch {
-    fn clone(&self) -> Self {
-        Self::default()
-    }
-}
-
-impl std::fmt::Debug for FactorScratch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "FactorScratch({} bytes)", self.0.len())
-    }
-}
-
-/// faer's scratch memory for solves, kept between calls so that a re-solve allocates nothing;
-/// behind a mutex because solves take `&self` (the factor stays `Sync`). A clone starts empty;
-/// `Debug` shows its size, not its bytes.
-#[derive(Default)]
-struct SolveScratch(Mutex<Vec<MaybeUninit<u8>>>);
-
-impl Clone for SolveScratch {
-    fn clone(&self) -> Self {
-        Self::default()
-    }
-}
-
-impl std::fmt::Debug for SolveScratch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let bytes = self.0.lock().map_or(0, |b| b.len());
-        write!(f, "SolveScratch({bytes} bytes)")
-    }
 }
 
 /// `buffer` grown to at least the bytes `req` needs at any alignment.
@@ -496,14 +461,14 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
         }
         let matrix = SparseColMatRef::new(a.symbolic(), &self.shifted);
         let req = symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
-        reserve_scratch(&mut self.factor_scratch.0, req);
+        reserve_scratch(self.factor_scratch.get_mut(), req);
         let result = symbolic.factorize_numeric_ldlt(
             &mut self.l_values,
             matrix,
             Side::Upper,
             LdltRegularization::default(),
             Par::Seq,
-            MemStack::new(&mut self.factor_scratch.0),
+            MemStack::new(self.factor_scratch.get_mut()),
             Default::default(),
         );
         if let Err(LdltError::ZeroPivot { index }) = result {
@@ -532,10 +497,7 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
         let inertia = inertia.map_err(|index| FactorError::NonFinite { index })?;
         // The solves' scratch is sized here, with the factor, not by the first solve.
         reserve_scratch(
-            self.solve_scratch
-                .0
-                .get_mut()
-                .unwrap_or_else(|poisoned| poisoned.into_inner()),
+            self.solve_scratch.get_mut(),
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
         );
         self.inertia = inertia;
@@ -556,18 +518,11 @@ impl SymmetricFactor<SparseSymmetricMatrix> for SparseLdlt {
             });
         }
         let ldlt = LdltRef::<usize, f64>::new(symbolic, &self.l_values);
-        // A panic elsewhere cannot leave the scratch inconsistent (it holds no state).
-        let mut scratch = self
-            .solve_scratch
-            .0
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        reserve_scratch(
-            &mut scratch,
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
-        );
-        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
-        ldlt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut scratch));
+        self.solve_scratch.with(|scratch| {
+            reserve_scratch(scratch, symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+            let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+            ldlt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(scratch));
+        });
         Ok(())
     }
 }

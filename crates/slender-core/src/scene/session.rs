@@ -1200,10 +1200,11 @@ impl Session {
         clamp: usize,
         target: SupportPose,
     ) -> Result<EditReport, SceneError> {
-        let path = format!("shells[{shell}].clamps[{clamp}]");
+        // Named only on an error: a drag allocates nothing.
+        let path = || format!("shells[{shell}].clamps[{clamp}]");
         let Some(cur) = self.shell_pose(shell, clamp) else {
             return Err(SceneError::new(
-                path,
+                path(),
                 format!(
                     "no such clamp (shells: {}, clamps of this strip: {})",
                     self.scene.shells.len(),
@@ -1214,7 +1215,7 @@ impl Session {
         if target.position.iter().any(|c| !c.is_finite())
             || target.rotation.matrix().iter().any(|c| !c.is_finite())
         {
-            return Err(SceneError::new(path, "the target pose must be finite"));
+            return Err(SceneError::new(path(), "the target pose must be finite"));
         }
         let (rotation, translation) = pose_change(&cur, &target);
         let c = &mut self.scene.shells[shell];
@@ -1222,7 +1223,7 @@ impl Session {
         let steps = move_steps(&rotation, &translation, length);
         if !(steps <= MAX_MOVE_STEPS) {
             return Err(SceneError::new(
-                path,
+                path(),
                 format!(
                     "the move ({:.3e} m, {:.3e} rad) is too large for one edit (at most {} m and {} rad)",
                     translation.norm(),

@@ -49,14 +49,22 @@ impl StripProblem for Shell {
 
 impl StripProblem for BsplineShell {
     fn set_motions(&mut self, motions: &[ClampMotion]) {
+        // The path's list of motions is refilled, not replaced: a drag allocates nothing.
+        let mut path = std::mem::take(&mut self.load_path);
+        path.loads = BsplineLoadPath::clamp_motion(Vec::new()).loads;
+        path.motions.clear();
+        path.motions.extend_from_slice(motions);
         // The session checks the ends and the finiteness of the motions before.
-        self.set_load_path(BsplineLoadPath::clamp_motion(motions.to_vec()))
+        self.set_load_path(path)
             .expect("motions of clamped ends, finite");
     }
 
     fn clear_motions(&mut self) {
-        self.set_load_path(BsplineLoadPath::default())
-            .expect("the default path is valid");
+        // The default path, keeping the capacity of the list of motions.
+        let mut path = std::mem::take(&mut self.load_path);
+        path.loads = BsplineLoadPath::default().loads;
+        path.motions.clear();
+        self.set_load_path(path).expect("the default path is valid");
     }
 
     fn set_gravity_to(&mut self, g: Vec3) {

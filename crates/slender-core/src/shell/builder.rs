@@ -262,6 +262,7 @@ impl ShellBuilder {
             // Set below, once the face terms exist.
             scatter: SparseSymmetricMatrix::from_pattern(0, Vec::new())
                 .scatter_plan(std::iter::empty::<&[usize; FACE_VARS]>()),
+            guess: Default::default(),
         };
         shell.faces = (0..shell.mesh.faces.len())
             .map(|f| FaceTerm {

@@ -103,22 +103,18 @@ impl EquilibriumProblem for Shell {
                     if self.is_clamped(m.end.other()) {
                         // Held at both ends: the length-preserving guess (`strip_guess`).
                         let columns = self.mesh.n_width + 1;
-                        let length = self.properties.length;
-                        let stations: Vec<f64> = (0..=self.mesh.n_length)
-                            .map(|i| self.mesh.rest_positions[i * columns].x / length)
-                            .collect();
-                        let mut held = vec![false; stations.len()];
-                        held[0] = true;
-                        held[self.mesh.n_length] = true;
-                        both_ends_guess(
-                            &mut state.positions,
-                            columns,
-                            &stations,
-                            &held,
-                            m,
-                            from,
-                            to,
-                        );
+                        let (length, n_length) = (self.properties.length, self.mesh.n_length);
+                        let rest = &self.mesh.rest_positions;
+                        self.guess.with(|rows| {
+                            rows.stations.clear();
+                            rows.stations
+                                .extend((0..=n_length).map(|i| rest[i * columns].x / length));
+                            rows.held.clear();
+                            rows.held.resize(n_length + 1, false);
+                            rows.held[0] = true;
+                            rows.held[n_length] = true;
+                            both_ends_guess(&mut state.positions, columns, m, from, to, rows);
+                        });
                     } else {
                         // Held at one end only, the strip turns rigidly with its clamp: exact
                         // for the unloaded strip, and no membrane stretch for a loaded one.

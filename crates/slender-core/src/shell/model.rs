@@ -10,6 +10,7 @@ use crate::assembly::{AssemblyInfo, FIXED};
 use crate::geometry::Vec3;
 use crate::linalg::{ScatterPlan, SparseSymmetricMatrix, SymmetricMatrix};
 use crate::rod::Grading;
+use crate::scratch::Scratch;
 
 use super::bending::{bending_energy, EdgeDirector, FACE_VARS};
 use super::clamp::Clamp;
@@ -19,6 +20,7 @@ use super::load_path::LoadPath;
 use super::membrane::{membrane_energy, FaceRest};
 use super::mesh::StripMesh;
 use super::state::ShellState;
+use super::strip_guess::StripGuess;
 use crate::bspline_shell::StripEnd;
 
 /// Material and geometry of a built shell (SI units).
@@ -86,6 +88,8 @@ pub struct Shell {
     pub(crate) point_forces: Vec<(usize, Vec3)>,
     /// Where the face terms' Hessian entries go in [`Self::sparse_hessian`]'s pattern.
     pub(crate) scatter: ScatterPlan,
+    /// Working memory of the both-ends first guess, kept between calls.
+    pub(crate) guess: Scratch<StripGuess>,
 }
 
 impl Shell {

@@ -19,12 +19,43 @@
 use crate::bspline_shell::{ClampMotion, StripEnd};
 use crate::geometry::Vec3;
 
-/// Centre of every row.
-fn centres(points: &[Vec3], columns: usize) -> Vec<Vec3> {
-    points
-        .chunks(columns)
-        .map(|row| row.iter().sum::<Vec3>() / row.len() as f64)
-        .collect()
+/// The rows of a strip and the buffers of [`both_ends_guess`], kept by the strip models
+/// between calls (in a [`Scratch`](crate::scratch::Scratch)) so that a drag allocates
+/// nothing.
+#[derive(Default)]
+pub struct StripGuess {
+    /// Rest position of each row along the length as a fraction of L (∈ [0, 1]); set by the
+    /// model.
+    pub stations: Vec<f64>,
+    /// Whether each row is held by a clamp; set by the model.
+    pub held: Vec<bool>,
+    /// Row centres before the motion, after it, deflection from the chord, rescaled.
+    old: Vec<Vec3>,
+    moved: Vec<Vec3>,
+    deflection: Vec<Vec3>,
+    scaled: Vec<Vec3>,
+    /// Arc lengths along `old` and `scaled` (m).
+    s_old: Vec<f64>,
+    s_new: Vec<f64>,
+}
+
+/// `out` ← the centre of every row.
+fn centres_into(points: &[Vec3], columns: usize, out: &mut Vec<Vec3>) {
+    out.clear();
+    out.extend(
+        points
+            .chunks(columns)
+            .map(|row| row.iter().sum::<Vec3>() / row.len() as f64),
+    );
+}
+
+/// `s` ← the arc length at every point of the polyline `c` (m).
+fn arc_lengths_into(c: &[Vec3], s: &mut Vec<f64>) {
+    s.clear();
+    s.resize(c.len(), 0.0);
+    for i in 1..c.len() {
+        s[i] = s[i - 1] + (c[i] - c[i - 1]).norm();
+    }
 }
 
 /// Length of the polyline through `c` (m).
@@ -32,22 +63,31 @@ fn polyline_length(c: &[Vec3]) -> f64 {
     c.windows(2).map(|w| (w[1] - w[0]).norm()).sum()
 }
 
-/// Moves `points` (rows of `columns` points; `stations[i]` ∈ [0, 1]: rest position of row i
-/// along the length as a fraction of L; `held[i]`: row i is held by a clamp) for the clamp
-/// motion `m` from load factor `from` to `to` on a strip held at both ends. Held rows are
-/// only moved approximately: the caller puts them where their clamps hold them.
+/// Moves `points` (rows of `columns` points; `rows.stations` and `rows.held` describe each
+/// row) for the clamp motion `m` from load factor `from` to `to` on a strip held at both
+/// ends. Held rows are only moved approximately: the caller puts them where their clamps hold
+/// them.
 pub fn both_ends_guess(
     points: &mut [Vec3],
     columns: usize,
-    stations: &[f64],
-    held: &[bool],
     m: &ClampMotion,
     from: f64,
     to: f64,
+    guess: &mut StripGuess,
 ) {
+    let StripGuess {
+        stations,
+        held,
+        old,
+        moved: c,
+        deflection: d,
+        scaled,
+        s_old,
+        s_new,
+    } = guess;
     let rows = stations.len();
-    let old = centres(points, columns);
-    let before = polyline_length(&old);
+    centres_into(points, columns, old);
+    let before = polyline_length(old);
     for (i, row) in points.chunks_mut(columns).enumerate() {
         let w = match m.end {
             StripEnd::Start => 1.0 - stations[i],
@@ -57,7 +97,7 @@ pub fn both_ends_guess(
             *p = m.carry(p, from, to, w);
         }
     }
-    let c = centres(points, columns);
+    centres_into(points, columns, c);
     let (a, b) = (c[0], c[rows - 1]);
     let chord = b - a;
     let chord2 = chord.norm_squared();
@@ -65,18 +105,15 @@ pub fn both_ends_guess(
         return;
     }
     // Deflection of every free row's centre from the chord.
-    let d: Vec<Vec3> = c
-        .iter()
-        .zip(held)
-        .map(|(ci, &h)| {
-            if h {
-                Vec3::zeros()
-            } else {
-                let t = (ci - a).dot(&chord) / chord2;
-                ci - (a + chord * t)
-            }
-        })
-        .collect();
+    d.clear();
+    d.extend(c.iter().zip(held.iter()).map(|(ci, &h)| {
+        if h {
+            Vec3::zeros()
+        } else {
+            let t = (ci - a).dot(&chord) / chord2;
+            ci - (a + chord * t)
+        }
+    }));
     // The length of the centre line scaled by 1 + β, as `polyline_length` measures it, without
     // a copy per bisection step.
     let length = |beta: f64| -> f64 {
@@ -112,18 +149,13 @@ pub fn both_ends_guess(
         }
     }
     let beta = 0.5 * (lo + hi);
-    let scaled: Vec<Vec3> = c.iter().zip(&d).map(|(ci, di)| ci + di * beta).collect();
+    scaled.clear();
+    scaled.extend(c.iter().zip(d.iter()).map(|(ci, di)| ci + di * beta));
     // Each row back at the arc length it had along the centre line (the scaling stretches
     // the segments where the slope is steep and shortens the others: membrane strain that
     // Newton would have to undo).
-    let arc = |c: &[Vec3]| -> Vec<f64> {
-        let mut s = vec![0.0; c.len()];
-        for i in 1..c.len() {
-            s[i] = s[i - 1] + (c[i] - c[i - 1]).norm();
-        }
-        s
-    };
-    let (s_old, s_new) = (arc(&old), arc(&scaled));
+    arc_lengths_into(old, s_old);
+    arc_lengths_into(scaled, s_new);
     let total = s_new[rows - 1];
     let mut k = 0;
     for (i, row) in points.chunks_mut(columns).enumerate() {
