@@ -1,10 +1,8 @@
 //! A warm re-solve of the incremental API allocates nothing (issue: "nothing is allocated per
 //! re-solve"): the allocations of whole support drags are counted by a global allocator that
 //! counts per thread (the tests of this file run side by side), after two warm-up drags that
-//! size every buffer. The one allocation an edit of a rod structure may make is its report's
-//! list of re-solved structures ([`EditReport::structures`](slender_core::scene::EditReport)),
-//! returned to the caller; a drag of a shell strip (flat cable) re-solves no rod structure
-//! and allocates nothing at all.
+//! size every buffer. An edit allocates nothing, its report included (the report's list of
+//! re-solved structures is inline for up to four).
 
 use slender_core::geometry::Vec3;
 use slender_core::scene::{Scene, Session};
@@ -88,7 +86,7 @@ fn drag_allocations(scene: Scene, drags: usize) -> Vec<usize> {
 }
 
 #[test]
-fn warm_drags_of_every_rod_model_allocate_only_their_report() {
+fn warm_drags_of_every_rod_model_allocate_nothing() {
     for (model, clips) in [
         ("der", false),
         ("der", true),
@@ -99,15 +97,14 @@ fn warm_drags_of_every_rod_model_allocate_only_their_report() {
     ] {
         let counts = drag_allocations(cable(model, clips), 4);
         assert!(
-            counts.iter().all(|&c| c <= 1),
-            "{model} (clips: {clips}): allocations per drag {counts:?}, expected at most 1 \
-             (the report)"
+            counts.iter().all(|&c| c == 0),
+            "{model} (clips: {clips}): allocations per drag {counts:?}, expected none"
         );
     }
 }
 
 #[test]
-fn warm_gravity_changes_allocate_only_their_report() {
+fn warm_gravity_changes_allocate_nothing() {
     let scenes = ["der", "cosserat", "se3"]
         .map(|model| (model, cable(model, true)))
         .into_iter()
@@ -124,8 +121,8 @@ fn warm_gravity_changes_allocate_only_their_report() {
             assert!(report.converged, "{report:?}");
         }
         assert!(
-            counts[2..].iter().all(|&c| c <= 1),
-            "{model}: allocations per gravity change {counts:?}, expected at most 1 (the report)"
+            counts[2..].iter().all(|&c| c == 0),
+            "{model}: allocations per gravity change {counts:?}, expected none"
         );
     }
 }

@@ -37,7 +37,7 @@ impl From<EditReport> for PyEditReport {
         Self {
             converged: r.converged,
             reason: r.reason,
-            structures: r.structures,
+            structures: r.structures.into_vec(),
             iterations: r.iterations,
             load_steps: r.load_steps,
             relative_residual: r.relative_residual,

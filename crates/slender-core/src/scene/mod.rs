@@ -26,7 +26,7 @@ pub use result::{
     ContactResult, FrameEnergy, ObstacleResult, RodResult, SceneStep, SegmentContactKind,
     SegmentContactResult, StabilityResult, StructureResult, SupportResult, TimeFrame,
 };
-pub use session::{EditReport, Session, SupportPose};
+pub use session::{EditReport, Session, StructureList, SupportPose};
 pub use shell_run::ShellRun;
 pub use shells::{CompiledShell, CompiledShellClamp, ShellResult, StripModel};
 pub use spec::Scene;

@@ -53,6 +53,9 @@ pub struct SupportPose {
     pub rotation: Rotation3<f64>,
 }
 
+/// Indices of structures, held inline up to four.
+pub type StructureList = smallvec::SmallVec<[usize; 4]>;
+
 /// The outcome of one edit.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EditReport {
@@ -60,8 +63,9 @@ pub struct EditReport {
     pub converged: bool,
     /// Why not, if not.
     pub reason: Option<String>,
-    /// Structures re-solved.
-    pub structures: Vec<usize>,
+    /// Structures re-solved (inline up to four: an edit of a few structures allocates
+    /// nothing).
+    pub structures: StructureList,
     /// Newton iterations over them.
     pub iterations: usize,
     /// Load steps over them.
@@ -427,7 +431,7 @@ impl Session {
         let mut r = EditReport {
             converged: reason.is_none(),
             reason,
-            structures: ks.to_vec(),
+            structures: StructureList::from_slice(ks),
             iterations: 0,
             load_steps: 0,
             relative_residual: 0.0,
@@ -699,8 +703,9 @@ impl Session {
         for s in self.scene.structures.iter_mut() {
             s.clear_paths();
         }
-        // The strips, warm at the new gravity (one Newton solve each).
-        let mut changed_shells = Vec::new();
+        // The strips, warm at the new gravity (one Newton solve each), in order until one
+        // fails: the first `changed_shells` have the new gravity.
+        let mut changed_shells = 0;
         if reason.is_none() {
             for (i, (run, c)) in self
                 .shells
@@ -710,7 +715,7 @@ impl Session {
             {
                 let report = run.set_gravity(c, old, g);
                 if report.converged() {
-                    changed_shells.push(i);
+                    changed_shells += 1;
                 } else {
                     reason = Some(format!("shells[{i}]: {:?}", report.status));
                     break;
@@ -718,7 +723,7 @@ impl Session {
             }
         }
         if reason.is_some() {
-            for &i in &changed_shells {
+            for i in 0..changed_shells {
                 self.shells[i].undo_gravity(&mut self.scene.shells[i], old);
             }
             for s in self.scene.structures.iter_mut() {
@@ -1243,7 +1248,7 @@ impl Session {
         Ok(EditReport {
             converged: reason.is_none(),
             reason,
-            structures: Vec::new(),
+            structures: StructureList::new(),
             iterations: report.iterations,
             load_steps: report.load_steps,
             relative_residual: report.relative_residual,
