@@ -47,7 +47,7 @@ fn cold_with_predictor(params: &SolverParams) -> Solution<slender_core::shell::S
     let start = rod_predictor(&shell, 1.0, params)
         .expect("valid rod")
         .unwrap_or_else(|| flat.clone());
-    let mut solver = EquilibriumSolver::new(&shell, &flat, params.clone());
+    let mut solver = EquilibriumSolver::new(&shell, &flat, *params);
     solver.solve(&shell, &start, 1.0, 1.0)
 }
 
@@ -66,7 +66,7 @@ fn cold_solve(c: &mut Criterion) {
     // Load stepping from the flat strip, no predictor (hundreds of iterations, design §3.3).
     let shell = shell();
     let flat = shell.rest_state();
-    let mut solver = EquilibriumSolver::new(&shell, &flat, params.clone());
+    let mut solver = EquilibriumSolver::new(&shell, &flat, params);
     let sol = solver.solve(&shell, &flat, 0.0, 1.0);
     println!(
         "cold_shell_cantilever_n30 from flat by load stepping: converged = {}, {} iterations in {} load steps",
@@ -77,7 +77,7 @@ fn cold_solve(c: &mut Criterion) {
     group.sample_size(10);
     group.bench_function("load_stepping_from_flat", |b| {
         b.iter(|| {
-            let mut solver = EquilibriumSolver::new(&shell, &flat, params.clone());
+            let mut solver = EquilibriumSolver::new(&shell, &flat, params);
             solver.solve(black_box(&shell), black_box(&flat), 0.0, 1.0)
         })
     });

@@ -592,8 +592,7 @@ fn each_member_keeps_its_own_radius_and_a_joint_the_largest() {
     // 4.5 mm below: clear of the thin cable, inside the thick one's radius (its sites and
     // the joint's).
     let e = ContactProblem::with_radii(&s, floor(-0.0045), params, s.rest_state(), &[], &radii)
-        .err()
-        .expect("the thick cable starts inside the floor");
+        .expect_err("the thick cable starts inside the floor");
     println!("{e}");
     assert!(e.to_string().contains("obstacles[0]") && e.to_string().contains("0.005"));
     // Without per-member radii every site has params.radius (1 mm).
@@ -608,8 +607,7 @@ fn each_member_keeps_its_own_radius_and_a_joint_the_largest() {
             &[],
             &[0.002, bad],
         )
-        .err()
-        .expect("refused");
+        .expect_err("refused");
         println!("{e}");
         assert!(e.to_string().contains("radii[1]"), "{e}");
     }

@@ -241,6 +241,6 @@ mod tests {
         let end = b
             .surface(&(from + Vector3::new(-2.0, -2.0, -2.0) * t))
             .distance;
-        assert!(end >= 0.1 && end < 0.101, "distance at the stop {end}");
+        assert!((0.1..0.101).contains(&end), "distance at the stop {end}");
     }
 }

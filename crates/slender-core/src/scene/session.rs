@@ -596,13 +596,11 @@ impl Session {
             run.solver.params.max_load_step = user.max_load_step.min(piece);
             let report = solve_structure(&self.scene, k, run, 0.0, 1.0);
             run.solver.params = user;
-            if !report.converged() {
-                if reason.is_none() {
-                    reason = Some(match &report.status {
-                        SolveStatus::NotConverged { reason } => reason.clone(),
-                        SolveStatus::Converged => String::new(),
-                    });
-                }
+            if !report.converged() && reason.is_none() {
+                reason = Some(match &report.status {
+                    SolveStatus::NotConverged { reason } => reason.clone(),
+                    SolveStatus::Converged => String::new(),
+                });
             }
             run.report = report;
         }

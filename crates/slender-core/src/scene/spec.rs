@@ -148,10 +148,10 @@ pub struct ContactSpec {
     /// cubed) instead.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,
-    /// Barrier stiffness of the shell strips' contacts, per unit area of mid-surface (N/m³,
-    /// > 0). Default: the stiffness at which the heaviest strip's weight per area ρ h |g|
-    /// rests it at ĝ/2; without gravity the pressure D/L³ of the stiffest strip (its bending
-    /// stiffness D = E h³/(12(1 − ν²)) over its length cubed) instead.
+    /// Barrier stiffness of the shell strips' contacts, per unit area of mid-surface
+    /// (N/m³, > 0). Default: the stiffness at which the heaviest strip's weight per area
+    /// ρ h |g| rests it at ĝ/2; without gravity the pressure D/L³ of the stiffest strip (its
+    /// bending stiffness D = E h³/(12(1 − ν²)) over its length cubed) instead.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shell_stiffness: Option<f64>,
 }

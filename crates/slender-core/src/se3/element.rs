@@ -4,9 +4,9 @@
 //! With σ = C(d − d̄)/L₀ the gradient is J_dᵀσ and the Hessian
 //! J_dᵀ (C/L₀) J_d + Σ σ_u,i ∇²u_i + Σ σ_θ,k ∇²θ_k, where
 //! * ∇²θ_k comes from the relative rotation's expansion and the logarithm's derivatives;
-//! * ∇²u_i = J_θᵀ ∂²u/∂θ² J_θ + J_θᵀ ∂²u/∂θ∂r J_r + transpose + Σ (∂u_i/∂θ_k) ∇²θ_k
-//!   + Σ W_im ∇²r_m, with r = R_Aᵀ exp(−ω_A)(x_B − x_A + δx_B − δx_A) expanded to second order
-//!   (as a Cosserat edge strain).
+//! * ∇²u_i = J_θᵀ ∂²u/∂θ² J_θ + J_θᵀ ∂²u/∂θ∂r J_r + transpose + Σ (∂u_i/∂θ_k) ∇²θ_k +
+//!   Σ W_im ∇²r_m, with r = R_Aᵀ exp(−ω_A)(x_B − x_A + δx_B − δx_A) expanded to second
+//!   order (as a Cosserat edge strain).
 
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 

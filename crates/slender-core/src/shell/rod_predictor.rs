@@ -51,7 +51,7 @@ pub fn rod_predictor(
     .gravity(shell.gravity() * load)
     .build()?;
     let start = rod.rest_state().clone();
-    let mut solver = EquilibriumSolver::new(&rod, &start, params.clone());
+    let mut solver = EquilibriumSolver::new(&rod, &start, *params);
     let solution = solver.solve(&rod, &start, 0.0, 1.0);
     if !solution.report.converged() {
         return Ok(None);

@@ -69,8 +69,8 @@ pub fn criticality(
             for &d in &DELTAS[1..] {
                 let case = at(d);
                 let rod = case.build(Vec3::new(0.0, 0.0, -case.gravity()), Vec3::zeros())?;
-                let sol = EquilibriumSolver::new(&rod, &state, params.clone())
-                    .solve(&rod, &state, 1.0, 1.0);
+                let sol =
+                    EquilibriumSolver::new(&rod, &state, *params).solve(&rod, &state, 1.0, 1.0);
                 if !sol.report.converged() {
                     break;
                 }

@@ -109,7 +109,7 @@ impl Benchmark for Sensitivity {
                 gamma: g.gamma,
                 sigma: c.sigma,
                 load_steps: c.load_steps,
-                solver: params.clone(),
+                solver: params,
             })
             .collect();
         let Some(protocol) = cx.cases(PROTOCOL_STORE, &keys, |k| {

@@ -26,7 +26,7 @@ pub struct CompiledTime {
 impl CompiledTime {
     /// True if the state after time step `step` (0 = the start) is written as a frame.
     pub fn is_frame(&self, step: usize) -> bool {
-        step % self.output_every == 0 || step == self.steps
+        step.is_multiple_of(self.output_every) || step == self.steps
     }
 
     /// Number of frames written by a complete run.

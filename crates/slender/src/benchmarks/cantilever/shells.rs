@@ -39,10 +39,7 @@ pub(super) fn records(
     solver.validate()?;
     let keys: Vec<ShellCantileverKey> = cases
         .iter()
-        .map(|&case| ShellCantileverKey {
-            case,
-            solver: solver.clone(),
-        })
+        .map(|&case| ShellCantileverKey { case, solver })
         .collect();
     cx.cases(STORE, &keys, |k| Ok(run_shell_case(&k.case, &k.solver)?))
 }

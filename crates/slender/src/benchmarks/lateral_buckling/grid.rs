@@ -131,7 +131,7 @@ pub(super) fn records(
             gamma,
             sigma: sweep.sigma,
             load_steps: sweep.load_steps,
-            solver: params.clone(),
+            solver: params,
         })
         .collect();
     let protocol = cx.cases(PROTOCOL_STORE, &protocol_keys, |k| {
