@@ -112,6 +112,7 @@ pub fn atan2(y: f64, x: f64) -> f64 {
 }
 
 /// Rotates `v` about the unit vector `axis` by `angle` (rad), Rodrigues' formula.
+#[inline]
 pub fn rotate_about_axis(v: &Vec3, axis: &Vec3, angle: f64) -> Vec3 {
     let (s, c) = sin_cos(angle);
     v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
