@@ -5,7 +5,7 @@
 //! re-solved structures is inline for up to four).
 
 use slender_core::geometry::Vec3;
-use slender_core::scene::{Scene, Session};
+use slender_core::scene::{EditReport, Scene, Session};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -67,22 +67,40 @@ supports = [ {supports} ]
     .expect("the scene parses")
 }
 
-/// Allocations of each of `drags` warm 1 cm drags (back and forth) of the cable's end clamp,
-/// after two warm-up drags.
-fn drag_allocations(scene: Scene, drags: usize) -> Vec<usize> {
+/// Allocations of each of `edits` warm edits of a session of `scene`, after two warm-up
+/// edits; edit k is `edit(session, k)` (alternating edits go back and forth).
+fn edit_allocations(
+    scene: Scene,
+    edits: usize,
+    mut edit: impl FnMut(&mut Session, usize) -> EditReport,
+) -> Vec<usize> {
     let mut session = Session::new(scene).expect("the scene solves");
-    let mut sign = 1.0;
-    let mut counts = Vec::with_capacity(drags + 2);
-    for _ in 0..drags + 2 {
+    let mut counts = Vec::with_capacity(edits + 2);
+    for k in 0..edits + 2 {
         let before = allocations();
-        let report = session
-            .move_support_by(0, 1, Vec3::zeros(), Vec3::new(0.0, 0.01 * sign, 0.0))
-            .expect("a valid move");
+        let report = edit(&mut session, k);
         counts.push(allocations() - before);
         assert!(report.converged, "{report:?}");
-        sign = -sign;
     }
     counts.split_off(2)
+}
+
+/// +1 for even k, −1 for odd k.
+fn sign(k: usize) -> f64 {
+    if k % 2 == 0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// Allocations of each of `drags` warm 1 cm drags (back and forth) of the cable's end clamp.
+fn drag_allocations(scene: Scene, drags: usize) -> Vec<usize> {
+    edit_allocations(scene, drags, |session, k| {
+        session
+            .move_support_by(0, 1, Vec3::zeros(), Vec3::new(0.0, 0.01 * sign(k), 0.0))
+            .expect("a valid move")
+    })
 }
 
 #[test]
@@ -110,18 +128,13 @@ fn warm_gravity_changes_allocate_nothing() {
         .into_iter()
         .chain(["midedge", "bspline"].map(|model| (model, flat_cable(model))));
     for (model, scene) in scenes {
-        let mut session = Session::new(scene).expect("the scene solves");
-        let mut counts = Vec::with_capacity(6);
-        for k in 0..6 {
-            let before = allocations();
-            let report = session
+        let counts = edit_allocations(scene, 4, |session, k| {
+            session
                 .set_gravity([0.0, 0.0, -9.81 * (1.0 + 0.01 * (k % 2) as f64)])
-                .expect("a valid gravity");
-            counts.push(allocations() - before);
-            assert!(report.converged, "{report:?}");
-        }
+                .expect("a valid gravity")
+        });
         assert!(
-            counts[2..].iter().all(|&c| c == 0),
+            counts.iter().all(|&c| c == 0),
             "{model}: allocations per gravity change {counts:?}, expected none"
         );
     }
@@ -154,20 +167,13 @@ clamps = [
 #[test]
 fn warm_drags_of_shell_strips_allocate_nothing() {
     for model in ["midedge", "bspline"] {
-        let mut session = Session::new(flat_cable(model)).expect("the scene solves");
-        let mut counts = Vec::with_capacity(6);
-        let mut sign = 1.0;
-        for _ in 0..6 {
-            let before = allocations();
-            let report = session
-                .move_shell_clamp_by(0, 1, Vec3::zeros(), Vec3::new(0.0, 0.002 * sign, 0.0))
-                .expect("a valid move");
-            counts.push(allocations() - before);
-            assert!(report.converged, "{model}: {report:?}");
-            sign = -sign;
-        }
+        let counts = edit_allocations(flat_cable(model), 4, |session, k| {
+            session
+                .move_shell_clamp_by(0, 1, Vec3::zeros(), Vec3::new(0.0, 0.002 * sign(k), 0.0))
+                .expect("a valid move")
+        });
         assert!(
-            counts[2..].iter().all(|&c| c == 0),
+            counts.iter().all(|&c| c == 0),
             "{model}: allocations per drag {counts:?}, expected none"
         );
     }

@@ -170,6 +170,50 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Moves clamp `clamp` of shell strip `shell` so that the centre of its edge is at
+    /// `position` (m), turned by the rotation vector `rotation` (rad) relative to its rest
+    /// orientation (kept if None), and re-solves the strip warm.
+    #[pyo3(signature = (shell, clamp, position, rotation = None))]
+    fn move_shell_clamp(
+        &mut self,
+        py: Python<'_>,
+        shell: usize,
+        clamp: usize,
+        position: [f64; 3],
+        rotation: Option<[f64; 3]>,
+    ) -> PyResult<PyEditReport> {
+        let position = finite3(py, "position", position)?;
+        let rotation = match rotation {
+            Some(r) => Rotation3::new(finite3(py, "rotation", r)?),
+            None => match self.inner.shell_pose(shell, clamp) {
+                Some(p) => p.rotation,
+                None => Rotation3::identity(),
+            },
+        };
+        let target = SupportPose { position, rotation };
+        let inner = &mut self.inner;
+        let r = py.detach(|| guarded(|| inner.move_shell_clamp(shell, clamp, target)))?;
+        edit(py, r)
+    }
+
+    /// Moves clamp `clamp` of shell strip `shell` by `translation` (m) and turns it by the
+    /// rotation vector `rotation` (rad, about the centre of its edge), and re-solves warm.
+    #[pyo3(signature = (shell, clamp, translation, rotation = [0.0, 0.0, 0.0]))]
+    fn move_shell_clamp_by(
+        &mut self,
+        py: Python<'_>,
+        shell: usize,
+        clamp: usize,
+        translation: [f64; 3],
+        rotation: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let t = finite3(py, "translation", translation)?;
+        let r = finite3(py, "rotation", rotation)?;
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.move_shell_clamp_by(shell, clamp, r, t)))?;
+        edit(py, out)
+    }
+
     /// Adds a support (a dict like a scene's `supports` entry; not a clamp) to rod `rod`
     /// where the rod is now, and re-solves.
     fn add_support(
@@ -276,6 +320,15 @@ impl PySession {
     /// relative to rest), or None if there is no such support.
     fn pose(&self, rod: usize, support: usize) -> Option<([f64; 3], [f64; 3])> {
         self.inner.pose(rod, support).map(|p| {
+            let r = p.rotation.scaled_axis();
+            ([p.position.x, p.position.y, p.position.z], [r.x, r.y, r.z])
+        })
+    }
+
+    /// Where clamp `clamp` of shell strip `shell` is: (the centre of its edge (m), rotation
+    /// vector (rad) relative to rest), or None if there is no such clamp.
+    fn shell_pose(&self, shell: usize, clamp: usize) -> Option<([f64; 3], [f64; 3])> {
+        self.inner.shell_pose(shell, clamp).map(|p| {
             let r = p.rotation.scaled_axis();
             ([p.position.x, p.position.y, p.position.z], [r.x, r.y, r.z])
         })

@@ -230,3 +230,40 @@ def test_master_curves_against_closed_forms() -> None:
         slender.cantilever_case(10.0, material="steel")
     with pytest.raises(ValueError, match="gamma"):
         slender.heavy_elastica(-1.0)
+
+
+def test_flat_cable_connector_drag() -> None:
+    """A flat cable's connector dragged from Python reaches the equilibrium of the scene's
+    own motion stage (the same move, which `slender solve` makes in two steps), its edge
+    stays at the connector, and the clamps carry the strip's weight."""
+    scene = EXAMPLES / "flat_cable_two_connectors.toml"
+    by_motion = slender.solve(scene)
+    s = slender.Session(scene)
+    p0, r0 = s.shell_pose(0, 1)
+    for _ in range(2):  # the stage: translate = [0, -0.02, 0] in 2 steps
+        rep = s.move_shell_clamp(0, 1, translation=[0.0, -0.01, 0.0])
+        assert rep.converged and rep.iterations > 0 and rep.structures == []
+    p1, r1 = s.shell_pose(0, 1)
+    assert np.allclose(p1 - p0, [0.0, -0.02, 0.0], rtol=0.0, atol=1e-15)
+    assert np.allclose(r1, r0, rtol=0.0, atol=1e-15)
+    shell = s.results().shells[0]
+    # Same equilibrium as the motion stage to 1e-9 of the length (the targets differ in
+    # their last bits: p0 − 0.01 − 0.01 against p0 − 0.02).
+    want = by_motion[-1].shells[0].positions
+    assert np.abs(shell.positions - want).max() <= 1e-9 * 0.3
+    # Weight ρ h w L g (N) carried by the two clamps.
+    weight = 2000.0 * 0.3e-3 * 0.02 * 0.3 * 9.81
+    assert np.linalg.norm(shell.clamp_force - [0.0, weight, 0.0]) <= 1e-6 * weight
+    # Back to the start by an absolute pose: the first equilibrium again.
+    rep = s.move_shell_clamp(0, 1, position=p0)
+    assert rep.converged
+    back = s.results().shells[0].positions
+    assert np.abs(back - by_motion[0].shells[0].positions).max() <= 1e-9 * 0.3
+    # Bad input names the field and changes nothing.
+    with pytest.raises(slender.SceneError, match=r"shells\[0\]\.clamps\[5\]"):
+        s.move_shell_clamp(0, 5, translation=[0.0, 0.01, 0.0])
+    with pytest.raises(slender.SceneError, match="translation"):
+        s.move_shell_clamp(0, 1, translation=[0.0, float("nan"), 0.0])
+    with pytest.raises(slender.SceneError, match=r"shells\[3\]"):
+        s.shell_pose(3, 0)
+    assert np.array_equal(s.results().shells[0].positions, back)

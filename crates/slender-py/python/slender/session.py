@@ -114,6 +114,16 @@ class Session:
             raise e
         return np.asarray(p[0]), np.asarray(p[1])
 
+    def shell_pose(self, shell: int, clamp: int) -> tuple[np.ndarray, np.ndarray]:
+        """Where a shell strip's clamp is: (the centre of its edge (3,) m, rotation vector (3,)
+        rad from rest)."""
+        p = self._inner.shell_pose(_index(shell, "shell"), _index(clamp, "clamp"))
+        if p is None:
+            e = SceneError(f"shells[{shell}].clamps[{clamp}]: no such clamp")
+            e.field = f"shells[{shell}].clamps[{clamp}]"
+            raise e
+        return np.asarray(p[0]), np.asarray(p[1])
+
     def scene(self) -> dict[str, Any]:
         """The scene as edited (supports as edited, gravity as set)."""
         return json.loads(self._inner.spec_json())
@@ -160,6 +170,35 @@ class Session:
             rot = None if rotation is None else _vec3(rotation, "rotation")
             report = self._inner.move_support(r, s, _vec3(position, "position"), rot)
         return self._checked(report, check, f"moving rods[{r}].supports[{s}]")
+
+    def move_shell_clamp(
+        self,
+        shell: int,
+        clamp: int,
+        position: Optional[Sequence[float]] = None,
+        rotation: Optional[Sequence[float]] = None,
+        *,
+        translation: Optional[Sequence[float]] = None,
+        check: bool = True,
+    ) -> EditReport:
+        """Moves clamp ``clamp`` of shell strip ``shell`` (a flat cable's connector) and
+        re-solves the strip warm, as :meth:`move_support` does for a rod's support.
+
+        Either the centre of its edge to the absolute ``position`` (m) with orientation
+        ``rotation`` (rotation vector, rad, relative to the clamp's rest orientation; kept if
+        None), or by ``translation`` (m) and ``rotation`` (turned further by it, about the
+        centre of its edge). A move too large for one Newton solve is split into load steps.
+        """
+        sh, c = _index(shell, "shell"), _index(clamp, "clamp")
+        if (position is None) == (translation is None):
+            raise TypeError("give exactly one of position= or translation=")
+        if translation is not None:
+            rot = [0.0, 0.0, 0.0] if rotation is None else _vec3(rotation, "rotation")
+            report = self._inner.move_shell_clamp_by(sh, c, _vec3(translation, "translation"), rot)
+        else:
+            rot = None if rotation is None else _vec3(rotation, "rotation")
+            report = self._inner.move_shell_clamp(sh, c, _vec3(position, "position"), rot)
+        return self._checked(report, check, f"moving shells[{sh}].clamps[{c}]")
 
     def add_support(self, rod: int, support: Mapping[str, Any], *, check: bool = True) -> EditReport:
         """Adds a support (``{"kind": "clip", "at": 0.3}``, like a scene's ``supports``
