@@ -102,6 +102,22 @@ fn finite3(py: Python<'_>, field: &str, v: [f64; 3]) -> PyResult<Vector3<f64>> {
     }
 }
 
+/// The pose of a move to `position` (m) turned by the rotation vector `rotation` (rad) from
+/// rest, or keeping the orientation of `current` (the support's pose now) if None.
+fn target_pose(
+    py: Python<'_>,
+    position: [f64; 3],
+    rotation: Option<[f64; 3]>,
+    current: Option<SupportPose>,
+) -> PyResult<SupportPose> {
+    let position = finite3(py, "position", position)?;
+    let rotation = match rotation {
+        Some(r) => Rotation3::new(finite3(py, "rotation", r)?),
+        None => current.map_or_else(Rotation3::identity, |p| p.rotation),
+    };
+    Ok(SupportPose { position, rotation })
+}
+
 #[pymethods]
 impl PySession {
     /// Compiles and solves a scene given as TOML text (`name` starts syntax messages).
@@ -138,15 +154,7 @@ impl PySession {
         position: [f64; 3],
         rotation: Option<[f64; 3]>,
     ) -> PyResult<PyEditReport> {
-        let position = finite3(py, "position", position)?;
-        let rotation = match rotation {
-            Some(r) => Rotation3::new(finite3(py, "rotation", r)?),
-            None => match self.inner.pose(rod, support) {
-                Some(p) => p.rotation,
-                None => Rotation3::identity(),
-            },
-        };
-        let target = SupportPose { position, rotation };
+        let target = target_pose(py, position, rotation, self.inner.pose(rod, support))?;
         let inner = &mut self.inner;
         let r = py.detach(|| guarded(|| inner.move_support(rod, support, target)))?;
         edit(py, r)
@@ -182,15 +190,7 @@ impl PySession {
         position: [f64; 3],
         rotation: Option<[f64; 3]>,
     ) -> PyResult<PyEditReport> {
-        let position = finite3(py, "position", position)?;
-        let rotation = match rotation {
-            Some(r) => Rotation3::new(finite3(py, "rotation", r)?),
-            None => match self.inner.shell_pose(shell, clamp) {
-                Some(p) => p.rotation,
-                None => Rotation3::identity(),
-            },
-        };
-        let target = SupportPose { position, rotation };
+        let target = target_pose(py, position, rotation, self.inner.shell_pose(shell, clamp))?;
         let inner = &mut self.inner;
         let r = py.detach(|| guarded(|| inner.move_shell_clamp(shell, clamp, target)))?;
         edit(py, r)

@@ -53,6 +53,17 @@ def _index(value: Any, name: str) -> int:
     return int(value)
 
 
+def _move(to: Any, by: Any, position: Any, rotation: Any, translation: Any) -> EditReport:
+    """A move to ``position`` (``to(position, rotation or None)``) or by ``translation``
+    (``by(translation, rotation or 0)``): exactly one of the two must be given."""
+    if (position is None) == (translation is None):
+        raise TypeError("give exactly one of position= or translation=")
+    if translation is not None:
+        rot = [0.0, 0.0, 0.0] if rotation is None else _vec3(rotation, "rotation")
+        return by(_vec3(translation, "translation"), rot)
+    return to(_vec3(position, "position"), None if rotation is None else _vec3(rotation, "rotation"))
+
+
 class Session:
     """A scene compiled, solved (the loaded equilibrium, step 0) and ready to edit.
 
@@ -161,14 +172,13 @@ class Session:
         vertex). A move too large for one Newton solve is split into load steps.
         """
         r, s = _index(rod, "rod"), _index(support, "support")
-        if (position is None) == (translation is None):
-            raise TypeError("give exactly one of position= or translation=")
-        if translation is not None:
-            rot = [0.0, 0.0, 0.0] if rotation is None else _vec3(rotation, "rotation")
-            report = self._inner.move_support_by(r, s, _vec3(translation, "translation"), rot)
-        else:
-            rot = None if rotation is None else _vec3(rotation, "rotation")
-            report = self._inner.move_support(r, s, _vec3(position, "position"), rot)
+        report = _move(
+            lambda p, rot: self._inner.move_support(r, s, p, rot),
+            lambda t, rot: self._inner.move_support_by(r, s, t, rot),
+            position,
+            rotation,
+            translation,
+        )
         return self._checked(report, check, f"moving rods[{r}].supports[{s}]")
 
     def move_shell_clamp(
@@ -190,14 +200,13 @@ class Session:
         centre of its edge). A move too large for one Newton solve is split into load steps.
         """
         sh, c = _index(shell, "shell"), _index(clamp, "clamp")
-        if (position is None) == (translation is None):
-            raise TypeError("give exactly one of position= or translation=")
-        if translation is not None:
-            rot = [0.0, 0.0, 0.0] if rotation is None else _vec3(rotation, "rotation")
-            report = self._inner.move_shell_clamp_by(sh, c, _vec3(translation, "translation"), rot)
-        else:
-            rot = None if rotation is None else _vec3(rotation, "rotation")
-            report = self._inner.move_shell_clamp(sh, c, _vec3(position, "position"), rot)
+        report = _move(
+            lambda p, rot: self._inner.move_shell_clamp(sh, c, p, rot),
+            lambda t, rot: self._inner.move_shell_clamp_by(sh, c, t, rot),
+            position,
+            rotation,
+            translation,
+        )
         return self._checked(report, check, f"moving shells[{sh}].clamps[{c}]")
 
     def add_support(self, rod: int, support: Mapping[str, Any], *, check: bool = True) -> EditReport:
