@@ -256,6 +256,7 @@ fn load_paths_are_checked() {
         loads: [0.0, f64::NAN],
         motions: Vec::new(),
         gravity_from: None,
+        force_change: None,
     };
     assert!(rod
         .set_load_path(bad)

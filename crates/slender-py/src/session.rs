@@ -257,6 +257,20 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Sets point force `force` of rod `rod` (its scene's `forces[force]`, a dead force) to
+    /// `value` (N) and re-solves warm.
+    fn set_force(
+        &mut self,
+        py: Python<'_>,
+        rod: usize,
+        force: usize,
+        value: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.set_force(rod, force, value)))?;
+        edit(py, out)
+    }
+
     /// Follows every unstable equilibrium along its unstable mode to a stable one.
     fn follow_stable(&mut self, py: Python<'_>) -> PyResult<PyEditReport> {
         let inner = &mut self.inner;

@@ -267,3 +267,20 @@ def test_flat_cable_connector_drag() -> None:
     with pytest.raises(slender.SceneError, match=r"shells\[3\]"):
         s.shell_pose(3, 0)
     assert np.array_equal(s.results().shells[0].positions, back)
+
+
+def test_force_edit_matches_a_cold_solve() -> None:
+    """A tip force edited in a session ends where a session of the scene with that force
+    starts (loads ramped from rest), and the weightless tip moves by F L³/(3EI)."""
+    s = slender.Session(cantilever(force=F))
+    tip0 = s.results().rods[0].positions[-1].copy()
+    rep = s.set_force(0, 0, [0.0, 0.0, -2.0 * F])
+    assert rep.converged and rep.structures == [0]
+    tip = s.results().rods[0].positions[-1]
+    cold = slender.Session(cantilever(force=2.0 * F)).results().rods[0].positions[-1]
+    assert np.abs(tip - cold).max() <= 1e-12
+    # Linear regime (F gives a tip deflection of L/1000): doubling F doubles it.
+    assert tip0[2] - tip[2] == pytest.approx(F * L**3 / (3 * E * I), rel=2e-3)
+    assert s.scene()["rods"][0]["forces"][0]["force"] == [0.0, 0.0, -2.0 * F]
+    with pytest.raises(slender.SceneError, match=r"rods\[0\]\.forces\[4\]"):
+        s.set_force(0, 4, [0.0, 0.0, 1.0])

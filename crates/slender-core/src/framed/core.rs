@@ -328,12 +328,7 @@ impl FramedCore {
                 ));
             }
         }
-        if path
-            .gravity_from
-            .is_some_and(|g| g.iter().any(|c| !c.is_finite()))
-        {
-            return Err(ModelError::structure("gravity_from", "must be finite"));
-        }
+        path.check_changes(self.vertex_masses.len())?;
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
                 return Err(ModelError::parameter(
@@ -356,14 +351,31 @@ impl FramedCore {
     }
 
     /// The dead nodal force (N) on vertex `v` at load factor `load`: the ramped loads, the
-    /// preload, and, while gravity changes along the load path, m_v (g_from − g)(1 − λ).
+    /// preload, and, while gravity or a point force changes along the load path, the
+    /// transition (see `RodLoadPath::transition_force`).
     pub(crate) fn nodal_force(&self, v: usize, load: f64) -> Vec3 {
         let factor = self.load_path.load_factor(load);
         let mut f = self.nodal_forces[v] * factor + self.preload_forces[v];
-        if let Some(g0) = self.load_path.gravity_from {
-            f += (g0 - self.gravity) * (self.vertex_masses[v] * (1.0 - load));
+        let path = &self.load_path;
+        if path.gravity_from.is_some() || path.force_change.is_some() {
+            f += path.transition_force(v, self.vertex_masses[v], self.gravity, load);
         }
         f
+    }
+
+    /// Changes the dead point force on vertex `v` from `old` to `new` (N), as
+    /// `Rod::set_force_change` does.
+    pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<(), ModelError> {
+        let mut path = std::mem::take(&mut self.load_path);
+        path.set_force_change(v, old, new);
+        let checked = path.check_changes(self.vertex_masses.len());
+        if checked.is_ok() {
+            self.nodal_forces[v] += new - old;
+        } else {
+            path.clear();
+        }
+        self.load_path = path;
+        checked
     }
 
     /// Inertia attached to free DOF `i`: the vertex mass for a coordinate, ρA r_g² ℓ for a

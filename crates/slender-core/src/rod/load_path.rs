@@ -77,6 +77,10 @@ pub struct RodLoadPath {
     /// Gravity (m/s²) at λ = 0 when gravity changes along the path to the rod's own at λ = 1
     /// (e.g. an interactive edit). Default none.
     pub gravity_from: Option<Vec3>,
+    /// A dead point force changing along the path (an interactive edit): (vertex, its force
+    /// at λ = 0 minus its force at λ = 1 (N)). The vertex carries that difference times
+    /// (1 − λ) on top of its loads at λ = 1. Default none.
+    pub force_change: Option<(usize, Vec3)>,
 }
 
 impl Default for RodLoadPath {
@@ -85,6 +89,7 @@ impl Default for RodLoadPath {
             loads: [0.0, 1.0],
             motions: Vec::new(),
             gravity_from: None,
+            force_change: None,
         }
     }
 }
@@ -102,6 +107,7 @@ impl RodLoadPath {
     ) {
         self.loads = [1.0, 1.0];
         self.gravity_from = None;
+        self.force_change = None;
         self.motions.truncate(1);
         if self.motions.is_empty() {
             self.motions.push(SupportMotion {
@@ -124,6 +130,7 @@ impl RodLoadPath {
     pub fn clear(&mut self) {
         self.loads = Self::default().loads;
         self.gravity_from = None;
+        self.force_change = None;
         for m in self.motions.iter_mut() {
             m.vertices.clear();
             m.rotation = Vec3::zeros();
@@ -137,6 +144,7 @@ impl RodLoadPath {
             loads: [1.0, 1.0],
             motions,
             gravity_from: None,
+            force_change: None,
         }
     }
 
@@ -146,7 +154,55 @@ impl RodLoadPath {
             loads: [1.0, 1.0],
             motions: Vec::new(),
             gravity_from: Some(from),
+            force_change: None,
         }
+    }
+
+    /// Makes this path full loads with the dead point force on `vertex` changing from `from`
+    /// to `to` (N), in place (the vectors kept for reuse). Not checked against a model.
+    pub fn set_force_change(&mut self, vertex: usize, from: Vec3, to: Vec3) {
+        self.clear();
+        self.loads = [1.0, 1.0];
+        self.force_change = Some((vertex, from - to));
+    }
+
+    /// The extra dead force (N) on vertex `v` at load factor `load` while gravity (vertex mass
+    /// `mass`, the rod's gravity `g` at λ = 1) or a point force changes along the path: zero
+    /// at λ = 1.
+    pub(crate) fn transition_force(&self, v: usize, mass: f64, g: Vec3, load: f64) -> Vec3 {
+        let mut f = match self.gravity_from {
+            Some(g0) => (g0 - g) * (mass * (1.0 - load)),
+            None => Vec3::zeros(),
+        };
+        if let Some((vertex, delta)) = self.force_change {
+            if vertex == v {
+                f += delta * (1.0 - load);
+            }
+        }
+        f
+    }
+
+    /// Errors if the gravity or force change is not finite or names a vertex beyond
+    /// `n_vertices`.
+    pub(crate) fn check_changes(&self, n_vertices: usize) -> Result<(), ModelError> {
+        if self
+            .gravity_from
+            .is_some_and(|g| g.iter().any(|c| !c.is_finite()))
+        {
+            return Err(ModelError::structure("gravity_from", "must be finite"));
+        }
+        if let Some((v, delta)) = self.force_change {
+            if v >= n_vertices {
+                return Err(ModelError::structure(
+                    "force_change.vertex",
+                    format!("vertex {v} is beyond the rod's {n_vertices} vertices"),
+                ));
+            }
+            if delta.iter().any(|c| !c.is_finite()) {
+                return Err(ModelError::structure("force_change", "must be finite"));
+            }
+        }
+        Ok(())
     }
 
     /// Factor on the loads at load factor `load`.
@@ -156,13 +212,11 @@ impl RodLoadPath {
 }
 
 impl Rod {
-    /// The extra nodal force (N) on vertex `v` at load factor `load` while gravity changes
-    /// along the path: m_v (g_from − g)(1 − λ), which is zero at λ = 1.
-    pub(super) fn gravity_transition(&self, v: usize, load: f64) -> Vec3 {
-        match self.load_path.gravity_from {
-            Some(g0) => (g0 - self.gravity) * (self.vertex_masses[v] * (1.0 - load)),
-            None => Vec3::zeros(),
-        }
+    /// The extra nodal force (N) on vertex `v` at load factor `load` while gravity or a point
+    /// force changes along the path (see [`RodLoadPath::transition_force`]); zero at λ = 1.
+    pub(super) fn load_transition(&self, v: usize, load: f64) -> Vec3 {
+        self.load_path
+            .transition_force(v, self.vertex_masses[v], self.gravity, load)
     }
 
     /// Sets gravity (m/s²) at load factor 1 (the nodal forces follow).
@@ -184,12 +238,7 @@ impl Rod {
         for m in &path.motions {
             m.check(self)?;
         }
-        if path
-            .gravity_from
-            .is_some_and(|g| g.iter().any(|c| !c.is_finite()))
-        {
-            return Err(ModelError::structure("gravity_from", "must be finite"));
-        }
+        path.check_changes(self.vertex_masses.len())?;
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
                 return Err(ModelError::parameter(
@@ -221,6 +270,22 @@ impl Rod {
             self.clear_load_path();
         }
         checked
+    }
+
+    /// Changes the dead point force on vertex `v` from `old` to `new` (N): at load factor 1 from
+    /// now on, along the load path (λ = 0: `old`) for the next solve. Errors (nothing changed)
+    /// if `v` is not a vertex or a force is not finite.
+    pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<(), ModelError> {
+        let mut path = std::mem::take(&mut self.load_path);
+        path.set_force_change(v, old, new);
+        if let Err(e) = path.check_changes(self.vertex_masses.len()) {
+            self.load_path = path;
+            self.clear_load_path();
+            return Err(e);
+        }
+        self.nodal_forces[v] += new - old;
+        self.load_path = path;
+        Ok(())
     }
 
     /// Back to the plain load ramp (vectors kept for reuse).

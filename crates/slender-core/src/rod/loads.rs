@@ -28,7 +28,7 @@ impl Rod {
             .zip(&self.preload_forces)
             .enumerate()
         {
-            let f = f * load + f0 + self.gravity_transition(v, lambda);
+            let f = f * load + f0 + self.load_transition(v, lambda);
             let du = s.positions[v] - self.rest.positions[v];
             asm.load(f.dot(&du), f.amax());
             for k in 0..3 {

@@ -141,7 +141,7 @@ impl Rod {
             .zip(&self.preload_forces)
             .enumerate()
         {
-            g[v] -= f * load + f0 + self.gravity_transition(v, lambda);
+            g[v] -= f * load + f0 + self.load_transition(v, lambda);
         }
         let mut h6 = SMatrix::<f64, 6, 6>::zeros();
         for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
@@ -205,7 +205,7 @@ impl Rod {
             .zip(&self.preload_forces)
             .enumerate()
         {
-            let f = f * load + f0 + self.gravity_transition(v, lambda);
+            let f = f * load + f0 + self.load_transition(v, lambda);
             force += f;
             moment += s.positions[v].cross(&f);
         }

@@ -748,6 +748,85 @@ impl Session {
         Ok(r)
     }
 
+    /// Sets point force `force` of rod `rod` (the file's `forces[force]`, a dead force) to
+    /// `value` (N) and re-solves its structure warm: the force changes along the load path
+    /// from its old value, so a change too large for one Newton solve is split by the
+    /// continuation. A change that does not converge leaves the force and the equilibrium
+    /// where they were and says so. Errors (nothing changed): an unknown rod or force, a
+    /// follower force, a non-finite or absurd value.
+    pub fn set_force(
+        &mut self,
+        rod: usize,
+        force: usize,
+        value: [f64; 3],
+    ) -> Result<EditReport, SceneError> {
+        let path = || format!("rods[{rod}].forces[{force}]");
+        let Some(spec) = self.spec.rods.get(rod).and_then(|r| r.forces.get(force)) else {
+            return Err(SceneError::new(
+                path(),
+                format!(
+                    "no such force (rods: {}, point forces of this rod: {})",
+                    self.spec.rods.len(),
+                    self.spec.rods.get(rod).map_or(0, |r| r.forces.len())
+                ),
+            ));
+        };
+        if spec.follower {
+            return Err(SceneError::new(
+                format!("{}.follower", path()),
+                "a follower force cannot be edited in a session (dead forces only)",
+            ));
+        }
+        if value
+            .iter()
+            .any(|c| !c.is_finite() || c.abs() > super::magnitudes::MAGNITUDE_LIMIT)
+        {
+            return Err(SceneError::new(
+                format!("{}.force", path()),
+                format!("{value:?}: must be finite and of sensible magnitude"),
+            ));
+        }
+        let (old, new) = (Vec3::from(spec.force), Vec3::from(value));
+        let compiled = &self.scene.rods[rod];
+        let v = compiled.force_vertices[force];
+        let part = compiled
+            .load_part(v)
+            .expect("every vertex of a rod is on a part");
+        let (k, m, local) = (part.structure, part.member, v - part.first_vertex);
+        self.scene.structures[k]
+            .member_mut(m)
+            .set_force_change(local, old, new)
+            .map_err(|e| SceneError::model(path(), e))?;
+        let run = &mut self.runs[k];
+        run.save();
+        let report = solve_structure(&self.scene, k, run, 0.0, 1.0);
+        let reason = (!report.converged()).then(|| {
+            format!(
+                "the force change did not converge ({:?}); the last equilibrium is kept",
+                report.status
+            )
+        });
+        run.report = report;
+        let structure = &mut self.scene.structures[k];
+        structure.clear_paths();
+        if reason.is_some() {
+            // Back to the old force (the path is clear: the change applies at once).
+            structure
+                .member_mut(m)
+                .set_force_change(local, new, old)
+                .expect("the old force was valid");
+            structure.clear_paths();
+            let summary = self.summary(&[k], reason);
+            self.runs[k].restore();
+            return Ok(summary);
+        }
+        self.spec.rods[rod].forces[force].force = value;
+        let followed = self.stabilize(k);
+        let mut r = self.summary(&[k], None);
+        r.followed_unstable_mode = followed;
+        Ok(r)
+    }
+
     /// Adds a support to rod `rod` where the rod is now (a clip or pin holds the current
     /// position and tangent; a slider or twist hold its current line or angle) and re-solves.
     /// Clamps are added in the scene file, not here.

@@ -390,6 +390,22 @@ impl Member {
         }
     }
 
+    /// Changes the dead point force on vertex `v` from `old` to `new` (N): at load factor 1
+    /// from now on, and along the load path of the next solve (λ = 0: `old`). Errors (nothing
+    /// changed) if `v` is not a vertex or a force is not finite.
+    pub fn set_force_change(
+        &mut self,
+        v: usize,
+        old: crate::geometry::Vec3,
+        new: crate::geometry::Vec3,
+    ) -> Result<(), crate::ModelError> {
+        match self {
+            Self::Der(r) => r.set_force_change(v, old, new),
+            Self::Cosserat(r) => r.core.set_force_change(v, old, new),
+            Self::Se3(r) => r.core.set_force_change(v, old, new),
+        }
+    }
+
     /// Sets gravity (m/s²) at load factor 1.
     pub fn set_gravity(&mut self, g: crate::geometry::Vec3) {
         match self {

@@ -225,6 +225,13 @@ class Session:
         """Sets gravity (m/s²) and re-solves warm."""
         return self._checked(self._inner.set_gravity(_vec3(gravity, "gravity")), check, "changing gravity")
 
+    def set_force(self, rod: int, force: int, value: Sequence[float], *, check: bool = True) -> EditReport:
+        """Sets point force ``force`` of rod ``rod`` (the scene's ``forces[force]``, a dead
+        force; not a follower) to ``value`` (N) and re-solves warm."""
+        r, f = _index(rod, "rod"), _index(force, "force")
+        report = self._inner.set_force(r, f, _vec3(value, "value"))
+        return self._checked(report, check, f"changing rods[{r}].forces[{f}]")
+
     def follow_stable(self) -> EditReport:
         """Follows every unstable equilibrium along its unstable mode to a stable one."""
         return self._inner.follow_stable()

@@ -214,6 +214,16 @@ fn hostile_messages_are_refused_by_name_and_keep_the_equilibrium() {
             "sensible magnitude",
         ),
         (
+            r#"{"op": "force", "rod": 0, "force": 0, "value": [0, 0, -1]}"#,
+            "rods[0].forces[0]",
+            "no such force",
+        ),
+        (
+            r#"{"op": "force", "rod": 0, "force": 0, "value": [0, 0, 1e300]}"#,
+            "rods[0].forces[0]",
+            "no such force",
+        ),
+        (
             r#"{"op": "unstable_policy", "policy": "maybe"}"#,
             "request",
             "unknown variant",
@@ -299,6 +309,44 @@ fn valid_edits_change_the_equilibrium_and_errors_after_them_do_not() {
     assert_eq!(saved.rods[0].supports.len(), 3);
     let (v, _) = exchange(&mut s, r#"{"op": "gltf"}"#);
     assert_eq!(v["gltf"]["asset"]["version"], json!("2.0"));
+}
+
+#[test]
+fn a_force_message_sets_the_force_and_a_bad_one_keeps_the_equilibrium() {
+    let text = SCENE.replace(
+        r#"    { kind = "pin", vertex = "end" },
+]"#,
+        r#"    { kind = "pin", vertex = "end" },
+]
+forces = [{ vertex = 9, force = [0.0, 0.0, -0.01] }]"#,
+    );
+    let scene: Scene = toml::from_str(&text).expect("the scene parses");
+    let mut s = Session::new(scene).expect("the scene compiles");
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "force", "rod": 0, "force": 0, "value": [0.0, 0.02, -0.05]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    assert_eq!(s.spec().rods[0].forces[0].force, [0.0, 0.02, -0.05]);
+    for (message, field) in [
+        (
+            r#"{"op": "force", "rod": 0, "force": 0, "value": [0, 0, 1e300]}"#,
+            "rods[0].forces[0].force",
+        ),
+        (
+            r#"{"op": "force", "rod": 0, "force": 2, "value": [0, 0, 1]}"#,
+            "rods[0].forces[2]",
+        ),
+    ] {
+        let (v, kept) = exchange(&mut s, message);
+        assert_eq!(error_of(&v).0, field, "{v}");
+        assert!(kept, "{message}");
+    }
+    let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
+    let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
+    assert_eq!(saved.rods[0].forces[0].force, [0.0, 0.02, -0.05]);
 }
 
 #[test]
@@ -398,6 +446,9 @@ fn request() -> impl Strategy<Value = String> {
         )),
         (index(), index()).prop_map(|(r, s)| format!(r#"{{"op": "remove_support", "rod": {r}, "support": {s}}}"#)),
         vec3().prop_map(|g| format!(r#"{{"op": "gravity", "gravity": {g}}}"#)),
+        (index(), index(), vec3()).prop_map(|(r, f, v)| format!(
+            r#"{{"op": "force", "rod": {r}, "force": {f}, "value": {v}}}"#
+        )),
         Just(r#"{"op": "follow_stable"}"#.to_string()),
         Just(r#"{"op": "unstable_policy", "policy": "keep"}"#.to_string()),
         Just(r#"{"op": "state"}"#.to_string()),

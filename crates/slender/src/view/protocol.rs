@@ -90,6 +90,15 @@ pub enum Request {
         /// Acceleration (m/s²).
         gravity: [f64; 3],
     },
+    /// Set a rod's point force (the scene's `forces[force]`, a dead force) to `value` (N).
+    Force {
+        /// Rod index.
+        rod: usize,
+        /// Index in the rod's `forces`.
+        force: usize,
+        /// Force (N).
+        value: [f64; 3],
+    },
     /// Follow every unstable equilibrium to a stable one now.
     FollowStable {},
     /// What to do with unstable equilibria from now on.
@@ -191,6 +200,7 @@ fn op_name(r: &Request) -> &'static str {
         Request::AddSupport { .. } => "add_support",
         Request::RemoveSupport { .. } => "remove_support",
         Request::Gravity { .. } => "gravity",
+        Request::Force { .. } => "force",
         Request::FollowStable {} => "follow_stable",
         Request::UnstablePolicy { .. } => "unstable_policy",
         Request::Save {} => "save",
@@ -233,7 +243,7 @@ pub fn handle(session: &mut Session, message: &str) -> String {
             return error_reply(
                 "request",
                 format!(
-                    "{e}{hint} (expected a JSON object with \"op\": state, move, move_by, add_support, remove_support, gravity, follow_stable, unstable_policy, save or gltf)"
+                    "{e}{hint} (expected a JSON object with \"op\": state, move, move_by, add_support, remove_support, gravity, force, follow_stable, unstable_policy, save or gltf)"
                 ),
             );
         }
@@ -349,6 +359,10 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
         Request::Gravity { gravity } => {
             finite("gravity", gravity)?;
             Some(session.set_gravity(*gravity)?)
+        }
+        Request::Force { rod, force, value } => {
+            finite("value", value)?;
+            Some(session.set_force(*rod, *force, *value)?)
         }
         Request::FollowStable {} => Some(session.follow_stable()),
         Request::UnstablePolicy { policy } => {

@@ -58,6 +58,13 @@ impl RodPart {
     pub fn contains(&self, v: usize) -> bool {
         v >= self.first_vertex && v < self.first_vertex + self.n_vertices
     }
+
+    /// True if this part carries the loads on whole-rod vertex `v` of a rod of `n_edges`
+    /// edges: a vertex shared by two parts (an interior clamp) loads the first.
+    pub fn carries_loads_of(&self, v: usize, n_edges: usize) -> bool {
+        let (a, b) = (self.first_vertex, self.first_vertex + self.n_vertices - 1);
+        v >= a && (v < b || b == n_edges)
+    }
 }
 
 /// A rod of the scene, ready to solve.
@@ -81,6 +88,18 @@ pub struct CompiledRod {
     pub closed: bool,
     /// Smallest allowed bend radius (m), if given.
     pub min_bend_radius: Option<f64>,
+    /// The whole-rod vertex of each of the file's point forces (`forces`, in order).
+    pub force_vertices: Vec<usize>,
+}
+
+impl CompiledRod {
+    /// The part that carries the loads on whole-rod vertex `v` (see
+    /// [`RodPart::carries_loads_of`]).
+    pub fn load_part(&self, v: usize) -> Option<&RodPart> {
+        self.parts
+            .iter()
+            .find(|p| p.carries_loads_of(v, self.n_edges))
+    }
 }
 
 /// A rod being compiled: its parts' rods, before they are grouped into structures.
@@ -317,8 +336,10 @@ pub(super) fn compile_rod(
     // Loads, in the final numbering.
     let mut forces: Vec<(usize, Vec3)> = Vec::new();
     let mut followers: Vec<(usize, Vec3, Vec3)> = Vec::new();
+    let mut force_vertices = Vec::with_capacity(spec.forces.len());
     for (k, f) in spec.forces.iter().enumerate() {
         let v = base_vertex(format!("{path}.forces[{k}].vertex"), f.vertex.index(n_base))?;
+        force_vertices.push(v);
         let force = finite3(&format!("{path}.forces[{k}].force"), f.force)?;
         if f.follower {
             if held_by[v].is_some() {
@@ -432,7 +453,8 @@ pub(super) fn compile_rod(
         } else {
             chord_nodes(&positions[a..=b])
         };
-        // A load on a vertex shared by two parts (an interior clamp) goes to the first.
+        // A load on a vertex shared by two parts (an interior clamp) goes to the first (the
+        // rule of `RodPart::carries_loads_of`).
         let owns = |v: usize| v >= a && (v < b || b == n_edges);
         let pins: Vec<usize> = supports
             .iter()
@@ -539,6 +561,7 @@ pub(super) fn compile_rod(
             properties,
             closed: spec.closed,
             min_bend_radius: spec.min_bend_radius,
+            force_vertices,
         },
         members,
     })

@@ -1,0 +1,161 @@
+//! Editing a point force in a session (`Session::set_force`): the warm re-solve from the last
+//! equilibrium ends where a cold solve of the scene with the new force ends (a different path:
+//! loads ramped from rest), for every rod model, across an interior clamp, for a change large
+//! enough to need load steps; a small change of a weightless cantilever's tip force moves the
+//! tip by beam theory's ΔF L³/(3EI); bad input names its field and changes nothing.
+
+use slender_core::scene::{Scene, Session};
+
+/// A 1 m cantilever (d = 6 mm, E = 1 GPa) of `model`, `elements` elements, clamped at the
+/// start, tip force `force` (N) at the end (a follower if `follower`), gravity `g` (m/s²),
+/// and `extra` supports after the clamp.
+fn cantilever(model: &str, elements: usize, force: [f64; 3], g: f64, extra: &str) -> Scene {
+    cantilever_with(model, elements, force, g, extra, false)
+}
+
+fn cantilever_with(
+    model: &str,
+    elements: usize,
+    force: [f64; 3],
+    g: f64,
+    extra: &str,
+    follower: bool,
+) -> Scene {
+    toml::from_str(&format!(
+        r#"
+gravity = [0.0, 0.0, {g}]
+[[rods]]
+name = "beam"
+model = "{model}"
+elements = {elements}
+centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 1.0 }}
+section = {{ shape = "circle", diameter = 0.006 }}
+material = {{ young = 1.0e9, poisson = 0.4, density = 1400.0 }}
+supports = [ {{ kind = "clamp", vertex = "start" }}{extra} ]
+forces = [ {{ vertex = "end", force = {force:?}, follower = {follower} }} ]
+"#
+    ))
+    .expect("the scene parses")
+}
+
+fn positions(s: &Session) -> Vec<[f64; 3]> {
+    s.results(0, None, 1.0, 1).rods[0].positions.clone()
+}
+
+/// Largest distance (m) between corresponding vertices.
+fn worst_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+}
+
+/// Edits the tip force of a session from `from` to `to` and compares with a cold solve at
+/// `to`: returns the worst vertex distance (m), the structures the edit re-solved and the
+/// tip after the edit.
+fn edit_against_cold(
+    model: &str,
+    extra: &str,
+    from: [f64; 3],
+    to: [f64; 3],
+) -> (f64, Vec<usize>, [f64; 3]) {
+    let mut s = Session::new(cantilever(model, 20, from, -9.81, extra)).expect("solves");
+    let r = s.set_force(0, 0, to).expect("a valid force");
+    assert!(r.converged && r.stable, "{model}: {r:?}");
+    let cold = Session::new(cantilever(model, 20, to, -9.81, extra)).expect("solves");
+    assert_eq!(s.spec().rods[0].forces[0].force, to);
+    let here = positions(&s);
+    let d = worst_distance(&here, &positions(&cold));
+    eprintln!(
+        "{model}{extra}: {from:?} → {to:?} N: {} iterations, {} load steps, {d:.1e} m from the cold solve",
+        r.iterations, r.load_steps
+    );
+    (d, r.structures.to_vec(), *here.last().unwrap())
+}
+
+#[test]
+fn a_force_edit_ends_where_a_cold_solve_with_that_force_ends() {
+    for model in ["der", "cosserat", "se3"] {
+        let (d, structures, _) =
+            edit_against_cold(model, "", [0.0, 0.0, -0.01], [0.0, 0.02, -0.03]);
+        assert!(d <= 1e-9, "{model}: {d:e} m from the cold solve");
+        assert_eq!(structures, [0]);
+    }
+}
+
+#[test]
+fn a_force_beyond_an_interior_clamp_loads_the_part_that_carries_it() {
+    // The clamp at vertex 10 splits the rod into two parts, two structures; the tip force is
+    // on the second, and only that one is re-solved.
+    let extra = r#", { kind = "clamp", vertex = 10 }"#;
+    let (d, structures, _) = edit_against_cold("der", extra, [0.0, 0.0, -0.01], [0.0, 0.0, -0.2]);
+    assert!(d <= 1e-9, "{d:e} m from the cold solve");
+    assert_eq!(structures, [1]);
+}
+
+#[test]
+fn a_large_force_change_ends_on_the_large_deflection_equilibrium() {
+    // From a sag of centimetres to a tip turned far down (EI = 6.4e-2 N m², F L²/EI ≈ 31).
+    let (d, _, tip) = edit_against_cold("der", "", [0.0, 0.0, -0.001], [0.0, 0.0, -2.0]);
+    assert!(d <= 1e-9, "{d:e} m from the cold solve");
+    assert!(tip[2] < -0.5 && tip[0] < 0.7, "tip {tip:?}");
+}
+
+#[test]
+fn a_small_force_change_moves_the_tip_by_beam_theory() {
+    // Weightless: the tip moves by ΔF L³/(3EI) for a small change (linear regime).
+    let ei = 1.0e9 * std::f64::consts::PI * 0.006_f64.powi(4) / 64.0;
+    let df = 1e-4;
+    let mut s = Session::new(cantilever("der", 40, [0.0, 0.0, 0.0], 0.0, "")).expect("solves");
+    let before = *positions(&s).last().unwrap();
+    let r = s.set_force(0, 0, [0.0, 0.0, -df]).expect("a valid force");
+    assert!(r.converged);
+    let after = *positions(&s).last().unwrap();
+    let expected = df / (3.0 * ei);
+    let moved = before[2] - after[2];
+    eprintln!("tip moved {moved:.6e} m, beam theory {expected:.6e} m");
+    assert!(
+        (moved - expected).abs() <= 1e-3 * expected,
+        "tip moved {moved:e} m, beam theory {expected:e} m"
+    );
+}
+
+#[test]
+fn a_saved_scene_after_a_force_edit_solves_to_the_same_equilibrium() {
+    let mut s = Session::new(cantilever("der", 20, [0.0, 0.0, -0.01], -9.81, "")).unwrap();
+    s.set_force(0, 0, [0.01, 0.0, -0.05]).unwrap();
+    let again = Session::new(s.saved()).expect("the saved scene solves");
+    let d = worst_distance(&positions(&s), &positions(&again));
+    assert!(d <= 1e-9, "{d:e} m apart");
+}
+
+#[test]
+fn bad_force_edits_name_the_field_and_change_nothing() {
+    let mut s = Session::new(cantilever("der", 20, [0.0, 0.0, -0.01], -9.81, "")).unwrap();
+    let before = positions(&s);
+    for (rod, force, value, field) in [
+        (1, 0, [0.0, 0.0, 1.0], "rods[1].forces[0]"),
+        (0, 3, [0.0, 0.0, 1.0], "rods[0].forces[3]"),
+        (0, 0, [0.0, f64::NAN, 1.0], "rods[0].forces[0].force"),
+        (0, 0, [0.0, 0.0, 1e300], "rods[0].forces[0].force"),
+    ] {
+        let e = s.set_force(rod, force, value).unwrap_err();
+        assert!(e.to_string().starts_with(field), "{e}");
+    }
+    assert_eq!(positions(&s), before);
+    assert_eq!(s.spec().rods[0].forces[0].force, [0.0, 0.0, -0.01]);
+    let mut f = Session::new(cantilever_with(
+        "der",
+        20,
+        [0.0, 0.0, -0.01],
+        -9.81,
+        "",
+        true,
+    ))
+    .expect("solves");
+    let e = f.set_force(0, 0, [0.0, 0.0, -0.02]).unwrap_err();
+    assert!(
+        e.to_string().starts_with("rods[0].forces[0].follower"),
+        "{e}"
+    );
+}
