@@ -364,18 +364,26 @@ impl FramedCore {
     }
 
     /// Changes the dead point force on vertex `v` from `old` to `new` (N), as
-    /// `Rod::set_force_change` does.
-    pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<(), ModelError> {
+    /// `Rod::set_force_change` does (returns the nodal force before the change).
+    pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<Vec3, ModelError> {
         let mut path = std::mem::take(&mut self.load_path);
         path.set_force_change(v, old, new);
-        let checked = path.check_changes(self.vertex_masses.len());
-        if checked.is_ok() {
-            self.nodal_forces[v] += new - old;
-        } else {
+        if let Err(e) = path.check_changes(self.vertex_masses.len()) {
             path.clear();
+            self.load_path = path;
+            return Err(e);
         }
+        let before = self.nodal_forces[v];
+        self.nodal_forces[v] += new - old;
         self.load_path = path;
-        checked
+        Ok(before)
+    }
+
+    /// Undoes `set_force_change` exactly: vertex `v`'s nodal force back to `before` (N), the
+    /// load path cleared.
+    pub fn undo_force_change(&mut self, v: usize, before: Vec3) {
+        self.nodal_forces[v] = before;
+        self.load_path.clear();
     }
 
     /// Inertia attached to free DOF `i`: the vertex mass for a coordinate, ρA r_g² ℓ for a

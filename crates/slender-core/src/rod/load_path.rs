@@ -273,9 +273,10 @@ impl Rod {
     }
 
     /// Changes the dead point force on vertex `v` from `old` to `new` (N): at load factor 1 from
-    /// now on, along the load path (λ = 0: `old`) for the next solve. Errors (nothing changed)
-    /// if `v` is not a vertex or a force is not finite.
-    pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<(), ModelError> {
+    /// now on, along the load path (λ = 0: `old`) for the next solve. Returns the vertex's
+    /// nodal force before the change (for [`Self::undo_force_change`]). Errors (nothing
+    /// changed) if `v` is not a vertex or a force is not finite.
+    pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<Vec3, ModelError> {
         let mut path = std::mem::take(&mut self.load_path);
         path.set_force_change(v, old, new);
         if let Err(e) = path.check_changes(self.vertex_masses.len()) {
@@ -283,9 +284,17 @@ impl Rod {
             self.clear_load_path();
             return Err(e);
         }
+        let before = self.nodal_forces[v];
         self.nodal_forces[v] += new - old;
         self.load_path = path;
-        Ok(())
+        Ok(before)
+    }
+
+    /// Undoes [`Self::set_force_change`] exactly: vertex `v`'s nodal force back to `before`
+    /// (N), the load path cleared.
+    pub fn undo_force_change(&mut self, v: usize, before: Vec3) {
+        self.nodal_forces[v] = before;
+        self.clear_load_path();
     }
 
     /// Back to the plain load ramp (vectors kept for reuse).

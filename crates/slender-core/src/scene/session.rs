@@ -793,7 +793,7 @@ impl Session {
             .load_part(v)
             .expect("every vertex of a rod is on a part");
         let (k, m, local) = (part.structure, part.member, v - part.first_vertex);
-        self.scene.structures[k]
+        let before = self.scene.structures[k]
             .member_mut(m)
             .set_force_change(local, old, new)
             .map_err(|e| SceneError::model(path(), e))?;
@@ -810,12 +810,8 @@ impl Session {
         let structure = &mut self.scene.structures[k];
         structure.clear_paths();
         if reason.is_some() {
-            // Back to the old force (the path is clear: the change applies at once).
-            structure
-                .member_mut(m)
-                .set_force_change(local, new, old)
-                .expect("the old force was valid");
-            structure.clear_paths();
+            // Back to the old force, bit for bit.
+            structure.member_mut(m).undo_force_change(local, before);
             let summary = self.summary(&[k], reason);
             self.runs[k].restore();
             return Ok(summary);

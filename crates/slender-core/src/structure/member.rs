@@ -391,18 +391,29 @@ impl Member {
     }
 
     /// Changes the dead point force on vertex `v` from `old` to `new` (N): at load factor 1
-    /// from now on, and along the load path of the next solve (λ = 0: `old`). Errors (nothing
-    /// changed) if `v` is not a vertex or a force is not finite.
+    /// from now on, and along the load path of the next solve (λ = 0: `old`). Returns the
+    /// vertex's nodal force before the change, for [`Self::undo_force_change`]. Errors
+    /// (nothing changed) if `v` is not a vertex or a force is not finite.
     pub fn set_force_change(
         &mut self,
         v: usize,
         old: crate::geometry::Vec3,
         new: crate::geometry::Vec3,
-    ) -> Result<(), crate::ModelError> {
+    ) -> Result<crate::geometry::Vec3, crate::ModelError> {
         match self {
             Self::Der(r) => r.set_force_change(v, old, new),
             Self::Cosserat(r) => r.core.set_force_change(v, old, new),
             Self::Se3(r) => r.core.set_force_change(v, old, new),
+        }
+    }
+
+    /// Undoes [`Self::set_force_change`] bit for bit: vertex `v`'s nodal force back to
+    /// `before` (N), the load path cleared.
+    pub fn undo_force_change(&mut self, v: usize, before: crate::geometry::Vec3) {
+        match self {
+            Self::Der(r) => r.undo_force_change(v, before),
+            Self::Cosserat(r) => r.core.undo_force_change(v, before),
+            Self::Se3(r) => r.core.undo_force_change(v, before),
         }
     }
 
