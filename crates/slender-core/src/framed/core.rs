@@ -366,17 +366,8 @@ impl FramedCore {
     /// Changes the dead point force on vertex `v` from `old` to `new` (N), as
     /// `Rod::set_force_change` does (returns the nodal force before the change).
     pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<Vec3, ModelError> {
-        let mut path = std::mem::take(&mut self.load_path);
-        path.set_force_change(v, old, new);
-        if let Err(e) = path.check_changes(self.vertex_masses.len()) {
-            path.clear();
-            self.load_path = path;
-            return Err(e);
-        }
-        let before = self.nodal_forces[v];
-        self.nodal_forces[v] += new - old;
-        self.load_path = path;
-        Ok(before)
+        self.load_path
+            .change_force(&mut self.nodal_forces, v, old, new)
     }
 
     /// Undoes `set_force_change` exactly: vertex `v`'s nodal force back to `before` (N), the

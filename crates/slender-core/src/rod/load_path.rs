@@ -182,6 +182,27 @@ impl RodLoadPath {
         f
     }
 
+    /// Makes this path the change of the dead point force on vertex `v` from `old` to `new`
+    /// (N) and moves that vertex's entry of `nodal_forces` (the forces at λ = 1) to `new`.
+    /// Returns the entry before the change (to undo it exactly). Errors (the path cleared,
+    /// the forces unchanged) if `v` is not a vertex or a force is not finite.
+    pub(crate) fn change_force(
+        &mut self,
+        nodal_forces: &mut [Vec3],
+        v: usize,
+        old: Vec3,
+        new: Vec3,
+    ) -> Result<Vec3, ModelError> {
+        self.set_force_change(v, old, new);
+        if let Err(e) = self.check_changes(nodal_forces.len()) {
+            self.clear();
+            return Err(e);
+        }
+        let before = nodal_forces[v];
+        nodal_forces[v] += new - old;
+        Ok(before)
+    }
+
     /// Errors if the gravity or force change is not finite or names a vertex beyond
     /// `n_vertices`.
     pub(crate) fn check_changes(&self, n_vertices: usize) -> Result<(), ModelError> {
@@ -277,17 +298,8 @@ impl Rod {
     /// nodal force before the change (for [`Self::undo_force_change`]). Errors (nothing
     /// changed) if `v` is not a vertex or a force is not finite.
     pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<Vec3, ModelError> {
-        let mut path = std::mem::take(&mut self.load_path);
-        path.set_force_change(v, old, new);
-        if let Err(e) = path.check_changes(self.vertex_masses.len()) {
-            self.load_path = path;
-            self.clear_load_path();
-            return Err(e);
-        }
-        let before = self.nodal_forces[v];
-        self.nodal_forces[v] += new - old;
-        self.load_path = path;
-        Ok(before)
+        self.load_path
+            .change_force(&mut self.nodal_forces, v, old, new)
     }
 
     /// Undoes [`Self::set_force_change`] exactly: vertex `v`'s nodal force back to `before`
