@@ -11,6 +11,10 @@
 //  3. Euler column: push a straight clamped column past its Euler load (scenes/euler_column.toml,
 //     unstable = "keep"): the page marks it unstable; "Snap to the stable branch" buckles it
 //     and the mark goes.
+//  3b. point forces (scenes/point_forces.toml): one arrow per dead force, tip at its vertex;
+//     the panel's editor refuses an empty box, sets the tip force, and the page reaches the
+//     equilibrium of `slender solve` with that force in the file (1e-9 of the length); the
+//     saved scene round-trips; a force that does not exist is refused, the equilibrium kept.
 //  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar and a ramp read
 //     from an OBJ file): each is a mesh of the three.js scene, tagged with its obstacle, at its
 //     pose (the ball's bounds, the box's corners, the ramp's vertices as in the file); the
@@ -229,6 +233,76 @@ try {
   await s3.page.screenshot({ path: join(out, "view-euler-snapped.png") });
   for (const e of s3.errors) fail(e);
   check(s3.errors.length === 0, "no console errors (Euler page)");
+
+  // ---- 3b. point forces: arrows, the panel's editor, save ----
+  const forceScene = join(scenes, "point_forces.toml");
+  const s3b = await open(forceScene);
+  sessions.push(s3b);
+  /** The load arrows in the three.js scene: the force they stand for, tail, tip, direction. */
+  const loadArrows = (page) => page.evaluate(() => {
+    const found = [];
+    window.slender.scene.traverse((o) => {
+      if (!o.userData?.load || !o.visible) return;
+      o.updateMatrixWorld(true);
+      const dir = [0, 1, 0].map((_, k) => o.matrixWorld.elements[4 + k]);
+      const n = Math.hypot(...dir);
+      const tail = [o.matrixWorld.elements[12], o.matrixWorld.elements[13], o.matrixWorld.elements[14]];
+      // ArrowHelper: +y of its frame along the force, the cone's tip at y = its length.
+      const len = o.cone.position.y;
+      found.push({ load: o.userData.load, tail, tip: tail.map((x, k) => x + (dir[k] / n) * len), dir: dir.map((x) => x / n) });
+    });
+    return found;
+  });
+  const arrowsMatch = (arrows, state) => state.rods[0].forces.every((f, k) => {
+    const a = arrows.find((x) => x.load[0] === 0 && x.load[1] === k);
+    const n = Math.hypot(...f.force);
+    return a && Math.hypot(...a.tip.map((x, i) => x - f.position[i])) <= 1e-6
+      && a.dir.every((x, i) => Math.abs(x - f.force[i] / n) <= 1e-6);
+  });
+  const rows = await s3b.page.locator("#loads .force-apply").count();
+  const boxShown = await s3b.page.evaluate(() => !document.getElementById("loads-box").hidden);
+  check(boxShown && rows === 2, `point forces: the panel lists both forces with an editor (${rows} rows)`);
+  const state0 = await s3b.page.evaluate(() => window.slender.state());
+  const arrows0 = await loadArrows(s3b.page);
+  check(arrows0.length === 2 && arrowsMatch(arrows0, state0),
+    `point forces: one arrow per force, its tip at the loaded vertex, along the force (${arrows0.length} arrows)`);
+  // An empty box is refused in the page (it would read as 0), with the field named.
+  await s3b.page.fill("#f-0-0-x", "");
+  await s3b.page.click('#loads .force-apply[data-force="0"]');
+  const emptyRefused = await s3b.page.evaluate(() => window.slender.errors.splice(0));
+  check(emptyRefused.length === 1 && emptyRefused[0].field === "rods[0].forces[0].force",
+    `point forces: an empty box is refused naming ${emptyRefused[0]?.field}`);
+  // The tip force edited through the panel: type, Apply, the re-solve from the last equilibrium.
+  const newForce = [0.01, -0.005, -0.05];
+  for (const [i, c] of ["x", "y", "z"].entries()) await s3b.page.fill(`#f-0-0-${c}`, String(newForce[i]));
+  await s3b.page.click('#loads .force-apply[data-force="0"]');
+  await s3b.page.waitForFunction((f) => window.slender.state().rods[0].forces[0].force.every((x, i) => x === f[i]), newForce, { timeout: 20000 });
+  const edited = await s3b.page.evaluate(() => window.slender.state());
+  check(edited.converged && edited.rods[0].forces[0].force.join() === newForce.join(), `point forces: the panel set the tip force to [${newForce}] (converged: ${edited.converged})`);
+  const forceText = readFileSync(forceScene, "utf8").replace("force = [0.0, 0.0, -0.02]", `force = [${newForce.map((x) => x.toFixed(3)).join(", ")}]`);
+  const cold = solveScene("point_forces_edited_cold", forceText);
+  const editGap = maxRelativeDistance(edited.rods.map((r) => r.positions), cold, 1.0);
+  const tipMoved = Math.hypot(...edited.rods[0].positions.at(-1).map((x, k) => x - state0.rods[0].positions.at(-1)[k]));
+  console.log(`view test: tip force edited in the panel: the tip moved ${(tipMoved * 1000).toFixed(2)} mm; every vertex within ${editGap.toExponential(2)} of the length of slender solve with the new force in the file`);
+  check(tipMoved > 1e-3 && editGap <= 1e-9, `point forces: the edited equilibrium = slender solve's with the force in the file, to 1e-9 of the length (${editGap.toExponential(2)})`);
+  const arrows1 = await loadArrows(s3b.page);
+  check(arrowsMatch(arrows1, edited), "point forces: the arrows follow the edit (tip at the moved vertex, along the new force)");
+  const [forceDownload] = await Promise.all([s3b.page.waitForEvent("download"), s3b.page.click("#save")]);
+  const forceSaved = readFileSync(await forceDownload.path(), "utf8");
+  const reSolved = solveScene("point_forces_saved", forceSaved);
+  const saveGap = maxRelativeDistance(edited.rods.map((r) => r.positions), reSolved, 1.0);
+  check(saveGap <= 1e-9, `point forces: the saved scene re-solves to the page's equilibrium (${saveGap.toExponential(2)} of the length)`);
+  // Through the page's channel: a force that does not exist is refused, the equilibrium kept.
+  const keptForce = await s3b.page.evaluate(async () => {
+    const before = JSON.stringify(window.slender.state().rods[0].positions);
+    const r = await window.slender.request({ op: "force", rod: 0, force: 7, value: [0, 0, 1] });
+    const s = await window.slender.request({ op: "state" });
+    return { error: r.error, same: before === JSON.stringify(s.view.rods[0].positions) };
+  });
+  check(keptForce.error?.field?.startsWith("rods[0].forces") && keptForce.same, `point forces: force 7 is refused (${keptForce.error?.field}: ${keptForce.error?.message}) and the equilibrium kept`);
+  await s3b.page.screenshot({ path: join(out, "view-point-forces.png") });
+  for (const e of s3b.errors) fail(e);
+  check(s3b.errors.length === 0, "no console errors (point-force page)");
 
   // ---- 4. obstacles drawn; a clamp dragged into the floor ----
   const s4 = await open(join(scenes, "obstacles.toml"));

@@ -330,6 +330,12 @@ forces = [{ vertex = 9, force = [0.0, 0.0, -0.01] }]"#,
     assert_eq!(v["edit"]["converged"], json!(true), "{v}");
     assert!(!kept);
     assert_eq!(s.spec().rods[0].forces[0].force, [0.0, 0.02, -0.05]);
+    // The view lists it as the page draws it: the new value, at vertex 9 where it is now.
+    let shown = &v["view"]["rods"][0]["forces"][0];
+    assert_eq!(shown["force"], json!([0.0, 0.02, -0.05]), "{v}");
+    assert_eq!(shown["vertex"], json!(9));
+    assert_eq!(shown["follower"], json!(false));
+    assert_eq!(shown["position"], v["view"]["rods"][0]["positions"][9]);
     for (message, field) in [
         (
             r#"{"op": "force", "rod": 0, "force": 0, "value": [0, 0, 1e300]}"#,

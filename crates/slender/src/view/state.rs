@@ -92,6 +92,8 @@ pub struct RodView {
     pub structures: Vec<usize>,
     /// Supports, in the rod's order (the index is the one edits name).
     pub supports: Vec<SupportView>,
+    /// Point forces, in the order of the scene's `forces` (the index the `force` edit names).
+    pub forces: Vec<ForceView>,
     /// Radius (m) its centerline keeps from obstacles (its structure's contact radius: a
     /// contact's surface point is its vertex minus the normal times this radius plus the
     /// gap); `None` in a scene without contact.
@@ -117,6 +119,22 @@ pub struct SupportView {
     pub moment: [f64; 3],
     /// Slider axis (unit), if a slider.
     pub axis: Option<[f64; 3]>,
+}
+
+/// A point force on a rod: an arrow at its vertex; a dead force can be edited (`force`).
+#[derive(Clone, Debug, Serialize)]
+pub struct ForceView {
+    /// Loaded vertex.
+    pub vertex: usize,
+    /// Rest arc length of the vertex (m).
+    pub at: f64,
+    /// Where the vertex is now (m).
+    pub position: [f64; 3],
+    /// The force as the scene gives it (N): fixed in space, or, for a follower load, in the
+    /// rod's rest frame at the vertex.
+    pub force: [f64; 3],
+    /// A follower load (turns with the rod): not editable, and not drawn in space.
+    pub follower: bool,
 }
 
 /// One structure's last solve.
@@ -220,6 +238,18 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                     }
                 })
                 .collect();
+            let forces = session.spec().rods[r]
+                .forces
+                .iter()
+                .zip(&rod.force_vertices)
+                .map(|(f, &v)| ForceView {
+                    vertex: v,
+                    at: rod.node_arclengths[v],
+                    position: res.positions[v],
+                    force: f.force,
+                    follower: f.follower,
+                })
+                .collect();
             let mut structures: Vec<usize> = rod.parts.iter().map(|p| p.structure).collect();
             structures.dedup();
             // The rod's own radius: each rod keeps it, in whatever structure.
@@ -253,6 +283,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 stable: res.stable,
                 structures,
                 supports,
+                forces,
                 contact_radius,
             }
         })

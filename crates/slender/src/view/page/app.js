@@ -401,6 +401,89 @@ function updateArrows() {
   }
 }
 
+// ---------- point loads: arrows and the panel ----------
+
+const LOAD_ARROW = 0xef6c00;
+let loadArrows = []; // one ArrowHelper per dead point force, userData { load: [rod, index], force (N) }
+let loadsKey = null;
+
+/** Arrows of the dead point forces, their tips at the loaded vertices; lengths relative to the
+ *  largest force now (labels give the values). Follower loads turn with the cable and are not
+ *  drawn. */
+function updateLoadArrows() {
+  const dead = [];
+  view.rods.forEach((rod, r) => rod.forces.forEach((f, k) => { if (!f.follower) dead.push({ r, k, f }); }));
+  while (loadArrows.length < dead.length) {
+    const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, LOAD_ARROW);
+    world.add(a);
+    loadArrows.push(a);
+  }
+  let fmax = 0;
+  for (const d of dead) fmax = Math.max(fmax, Math.hypot(...d.f.force));
+  const scale = fmax > 0 ? (0.2 * sceneSize) / fmax : 0;
+  const show = $("load-arrows").checked;
+  loadArrows.forEach((a, i) => {
+    const d = dead[i];
+    a.visible = false;
+    if (!d) return;
+    const f = v3(d.f.force);
+    const n = f.length();
+    a.userData = { load: [d.r, d.k], force: n };
+    if (!show || n === 0) return;
+    a.visible = true;
+    const len = Math.max(0.04 * sceneSize, n * scale);
+    const dir = f.multiplyScalar(1 / n);
+    // The tip at the vertex: the force pushes on the cable there.
+    const tail = v3(d.f.position).addScaledVector(dir, -len);
+    a.position.copy(tail);
+    a.setDirection(dir);
+    a.setLength(len, 0.25 * len, 0.12 * len);
+    labelSpecs.push({ at: tail, text: fmtForce(n), cls: "label load" });
+  });
+}
+
+/** The panel's force editors: rebuilt when the list of forces changes, values refreshed on
+ *  every update except in the row being typed in. */
+function updateLoadsPanel() {
+  const key = view.rods.map((rod) => rod.forces.map((f) => `${f.vertex}${f.follower}`).join(",")).join(";");
+  const any = view.rods.some((rod) => rod.forces.length > 0);
+  $("loads-box").hidden = !any;
+  if (key !== loadsKey) {
+    loadsKey = key;
+    $("loads").innerHTML = view.rods.flatMap((rod, r) => rod.forces.map((f, k) => {
+      const where = `${rod.name}, force ${k} at v ${f.vertex} (${fmtLength(f.at)})`;
+      if (f.follower) return `<div class="load"><span>${where}: follower [${f.force.map((x) => x.toPrecision(3)).join(", ")}]</span></div>`;
+      const inputs = ["x", "y", "z"].map((c) =>
+        `<input id="f-${r}-${k}-${c}" type="number" step="any" aria-label="${rod.name} force ${k} ${c} (N)">`).join("");
+      return `<div class="load"><span>${where}</span><div class="vec">${inputs}<button class="force-apply" data-rod="${r}" data-force="${k}">Apply</button></div></div>`;
+    })).join("");
+    for (const b of document.querySelectorAll("#loads .force-apply")) {
+      b.addEventListener("click", () => {
+        const rod = Number(b.dataset.rod), force = Number(b.dataset.force);
+        const value = readVector(["x", "y", "z"].map((c) => `f-${rod}-${force}-${c}`), `rods[${rod}].forces[${force}].force`);
+        if (value) edit({ op: "force", rod, force, value });
+      });
+    }
+  }
+  const typing = document.activeElement?.id?.startsWith("f-") ? document.activeElement.id.split("-").slice(0, 3).join("-") : null;
+  view.rods.forEach((rod, r) => rod.forces.forEach((f, k) => {
+    if (f.follower || typing === `f-${r}-${k}`) return;
+    ["x", "y", "z"].forEach((c, i) => ($(`f-${r}-${k}-${c}`).value = f.force[i]));
+  }));
+}
+
+/** Three numbers from the inputs `ids`, or null after an error naming `field` (an empty box
+ *  would read as 0: it is refused, not sent). */
+function readVector(ids, field) {
+  const raw = ids.map((id) => $(id).value.trim());
+  const value = raw.map(Number);
+  if (raw.some((x) => x === "") || value.some((x) => !Number.isFinite(x))) {
+    showError({ field, message: `three finite numbers are needed, got [${raw.map((x) => x || "empty").join(", ")}]` });
+    return null;
+  }
+  return value;
+}
+
 function fmtForce(n) {
   if (n === 0) return "0 N";
   return Math.abs(n) >= 1e3 || Math.abs(n) < 1e-3 ? `${n.toExponential(2)} N` : `${n.toPrecision(3)} N`;
@@ -780,8 +863,10 @@ function applyView(reply) {
   updateShells();
   if (supportKey() !== handlesKey) buildHandles(); else syncHandles();
   updateArrows();
+  updateLoadArrows();
   updateContacts();
   updatePanel(reply);
+  updateLoadsPanel();
   updateContactPanel();
 }
 
@@ -997,13 +1082,16 @@ document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListe
   $("hint").textContent = el.value === "add-clip" && el.checked ? "Click a cable to add a clip there." : "";
 }));
 $("colour").addEventListener("change", () => { if (view) { updateRods(); render(); } });
-$("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateContacts(); render(); } });
+$("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateContacts(); render(); } });
+$("load-arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateContacts(); render(); } });
 $("show-obstacles").addEventListener("change", () => { obstacleGroup.visible = $("show-obstacles").checked; render(); });
 $("show-contacts").addEventListener("change", () => { if (view) { updateArrows(); updateContacts(); render(); } });
 $("snap").addEventListener("click", () => edit({ op: "follow_stable" }));
 $("policy").addEventListener("change", () => edit({ op: "unstable_policy", policy: $("policy").value }));
-$("gravity-apply").addEventListener("click", () =>
-  edit({ op: "gravity", gravity: ["gx", "gy", "gz"].map((id) => Number($(id).value)) }));
+$("gravity-apply").addEventListener("click", () => {
+  const gravity = readVector(["gx", "gy", "gz"], "gravity");
+  if (gravity) edit({ op: "gravity", gravity });
+});
 $("delete-support").addEventListener("click", () => deleteSelected());
 window.addEventListener("keydown", (ev) => {
   if (ev.key === "Delete" && selected && document.activeElement?.tagName !== "INPUT") deleteSelected();
