@@ -5,7 +5,7 @@ use nalgebra::UnitQuaternion;
 
 use crate::error::ModelError;
 use crate::geometry::Vec3;
-use crate::rod::{RodLoadPath, RodProperties, Supports};
+use crate::rod::{RodLoadPath, RodProperties, SavedLoads, Supports};
 
 use super::builder::{FramedRodBuilder, RestGeometry};
 use super::layout::FramedDofs;
@@ -43,6 +43,8 @@ pub struct FramedCore {
     pub(crate) gravity: Vec3,
     pub(crate) rest: FramedState,
     pub(crate) load_path: RodLoadPath,
+    /// The dead loads before a gravity change (see `FramedCore::save_loads`).
+    pub(crate) saved_loads: SavedLoads,
 }
 
 /// Where a model keeps its frames.
@@ -129,6 +131,7 @@ impl FramedCore {
             gravity: b.gravity,
             rest,
             load_path: RodLoadPath::default(),
+            saved_loads: SavedLoads::default(),
         })
     }
 
@@ -340,6 +343,19 @@ impl FramedCore {
         }
         self.load_path = path;
         Ok(())
+    }
+
+    /// Keeps the dead loads for [`Self::restore_loads`] (before a gravity change).
+    pub fn save_loads(&mut self) {
+        self.saved_loads.save(&self.nodal_forces, self.gravity);
+    }
+
+    /// Puts back the dead loads [`Self::save_loads`] kept, bit for bit, and the plain load
+    /// ramp.
+    pub fn restore_loads(&mut self) {
+        self.saved_loads
+            .restore(&mut self.nodal_forces, &mut self.gravity);
+        self.clear_load_path();
     }
 
     /// Sets gravity (m/s²) at load factor 1 (the nodal forces follow).

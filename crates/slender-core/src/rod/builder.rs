@@ -343,6 +343,7 @@ impl RodBuilder {
             arclengths: polygon_arclengths,
             load_path: Default::default(),
             followers: Vec::new(),
+            saved_loads: Default::default(),
         };
         rod.stretch_terms = (0..n)
             .map(|j| StretchTerm {

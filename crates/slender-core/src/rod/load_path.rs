@@ -232,12 +232,49 @@ impl RodLoadPath {
     }
 }
 
+/// A rod's dead loads kept before a gravity change, put back bit for bit if the change does
+/// not converge (adding −Δg·m back would leave x + Δ − Δ, an ulp off). The buffer is reused:
+/// only the first save allocates.
+#[derive(Clone, Debug, Default)]
+pub struct SavedLoads {
+    nodal_forces: Vec<Vec3>,
+    gravity: Vec3,
+}
+
+impl SavedLoads {
+    /// Keeps `nodal_forces` (N) and `gravity` (m/s²).
+    pub(crate) fn save(&mut self, nodal_forces: &[Vec3], gravity: Vec3) {
+        self.nodal_forces.clear();
+        self.nodal_forces.extend_from_slice(nodal_forces);
+        self.gravity = gravity;
+    }
+
+    /// Writes back what [`Self::save`] kept (the same number of vertices).
+    pub(crate) fn restore(&self, nodal_forces: &mut [Vec3], gravity: &mut Vec3) {
+        nodal_forces.copy_from_slice(&self.nodal_forces);
+        *gravity = self.gravity;
+    }
+}
+
 impl Rod {
     /// The extra nodal force (N) on vertex `v` at load factor `load` while gravity or a point
     /// force changes along the path (see [`RodLoadPath::transition_force`]); zero at λ = 1.
     pub(super) fn load_transition(&self, v: usize, load: f64) -> Vec3 {
         self.load_path
             .transition_force(v, self.vertex_masses[v], self.gravity, load)
+    }
+
+    /// Keeps the dead loads for [`Self::restore_loads`] (before a gravity change).
+    pub fn save_loads(&mut self) {
+        self.saved_loads.save(&self.nodal_forces, self.gravity);
+    }
+
+    /// Puts back the dead loads [`Self::save_loads`] kept, bit for bit, and the plain load
+    /// ramp.
+    pub fn restore_loads(&mut self) {
+        self.saved_loads
+            .restore(&mut self.nodal_forces, &mut self.gravity);
+        self.clear_load_path();
     }
 
     /// Sets gravity (m/s²) at load factor 1 (the nodal forces follow).

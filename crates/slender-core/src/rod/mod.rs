@@ -31,7 +31,7 @@ pub mod twisting;
 
 pub use builder::RodBuilder;
 pub use follower::{FollowerLoad, FollowerState};
-pub use load_path::{RodLoadPath, SupportMotion};
+pub use load_path::{RodLoadPath, SavedLoads, SupportMotion};
 pub use mesh::Grading;
 pub use model::{Rod, RodContext};
 pub use point_loads::{PointForce, PointMoment};

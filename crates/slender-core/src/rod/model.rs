@@ -47,6 +47,8 @@ pub struct Rod {
     pub(super) load_path: super::load_path::RodLoadPath,
     /// Follower loads (applied lagged, see `follower.rs`).
     pub(super) followers: Vec<super::follower::FollowerLoad>,
+    /// The dead loads before a gravity change (see `Rod::save_loads`).
+    pub(super) saved_loads: super::load_path::SavedLoads,
 }
 
 impl Rod {

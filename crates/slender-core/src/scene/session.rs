@@ -683,6 +683,7 @@ impl Session {
         ks.extend(0..self.runs.len());
         for s in self.scene.structures.iter_mut() {
             for m in 0..s.members().len() {
+                s.member_mut(m).save_loads();
                 s.member_mut(m)
                     .set_gravity_change(old, g)
                     .map_err(|e| SceneError::model("gravity", e))?;
@@ -724,9 +725,10 @@ impl Session {
             for i in 0..changed_shells {
                 self.shells[i].undo_gravity(&mut self.scene.shells[i], old);
             }
+            // The loads exactly as they were (not x + Δ − Δ).
             for s in self.scene.structures.iter_mut() {
                 for m in 0..s.members().len() {
-                    s.member_mut(m).set_gravity(old);
+                    s.member_mut(m).restore_loads();
                 }
             }
             let summary = self.summary(&ks, reason);

@@ -417,6 +417,25 @@ impl Member {
         }
     }
 
+    /// Keeps the dead loads (before a gravity change) for [`Self::restore_loads`].
+    pub fn save_loads(&mut self) {
+        match self {
+            Self::Der(r) => r.save_loads(),
+            Self::Cosserat(r) => r.core.save_loads(),
+            Self::Se3(r) => r.core.save_loads(),
+        }
+    }
+
+    /// Puts back the dead loads [`Self::save_loads`] kept, bit for bit (the load path
+    /// cleared): the undo of a gravity change that did not converge.
+    pub fn restore_loads(&mut self) {
+        match self {
+            Self::Der(r) => r.restore_loads(),
+            Self::Cosserat(r) => r.core.restore_loads(),
+            Self::Se3(r) => r.core.restore_loads(),
+        }
+    }
+
     /// Sets gravity (m/s²) at load factor 1.
     pub fn set_gravity(&mut self, g: crate::geometry::Vec3) {
         match self {
