@@ -110,6 +110,14 @@ impl BsplineShell {
         self.gravity = g;
     }
 
+    /// Sets point load `k` (in the order they were built) to `force` (N at load factor 1).
+    ///
+    /// # Panics
+    /// If there is no point load `k` (callers check the index against the scene).
+    pub fn set_point_force(&mut self, k: usize, force: Vec3) {
+        self.point_loads[k].force = force;
+    }
+
     /// Sum of the point loads (N at load factor 1).
     pub fn point_load_total(&self) -> Vec3 {
         self.point_loads.iter().map(|l| l.force).sum()

@@ -28,7 +28,7 @@ pub use super::contact_solve::{FRICTION_PIECES, MAX_FRICTION_SOLVES};
 use super::error::SceneError;
 use super::result::{scene_results_with, SceneStep, StabilityResult};
 use super::shell_contact_run::StripContact;
-use super::shell_run::{move_steps, pose_change, ShellRun, MAX_MOVE_STEPS};
+use super::shell_run::{move_steps, pose_change, ShellRun, StripLoad, MAX_MOVE_STEPS};
 use super::shells::ShellResult;
 use super::spec::{
     MotionStage, RodEnd, Scene, ShellClampSpec, SupportKind, SupportSpec, UnstablePolicy,
@@ -712,7 +712,7 @@ impl Session {
                 .zip(self.scene.shells.iter_mut())
                 .enumerate()
             {
-                let report = run.set_gravity(c, old, g);
+                let report = run.set_load(c, StripLoad::Gravity(old), StripLoad::Gravity(g));
                 if report.converged() {
                     changed_shells += 1;
                 } else {
@@ -723,7 +723,7 @@ impl Session {
         }
         if reason.is_some() {
             for i in 0..changed_shells {
-                self.shells[i].undo_gravity(&mut self.scene.shells[i], old);
+                self.shells[i].undo_load(&mut self.scene.shells[i], StripLoad::Gravity(old));
             }
             // The loads exactly as they were (not x + Δ − Δ).
             for s in self.scene.structures.iter_mut() {
@@ -779,15 +779,7 @@ impl Session {
                 "a follower force cannot be edited in a session (dead forces only)",
             ));
         }
-        if value
-            .iter()
-            .any(|c| !c.is_finite() || c.abs() > super::magnitudes::MAGNITUDE_LIMIT)
-        {
-            return Err(SceneError::new(
-                format!("{}.force", path()),
-                format!("{value:?}: must be finite and of sensible magnitude"),
-            ));
-        }
+        check_force_value(&path, value)?;
         let (old, new) = (Vec3::from(spec.force), Vec3::from(value));
         let compiled = &self.scene.rods[rod];
         let v = compiled.force_vertices[force];
@@ -823,6 +815,58 @@ impl Session {
         let mut r = self.summary(&[k], None);
         r.followed_unstable_mode = followed;
         Ok(r)
+    }
+
+    /// Sets point force `force` of shell strip `shell` (the file's `shells[shell].forces[force]`,
+    /// a dead force) to `value` (N) and re-solves the strip warm from its last equilibrium (one
+    /// Newton solve, as for gravity: a strip's loads are at full scale). A change that does not
+    /// converge leaves the force and the equilibrium where they were and says so. Errors
+    /// (nothing changed): an unknown strip or force, a non-finite or absurd value.
+    pub fn set_shell_force(
+        &mut self,
+        shell: usize,
+        force: usize,
+        value: [f64; 3],
+    ) -> Result<EditReport, SceneError> {
+        let path = || format!("shells[{shell}].forces[{force}]");
+        let Some(spec) = self
+            .spec
+            .shells
+            .get(shell)
+            .and_then(|s| s.forces.get(force))
+        else {
+            return Err(SceneError::new(
+                path(),
+                format!(
+                    "no such force (shells: {}, point forces of this strip: {})",
+                    self.spec.shells.len(),
+                    self.spec.shells.get(shell).map_or(0, |s| s.forces.len())
+                ),
+            ));
+        };
+        check_force_value(&path, value)?;
+        let old = StripLoad::PointForce(force, Vec3::from(spec.force));
+        let new = StripLoad::PointForce(force, Vec3::from(value));
+        let report = self.shells[shell].set_load(&mut self.scene.shells[shell], old, new);
+        let reason = (!report.converged()).then(|| {
+            format!(
+                "the force change did not converge ({:?}); the last equilibrium is kept",
+                report.status
+            )
+        });
+        if reason.is_none() {
+            self.spec.shells[shell].forces[force].force = value;
+        }
+        Ok(EditReport {
+            converged: reason.is_none(),
+            reason,
+            structures: StructureList::new(),
+            iterations: report.iterations,
+            load_steps: report.load_steps,
+            relative_residual: report.relative_residual,
+            stable: self.runs.iter().all(|r| r.stability.stable),
+            followed_unstable_mode: false,
+        })
     }
 
     /// Adds a support to rod `rod` where the rod is now (a clip or pin holds the current
@@ -1360,6 +1404,21 @@ impl Session {
             },
         )
     }
+}
+
+/// Errors (naming `path()`.force) unless every component of a point force is finite and of
+/// sensible magnitude (N).
+fn check_force_value(path: &impl Fn() -> String, value: [f64; 3]) -> Result<(), SceneError> {
+    if value
+        .iter()
+        .any(|c| !c.is_finite() || c.abs() > super::magnitudes::MAGNITUDE_LIMIT)
+    {
+        return Err(SceneError::new(
+            format!("{}.force", path()),
+            format!("{value:?}: must be finite and of sensible magnitude"),
+        ));
+    }
+    Ok(())
 }
 
 /// The rotation vector (rad) of `r`, through its quaternion: `Rotation3::scaled_axis` can

@@ -15,7 +15,7 @@ use crate::solver::{EquilibriumSolver, SolveReport, SolverParams};
 
 use super::contact_solve::solve_with_contact;
 use super::session::unsolved;
-use super::shell_run::StripProblem;
+use super::shell_run::{StripLoad, StripProblem};
 
 /// What a strip touches: the scene's obstacles and the strip's contact parameters.
 #[derive(Clone, Debug)]
@@ -144,22 +144,27 @@ impl ContactStripRun {
         report
     }
 
-    /// Gravity changed from `old` to `g` (m/s²): one solve warm from the current state; if it
-    /// does not converge, gravity and the state go back.
-    pub(crate) fn change_gravity(&mut self, model: &mut Shell, old: Vec3, g: Vec3) -> SolveReport {
+    /// A load changed from `old` to `new` (gravity or a point force): one solve warm from the
+    /// current state; if it does not converge, the load and the state go back.
+    pub(crate) fn change_load(
+        &mut self,
+        model: &mut Shell,
+        old: StripLoad,
+        new: StripLoad,
+    ) -> SolveReport {
         self.save();
-        model.set_gravity_to(g);
+        model.set_load(new);
         let report = self.solve(model, 1.0, 1.0);
         if !report.converged() {
-            model.set_gravity_to(old);
+            model.set_load(old);
             self.restore();
         }
         report
     }
 
-    /// Undoes the last [`Self::change_gravity`] that converged.
-    pub(crate) fn undo_gravity(&mut self, model: &mut Shell, old: Vec3) {
-        model.set_gravity_to(old);
+    /// Undoes the last [`Self::change_load`] that converged.
+    pub(crate) fn undo_load(&mut self, model: &mut Shell, old: StripLoad) {
+        model.set_load(old);
         self.restore();
     }
 

@@ -19,14 +19,24 @@ use super::shells::{
 /// Largest number of load steps one clamp move may need before it is refused as too large.
 pub(crate) const MAX_MOVE_STEPS: f64 = 1000.0;
 
+/// A dead load of a strip that a session edits: gravity, or one of its point forces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum StripLoad {
+    /// Gravity (m/s²).
+    Gravity(Vec3),
+    /// Point force `k` (in the order of the spec's `forces`) at load factor 1 (N).
+    PointForce(usize, Vec3),
+}
+
 /// A strip model whose clamps a load path can move.
 pub(crate) trait StripProblem: EquilibriumProblem {
     /// From now on the load factor moves the clamps by `motions` (loads at full scale).
     fn set_motions(&mut self, motions: &[ClampMotion]);
     /// Back to the default load path (the loads ramped, the clamps where the state has them).
     fn clear_motions(&mut self);
-    /// Gravity (m/s²) at load factor 1.
-    fn set_gravity_to(&mut self, g: Vec3);
+    /// Sets gravity or a point force at load factor 1 (assigned, not incremented: setting
+    /// the old value back restores the model bit for bit).
+    fn set_load(&mut self, load: StripLoad);
 }
 
 impl StripProblem for Shell {
@@ -42,8 +52,11 @@ impl StripProblem for Shell {
         self.set_load_path(LoadPath::Gravity);
     }
 
-    fn set_gravity_to(&mut self, g: Vec3) {
-        self.set_gravity(g);
+    fn set_load(&mut self, load: StripLoad) {
+        match load {
+            StripLoad::Gravity(g) => self.set_gravity(g),
+            StripLoad::PointForce(k, f) => self.set_point_force(k, f),
+        }
     }
 }
 
@@ -67,8 +80,11 @@ impl StripProblem for BsplineShell {
         self.set_load_path(path).expect("the default path is valid");
     }
 
-    fn set_gravity_to(&mut self, g: Vec3) {
-        self.set_gravity(g);
+    fn set_load(&mut self, load: StripLoad) {
+        match load {
+            StripLoad::Gravity(g) => self.set_gravity(g),
+            StripLoad::PointForce(k, f) => self.set_point_force(k, f),
+        }
     }
 }
 
@@ -99,23 +115,23 @@ impl<P: StripProblem> StripRun<P> {
         report
     }
 
-    /// Gravity changed from `old` to `g` (m/s²): one Newton solve warm from the current state
-    /// (the strip's loads are at full scale); if it does not converge, gravity and the state
-    /// go back.
-    fn change_gravity(&mut self, model: &mut P, old: Vec3, g: Vec3) -> SolveReport {
+    /// A load changed from `old` to `new`: one Newton solve warm from the current state (the
+    /// strip's loads are at full scale); if it does not converge, the load and the state go
+    /// back.
+    fn change_load(&mut self, model: &mut P, old: StripLoad, new: StripLoad) -> SolveReport {
         self.backup.clone_from(&self.state);
-        model.set_gravity_to(g);
+        model.set_load(new);
         let report = self.solver.solve_in_place(model, &mut self.state, 1.0, 1.0);
         if !report.converged() {
-            model.set_gravity_to(old);
+            model.set_load(old);
             self.state.clone_from(&self.backup);
         }
         report
     }
 
-    /// Undoes the last [`Self::change_gravity`] that converged.
-    fn undo_gravity(&mut self, model: &mut P, old: Vec3) {
-        model.set_gravity_to(old);
+    /// Undoes the last [`Self::change_load`] that converged.
+    fn undo_load(&mut self, model: &mut P, old: StripLoad) {
+        model.set_load(old);
         self.state.clone_from(&self.backup);
     }
 }
@@ -249,13 +265,18 @@ impl ShellRun {
         report
     }
 
-    /// Changes the strip's gravity from `old` to `g` (m/s²) and re-solves warm; a change that
-    /// does not converge is undone (the report says so).
-    pub(crate) fn set_gravity(&mut self, c: &mut CompiledShell, old: Vec3, g: Vec3) -> SolveReport {
+    /// Changes a load of the strip (gravity or a point force) from `old` to `new` and
+    /// re-solves warm; a change that does not converge is undone (the report says so).
+    pub(crate) fn set_load(
+        &mut self,
+        c: &mut CompiledShell,
+        old: StripLoad,
+        new: StripLoad,
+    ) -> SolveReport {
         let report = match (&mut self.runs, &mut c.model) {
-            (Runs::Midedge(r), StripModel::Midedge(m)) => r.change_gravity(m, old, g),
-            (Runs::Bspline(r), StripModel::Bspline(m)) => r.change_gravity(m, old, g),
-            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.change_gravity(m, old, g),
+            (Runs::Midedge(r), StripModel::Midedge(m)) => r.change_load(m, old, new),
+            (Runs::Bspline(r), StripModel::Bspline(m)) => r.change_load(m, old, new),
+            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.change_load(m, old, new),
             _ => unreachable!("a run is built from its own model"),
         };
         if report.converged() {
@@ -268,12 +289,12 @@ impl ShellRun {
         report
     }
 
-    /// Undoes a converged [`Self::set_gravity`] (another structure of the edit failed).
-    pub(crate) fn undo_gravity(&mut self, c: &mut CompiledShell, old: Vec3) {
+    /// Undoes a converged [`Self::set_load`] (another structure of the edit failed).
+    pub(crate) fn undo_load(&mut self, c: &mut CompiledShell, old: StripLoad) {
         match (&mut self.runs, &mut c.model) {
-            (Runs::Midedge(r), StripModel::Midedge(m)) => r.undo_gravity(m, old),
-            (Runs::Bspline(r), StripModel::Bspline(m)) => r.undo_gravity(m, old),
-            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.undo_gravity(m, old),
+            (Runs::Midedge(r), StripModel::Midedge(m)) => r.undo_load(m, old),
+            (Runs::Bspline(r), StripModel::Bspline(m)) => r.undo_load(m, old),
+            (Runs::MidedgeContact(r), StripModel::Midedge(m)) => r.undo_load(m, old),
             _ => unreachable!("a run is built from its own model"),
         }
     }

@@ -146,6 +146,14 @@ impl Shell {
         &self.point_forces
     }
 
+    /// Sets point force `k` (in the order they were built) to `force` (N at load factor 1).
+    ///
+    /// # Panics
+    /// If there is no point force `k` (callers check the index against the scene).
+    pub fn set_point_force(&mut self, k: usize, force: Vec3) {
+        self.point_forces[k].1 = force;
+    }
+
     /// What the load factor drives (gravity by default).
     pub fn load_path(&self) -> LoadPath {
         self.load_path
