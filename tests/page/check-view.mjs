@@ -11,10 +11,11 @@
 //  3. Euler column: push a straight clamped column past its Euler load (scenes/euler_column.toml,
 //     unstable = "keep"): the page marks it unstable; "Snap to the stable branch" buckles it
 //     and the mark goes.
-//  3b. point forces (scenes/point_forces.toml): one arrow per dead force, tip at its vertex;
-//     the panel's editor refuses an empty box, sets the tip force, and the page reaches the
-//     equilibrium of `slender solve` with that force in the file (1e-9 of the length); the
-//     saved scene round-trips; a force that does not exist is refused, the equilibrium kept.
+//  3b. point forces (scenes/point_forces.toml): one arrow per dead force of the cable and of
+//     the flat cable, tip at its vertex; the panel's editor refuses an empty box, sets the
+//     cable's tip force and the strip's force, and the page reaches the equilibrium of
+//     `slender solve` with those forces in the file (1e-9 of the length); the saved scene
+//     round-trips; a force that does not exist is refused, the equilibrium kept.
 //  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar and a ramp read
 //     from an OBJ file): each is a mesh of the three.js scene, tagged with its obstacle, at its
 //     pose (the ball's bounds, the box's corners, the ramp's vertices as in the file); the
@@ -72,8 +73,8 @@ function startView(scene) {
   });
 }
 
-/** `slender solve` of TOML text; the positions of every rod at the last step. */
-function solveScene(name, text) {
+/** `slender solve` of TOML text; the result of the last step (result.json). */
+function solveSceneResult(name, text) {
   const file = join(out, `${name}.toml`);
   writeFileSync(file, text);
   const dir = join(out, `${name}-solve`);
@@ -81,7 +82,12 @@ function solveScene(name, text) {
   const steps = readdirSync(dir).filter((d) => d.startsWith("step_")).sort();
   const last = JSON.parse(readFileSync(join(dir, steps.at(-1), "result.json"), "utf8"));
   if (!last.converged) fail(`${name}: slender solve did not converge`);
-  return last.rods.map((r) => r.positions);
+  return last;
+}
+
+/** `slender solve` of TOML text; the positions of every rod at the last step. */
+function solveScene(name, text) {
+  return solveSceneResult(name, text).rods.map((r) => r.positions);
 }
 
 /** Largest distance between corresponding vertices over the rods, over `length`. */
@@ -254,28 +260,28 @@ try {
     return found;
   });
   const arrowsMatch = (arrows, state) => state.rods[0].forces.every((f, k) => {
-    const a = arrows.find((x) => x.load[0] === 0 && x.load[1] === k);
+    const a = arrows.find((x) => x.load[0] === "rod" && x.load[1] === 0 && x.load[2] === k);
     const n = Math.hypot(...f.force);
     return a && Math.hypot(...a.tip.map((x, i) => x - f.position[i])) <= 1e-6
       && a.dir.every((x, i) => Math.abs(x - f.force[i] / n) <= 1e-6);
   });
   const rows = await s3b.page.locator("#loads .force-apply").count();
   const boxShown = await s3b.page.evaluate(() => !document.getElementById("loads-box").hidden);
-  check(boxShown && rows === 2, `point forces: the panel lists both forces with an editor (${rows} rows)`);
+  check(boxShown && rows === 3, `point forces: the panel lists the cable's two forces and the strip's one with an editor (${rows} rows)`);
   const state0 = await s3b.page.evaluate(() => window.slender.state());
   const arrows0 = await loadArrows(s3b.page);
-  check(arrows0.length === 2 && arrowsMatch(arrows0, state0),
+  check(arrows0.length === 3 && arrowsMatch(arrows0, state0),
     `point forces: one arrow per force, its tip at the loaded vertex, along the force (${arrows0.length} arrows)`);
   // An empty box is refused in the page (it would read as 0), with the field named.
   await s3b.page.fill("#f-0-0-x", "");
-  await s3b.page.click('#loads .force-apply[data-force="0"]');
+  await s3b.page.click('#loads .force-apply[data-load="f-0-0"]');
   const emptyRefused = await s3b.page.evaluate(() => window.slender.errors.splice(0));
   check(emptyRefused.length === 1 && emptyRefused[0].field === "rods[0].forces[0].force",
     `point forces: an empty box is refused naming ${emptyRefused[0]?.field}`);
   // The tip force edited through the panel: type, Apply, the re-solve from the last equilibrium.
   const newForce = [0.01, -0.005, -0.05];
   for (const [i, c] of ["x", "y", "z"].entries()) await s3b.page.fill(`#f-0-0-${c}`, String(newForce[i]));
-  await s3b.page.click('#loads .force-apply[data-force="0"]');
+  await s3b.page.click('#loads .force-apply[data-load="f-0-0"]');
   await s3b.page.waitForFunction((f) => window.slender.state().rods[0].forces[0].force.every((x, i) => x === f[i]), newForce, { timeout: 20000 });
   const edited = await s3b.page.evaluate(() => window.slender.state());
   check(edited.converged && edited.rods[0].forces[0].force.join() === newForce.join(), `point forces: the panel set the tip force to [${newForce}] (converged: ${edited.converged})`);
@@ -287,10 +293,29 @@ try {
   check(tipMoved > 1e-3 && editGap <= 1e-9, `point forces: the edited equilibrium = slender solve's with the force in the file, to 1e-9 of the length (${editGap.toExponential(2)})`);
   const arrows1 = await loadArrows(s3b.page);
   check(arrowsMatch(arrows1, edited), "point forces: the arrows follow the edit (tip at the moved vertex, along the new force)");
+  // The flat cable's force, edited the same way: the strip's equilibrium = slender solve's.
+  const stripForce = [0.0, -0.02, 0.004];
+  for (const [i, c] of ["x", "y", "z"].entries()) await s3b.page.fill(`#fs-0-0-${c}`, String(stripForce[i]));
+  await s3b.page.click('#loads .force-apply[data-load="fs-0-0"]');
+  await s3b.page.waitForFunction((f) => window.slender.state().shells[0].forces[0].force.every((x, i) => x === f[i]), stripForce, { timeout: 20000 });
+  const stripEdited = await s3b.page.evaluate(() => window.slender.state());
+  const stripText = forceText.replace("force = [0.0, -0.005, 0.0]", `force = [${stripForce.map((x) => x.toFixed(3)).join(", ")}]`);
+  const stripCold = solveSceneResult("point_forces_strip_cold", stripText).shells[0].positions;
+  const stripGap = maxRelativeDistance([stripEdited.shells[0].positions], [stripCold], 0.2);
+  const stripMoved = Math.hypot(...stripEdited.shells[0].positions.at(-1).map((x, k) => x - state0.shells[0].positions.at(-1)[k]));
+  console.log(`view test: flat-cable force edited in the panel: its corner moved ${(stripMoved * 1000).toFixed(2)} mm; every vertex within ${stripGap.toExponential(2)} of its length of slender solve with the new force in the file`);
+  check(stripMoved > 1e-3 && stripGap <= 1e-9, `point forces: the strip's edited equilibrium = slender solve's, to 1e-9 of its length (${stripGap.toExponential(2)})`);
+  const stripArrow = (await loadArrows(s3b.page)).find((x) => x.load[0] === "shell");
+  const sf = stripEdited.shells[0].forces[0];
+  check(stripArrow && Math.hypot(...stripArrow.tip.map((x, i) => x - sf.position[i])) <= 1e-6
+    && stripArrow.dir.every((x, i) => Math.abs(x - sf.force[i] / Math.hypot(...sf.force)) <= 1e-6),
+    "point forces: the strip's arrow at its loaded vertex, along the new force");
   const [forceDownload] = await Promise.all([s3b.page.waitForEvent("download"), s3b.page.click("#save")]);
   const forceSaved = readFileSync(await forceDownload.path(), "utf8");
-  const reSolved = solveScene("point_forces_saved", forceSaved);
-  const saveGap = maxRelativeDistance(edited.rods.map((r) => r.positions), reSolved, 1.0);
+  const reSolvedAll = solveSceneResult("point_forces_saved", forceSaved);
+  const reSolved = reSolvedAll.rods.map((r) => r.positions);
+  const saveGap = Math.max(maxRelativeDistance(stripEdited.rods.map((r) => r.positions), reSolved, 1.0),
+    maxRelativeDistance([stripEdited.shells[0].positions], [reSolvedAll.shells[0].positions], 0.2));
   check(saveGap <= 1e-9, `point forces: the saved scene re-solves to the page's equilibrium (${saveGap.toExponential(2)} of the length)`);
   // Through the page's channel: a force that does not exist is refused, the equilibrium kept.
   const keptForce = await s3b.page.evaluate(async () => {

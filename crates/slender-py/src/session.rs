@@ -271,6 +271,20 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Sets point force `force` of shell strip `shell` (its scene's `forces[force]`, a dead
+    /// force) to `value` (N) and re-solves the strip warm.
+    fn set_shell_force(
+        &mut self,
+        py: Python<'_>,
+        shell: usize,
+        force: usize,
+        value: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.set_shell_force(shell, force, value)))?;
+        edit(py, out)
+    }
+
     /// Follows every unstable equilibrium along its unstable mode to a stable one.
     fn follow_stable(&mut self, py: Python<'_>) -> PyResult<PyEditReport> {
         let inner = &mut self.inner;

@@ -269,6 +269,36 @@ def test_flat_cable_connector_drag() -> None:
     assert np.array_equal(s.results().shells[0].positions, back)
 
 
+def flat_cable(force: list) -> dict:
+    """A weightless 0.2 m strip clamped at its start, a force at the middle of its free edge."""
+    return {
+        "shells": [{
+            "name": "flat", "length": 0.2, "width": 0.01, "thickness": 5e-4,
+            "material": {"young": 5e9, "poisson": 0.3, "density": 1000.0},
+            "elements": 8, "width_elements": 2, "grading": {"kind": "uniform"},
+            "forces": [{"station": 8, "column": 1, "force": force}],
+        }]
+    }
+
+
+def test_flat_cable_force_edit_matches_a_cold_solve() -> None:
+    """A flat cable's point force edited from Python ends where a session of the scene with
+    that force starts (loaded from the flat strip), and bad input names the field."""
+    s = slender.Session(flat_cable([0.0, -0.005, 0.0]))
+    rep = s.set_shell_force(0, 0, [0.0, -0.02, 0.004])
+    assert rep.converged and rep.structures == []
+    here = s.results().shells[0].positions
+    cold = slender.Session(flat_cable([0.0, -0.02, 0.004])).results().shells[0].positions
+    assert np.abs(here[-1] - s.results().shells[0].positions[0]).max() > 0.02  # a large deflection
+    assert np.abs(here - cold).max() <= 1e-9 * 0.2
+    assert s.scene()["shells"][0]["forces"][0]["force"] == [0.0, -0.02, 0.004]
+    with pytest.raises(slender.SceneError, match=r"shells\[0\]\.forces\[2\]"):
+        s.set_shell_force(0, 2, [0.0, 0.0, 1.0])
+    with pytest.raises(slender.SceneError, match=r"shells\[0\]\.forces\[0\]\.force"):
+        s.set_shell_force(0, 0, [0.0, float("nan"), 0.0])
+    assert np.array_equal(s.results().shells[0].positions, here)
+
+
 def test_force_edit_matches_a_cold_solve() -> None:
     """A tip force edited in a session ends where a session of the scene with that force
     starts (loads ramped from rest), and the weightless tip moves by F L³/(3EI)."""

@@ -80,6 +80,14 @@ impl CompiledShell {
         }
     }
 
+    /// Elements across the width, n_W: the result grid has n_W + 1 columns.
+    pub fn width_elements(&self) -> usize {
+        match &self.model {
+            StripModel::Midedge(s) => s.mesh().n_width,
+            StripModel::Bspline(s) => s.elements().1,
+        }
+    }
+
     /// The flat strip's points at the stations and columns of the result grid: vertex (i, j)
     /// is i·(n_W + 1) + j (m).
     pub fn rest_positions(&self) -> Vec<Vec3> {

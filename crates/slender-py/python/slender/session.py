@@ -232,6 +232,14 @@ class Session:
         report = self._inner.set_force(r, f, _vec3(value, "value"))
         return self._checked(report, check, f"changing rods[{r}].forces[{f}]")
 
+    def set_shell_force(self, shell: int, force: int, value: Sequence[float], *, check: bool = True) -> EditReport:
+        """Sets point force ``force`` of shell strip ``shell`` (the scene's
+        ``shells[shell].forces[force]``, a dead force) to ``value`` (N) and re-solves the strip
+        warm."""
+        s, f = _index(shell, "shell"), _index(force, "force")
+        report = self._inner.set_shell_force(s, f, _vec3(value, "value"))
+        return self._checked(report, check, f"changing shells[{s}].forces[{f}]")
+
     def follow_stable(self) -> EditReport:
         """Follows every unstable equilibrium along its unstable mode to a stable one."""
         return self._inner.follow_stable()

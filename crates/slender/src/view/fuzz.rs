@@ -356,6 +356,55 @@ forces = [{ vertex = 9, force = [0.0, 0.0, -0.01] }]"#,
 }
 
 #[test]
+fn a_shell_force_message_sets_the_strips_force_and_a_bad_one_keeps_the_equilibrium() {
+    let text = SCENE.replace(
+        r#"clamps = [{ edge = "start" }, { edge = "end", offset = [-0.01, 0.0, 0.0] }]"#,
+        r#"clamps = [{ edge = "start" }, { edge = "end", offset = [-0.01, 0.0, 0.0] }]
+forces = [{ station = 2, column = 1, force = [0.0, -0.01, 0.0] }]"#,
+    );
+    let mut s = Session::new(toml::from_str(&text).unwrap()).unwrap();
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "force", "shell": 0, "force": 0, "value": [0.0, -0.05, 0.01]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    assert_eq!(s.spec().shells[0].forces[0].force, [0.0, -0.05, 0.01]);
+    // The view lists it where the page draws it: station 2, column 1 of a 4 × 1 grid is
+    // vertex 2·2 + 1.
+    let shown = &v["view"]["shells"][0]["forces"][0];
+    assert_eq!(shown["force"], json!([0.0, -0.05, 0.01]), "{v}");
+    assert_eq!(shown["vertex"], json!(5));
+    assert_eq!(shown["position"], v["view"]["shells"][0]["positions"][5]);
+    for (message, field) in [
+        (
+            r#"{"op": "force", "shell": 0, "force": 0, "value": [0, 1e300, 0]}"#,
+            "shells[0].forces[0].force",
+        ),
+        (
+            r#"{"op": "force", "shell": 0, "force": 1, "value": [0, 0, 1]}"#,
+            "shells[0].forces[1]",
+        ),
+        (
+            r#"{"op": "force", "shell": 3, "force": 0, "value": [0, 0, 1]}"#,
+            "shells[3].forces[0]",
+        ),
+        (
+            r#"{"op": "force", "rod": 0, "shell": 0, "force": 0, "value": [0, 0, 1]}"#,
+            "shell",
+        ),
+    ] {
+        let (v, kept) = exchange(&mut s, message);
+        assert_eq!(error_of(&v).0, field, "{v}");
+        assert!(kept, "{message}");
+    }
+    let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
+    let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
+    assert_eq!(saved.shells[0].forces[0].force, [0.0, -0.05, 0.01]);
+}
+
+#[test]
 fn every_rod_model_is_dragged_to_the_equilibrium_of_the_equivalent_prescribed_motion() {
     // The drag a page sends for the end pin, and the same move as a motion stage of the scene
     // file (what `slender solve` runs): the same equilibrium, whatever the rod's formulation.
@@ -454,6 +503,9 @@ fn request() -> impl Strategy<Value = String> {
         vec3().prop_map(|g| format!(r#"{{"op": "gravity", "gravity": {g}}}"#)),
         (index(), index(), vec3()).prop_map(|(r, f, v)| format!(
             r#"{{"op": "force", "rod": {r}, "force": {f}, "value": {v}}}"#
+        )),
+        (index(), index(), vec3()).prop_map(|(r, f, v)| format!(
+            r#"{{"op": "force", "shell": {r}, "force": {f}, "value": {v}}}"#
         )),
         Just(r#"{"op": "follow_stable"}"#.to_string()),
         Just(r#"{"op": "unstable_policy", "policy": "keep"}"#.to_string()),

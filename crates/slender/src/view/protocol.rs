@@ -90,11 +90,16 @@ pub enum Request {
         /// Acceleration (m/s²).
         gravity: [f64; 3],
     },
-    /// Set a rod's point force (the scene's `forces[force]`, a dead force) to `value` (N).
+    /// Set a dead point force of a rod (the scene's `rods[rod].forces[force]`) or of a shell
+    /// strip (`shells[shell].forces[force]`) to `value` (N).
     Force {
-        /// Rod index.
-        rod: usize,
-        /// Index in the rod's `forces`.
+        /// Rod index (or give `shell`).
+        #[serde(default)]
+        rod: Option<usize>,
+        /// Shell strip index (or give `rod`).
+        #[serde(default)]
+        shell: Option<usize>,
+        /// Index in the rod's or strip's `forces`.
         force: usize,
         /// Force (N).
         value: [f64; 3],
@@ -360,9 +365,17 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             finite("gravity", gravity)?;
             Some(session.set_gravity(*gravity)?)
         }
-        Request::Force { rod, force, value } => {
+        Request::Force {
+            rod,
+            shell,
+            force,
+            value,
+        } => {
             finite("value", value)?;
-            Some(session.set_force(*rod, *force, *value)?)
+            match target_of(*rod, *shell)? {
+                Target::Rod(rod) => Some(session.set_force(rod, *force, *value)?),
+                Target::Shell(shell) => Some(session.set_shell_force(shell, *force, *value)?),
+            }
         }
         Request::FollowStable {} => Some(session.follow_stable()),
         Request::UnstablePolicy { policy } => {
@@ -418,12 +431,11 @@ fn target_of(rod: Option<usize>, shell: Option<usize>) -> Result<Target, ErrorRe
         (None, Some(s)) => Ok(Target::Shell(s)),
         (Some(_), Some(_)) => Err(ErrorReply {
             field: "shell".into(),
-            message: "give either `rod` (a rod's support) or `shell` (a strip's clamp), not both"
-                .into(),
+            message: "give either `rod` (a rod: its supports, its forces) or `shell` (a shell strip: its clamps, its forces), not both".into(),
         }),
         (None, None) => Err(ErrorReply {
             field: "rod".into(),
-            message: "missing: give `rod` (a rod's support) or `shell` (a strip's clamp)".into(),
+            message: "missing: give `rod` (a rod: its supports, its forces) or `shell` (a shell strip: its clamps, its forces)".into(),
         }),
     }
 }

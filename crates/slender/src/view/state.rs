@@ -179,10 +179,28 @@ pub struct ShellView {
     pub converged: bool,
     /// Its clamps, as handles (in the order of the scene's `clamps`).
     pub clamps: Vec<ShellClampView>,
+    /// Its dead point forces, in the order of the scene's `forces` (the index the `force`
+    /// edit names with `shell`).
+    pub forces: Vec<ShellForceView>,
     /// Distance (m) its mid-surface keeps from obstacles, h/2 (a contact's surface point is
     /// its vertex minus the normal times this plus the gap); `None` in a scene without
     /// obstacles.
     pub contact_radius: Option<f64>,
+}
+
+/// A point force on a strip: an arrow at its grid vertex; editable (`force` with `shell`).
+#[derive(Clone, Debug, Serialize)]
+pub struct ShellForceView {
+    /// Station along the length (0 … elements) and column across (0 … width_elements).
+    pub station: usize,
+    /// See `station`.
+    pub column: usize,
+    /// The loaded vertex of `positions`: station·(width_elements + 1) + column.
+    pub vertex: usize,
+    /// Where the vertex is now (m).
+    pub position: [f64; 3],
+    /// The force (N), fixed in space.
+    pub force: [f64; 3],
 }
 
 /// A clamp of a strip as a handle: the centre of its clamped edge and its orientation.
@@ -340,6 +358,23 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                     })
                 })
                 .collect(),
+            forces: {
+                let columns = scene.shells[i].width_elements() + 1;
+                session.spec().shells[i]
+                    .forces
+                    .iter()
+                    .map(|f| {
+                        let vertex = f.station * columns + f.column;
+                        ShellForceView {
+                            station: f.station,
+                            column: f.column,
+                            vertex,
+                            position: s.positions[vertex],
+                            force: f.force,
+                        }
+                    })
+                    .collect()
+            },
             contact_radius: scene
                 .contact
                 .as_ref()

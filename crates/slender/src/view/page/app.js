@@ -404,15 +404,29 @@ function updateArrows() {
 // ---------- point loads: arrows and the panel ----------
 
 const LOAD_ARROW = 0xef6c00;
-let loadArrows = []; // one ArrowHelper per dead point force, userData { load: [rod, index], force (N) }
+let loadArrows = []; // one ArrowHelper per dead point force, userData { load: [owner, index, k], force (N) }
 let loadsKey = null;
+
+/** Every point force of the scene: rods' (`owner` "rod") and shell strips' ("shell"), with the
+ *  edit that sets it and the id prefix of its panel inputs. */
+function pointLoads() {
+  const out = [];
+  view.rods.forEach((rod, r) => rod.forces.forEach((f, k) => out.push({
+    owner: "rod", index: r, k, f, id: `f-${r}-${k}`, field: `rods[${r}].forces[${k}].force`,
+    where: `${rod.name}, force ${k} at v ${f.vertex} (${fmtLength(f.at)})`,
+  })));
+  view.shells.forEach((sh, i) => sh.forces.forEach((f, k) => out.push({
+    owner: "shell", index: i, k, f, id: `fs-${i}-${k}`, field: `shells[${i}].forces[${k}].force`,
+    where: `${sh.name}, force ${k} at station ${f.station}, column ${f.column}`,
+  })));
+  return out;
+}
 
 /** Arrows of the dead point forces, their tips at the loaded vertices; lengths relative to the
  *  largest force now (labels give the values). Follower loads turn with the cable and are not
  *  drawn. */
 function updateLoadArrows() {
-  const dead = [];
-  view.rods.forEach((rod, r) => rod.forces.forEach((f, k) => { if (!f.follower) dead.push({ r, k, f }); }));
+  const dead = pointLoads().filter((l) => !l.f.follower);
   while (loadArrows.length < dead.length) {
     const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, LOAD_ARROW);
     world.add(a);
@@ -428,7 +442,7 @@ function updateLoadArrows() {
     if (!d) return;
     const f = v3(d.f.force);
     const n = f.length();
-    a.userData = { load: [d.r, d.k], force: n };
+    a.userData = { load: [d.owner, d.index, d.k], force: n };
     if (!show || n === 0) return;
     a.visible = true;
     const len = Math.max(0.04 * sceneSize, n * scale);
@@ -445,31 +459,31 @@ function updateLoadArrows() {
 /** The panel's force editors: rebuilt when the list of forces changes, values refreshed on
  *  every update except in the row being typed in. */
 function updateLoadsPanel() {
-  const key = view.rods.map((rod) => rod.forces.map((f) => `${f.vertex}${f.follower}`).join(",")).join(";");
-  const any = view.rods.some((rod) => rod.forces.length > 0);
-  $("loads-box").hidden = !any;
+  const loads = pointLoads();
+  const key = loads.map((l) => `${l.id}${l.f.follower}`).join(",");
+  $("loads-box").hidden = loads.length === 0;
   if (key !== loadsKey) {
     loadsKey = key;
-    $("loads").innerHTML = view.rods.flatMap((rod, r) => rod.forces.map((f, k) => {
-      const where = `${rod.name}, force ${k} at v ${f.vertex} (${fmtLength(f.at)})`;
-      if (f.follower) return `<div class="load"><span>${where}: follower [${f.force.map((x) => x.toPrecision(3)).join(", ")}]</span></div>`;
+    $("loads").innerHTML = loads.map((l) => {
+      if (l.f.follower) return `<div class="load"><span>${l.where}: follower [${l.f.force.map((x) => x.toPrecision(3)).join(", ")}]</span></div>`;
       const inputs = ["x", "y", "z"].map((c) =>
-        `<input id="f-${r}-${k}-${c}" type="number" step="any" aria-label="${rod.name} force ${k} ${c} (N)">`).join("");
-      return `<div class="load"><span>${where}</span><div class="vec">${inputs}<button class="force-apply" data-rod="${r}" data-force="${k}">Apply</button></div></div>`;
-    })).join("");
+        `<input id="${l.id}-${c}" type="number" step="any" aria-label="${l.where} ${c} (N)">`).join("");
+      return `<div class="load"><span>${l.where}</span><div class="vec">${inputs}<button class="force-apply" data-load="${l.id}">Apply</button></div></div>`;
+    }).join("");
     for (const b of document.querySelectorAll("#loads .force-apply")) {
       b.addEventListener("click", () => {
-        const rod = Number(b.dataset.rod), force = Number(b.dataset.force);
-        const value = readVector(["x", "y", "z"].map((c) => `f-${rod}-${force}-${c}`), `rods[${rod}].forces[${force}].force`);
-        if (value) edit({ op: "force", rod, force, value });
+        const l = pointLoads().find((x) => x.id === b.dataset.load);
+        if (!l) return;
+        const value = readVector(["x", "y", "z"].map((c) => `${l.id}-${c}`), l.field);
+        if (value) edit({ op: "force", [l.owner]: l.index, force: l.k, value });
       });
     }
   }
-  const typing = document.activeElement?.id?.startsWith("f-") ? document.activeElement.id.split("-").slice(0, 3).join("-") : null;
-  view.rods.forEach((rod, r) => rod.forces.forEach((f, k) => {
-    if (f.follower || typing === `f-${r}-${k}`) return;
-    ["x", "y", "z"].forEach((c, i) => ($(`f-${r}-${k}-${c}`).value = f.force[i]));
-  }));
+  const typing = document.activeElement?.tagName === "INPUT" ? document.activeElement.id.replace(/-[xyz]$/, "") : null;
+  for (const l of loads) {
+    if (l.f.follower || typing === l.id) continue;
+    ["x", "y", "z"].forEach((c, i) => ($(`${l.id}-${c}`).value = l.f.force[i]));
+  }
 }
 
 /** Three numbers from the inputs `ids`, or null after an error naming `field` (an empty box
