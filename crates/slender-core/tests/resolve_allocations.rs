@@ -87,7 +87,7 @@ fn edit_allocations(
 
 /// +1 for even k, −1 for odd k.
 fn sign(k: usize) -> f64 {
-    if k % 2 == 0 {
+    if k.is_multiple_of(2) {
         1.0
     } else {
         -1.0

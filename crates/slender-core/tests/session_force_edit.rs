@@ -4,6 +4,9 @@
 //! enough to need load steps; a small change of a weightless cantilever's tip force moves the
 //! tip by beam theory's ΔF L³/(3EI); bad input names its field and changes nothing.
 
+mod common;
+
+use common::max_distance;
 use slender_core::scene::{Scene, Session};
 
 /// A 1 m cantilever (d = 6 mm, E = 1 GPa) of `model`, `elements` elements, clamped at the
@@ -42,14 +45,6 @@ fn positions(s: &Session) -> Vec<[f64; 3]> {
     s.results(0, None, 1.0, 1).rods[0].positions.clone()
 }
 
-/// Largest distance (m) between corresponding vertices.
-fn worst_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt())
-        .fold(0.0, f64::max)
-}
-
 /// Edits the tip force of a session from `from` to `to` and compares with a cold solve at
 /// `to`: returns the worst vertex distance (m), the structures the edit re-solved and the
 /// tip after the edit.
@@ -65,7 +60,7 @@ fn edit_against_cold(
     let cold = Session::new(cantilever(model, 20, to, -9.81, extra)).expect("solves");
     assert_eq!(s.spec().rods[0].forces[0].force, to);
     let here = positions(&s);
-    let d = worst_distance(&here, &positions(&cold));
+    let d = max_distance(&here, &positions(&cold));
     eprintln!(
         "{model}{extra}: {from:?} → {to:?} N: {} iterations, {} load steps, {d:.1e} m from the cold solve",
         r.iterations, r.load_steps
@@ -125,7 +120,7 @@ fn a_saved_scene_after_a_force_edit_solves_to_the_same_equilibrium() {
     let mut s = Session::new(cantilever("der", 20, [0.0, 0.0, -0.01], -9.81, "")).unwrap();
     s.set_force(0, 0, [0.01, 0.0, -0.05]).unwrap();
     let again = Session::new(s.saved()).expect("the saved scene solves");
-    let d = worst_distance(&positions(&s), &positions(&again));
+    let d = max_distance(&positions(&s), &positions(&again));
     assert!(d <= 1e-9, "{d:e} m apart");
 }
 
@@ -194,7 +189,7 @@ fn a_force_change_that_does_not_converge_keeps_the_equilibrium_and_puts_the_forc
         assert!(r.converged, "{r:?}");
     }
     let (here, there) = (positions(&s), positions(&fresh));
-    let d = worst_distance(&here, &there);
+    let d = max_distance(&here, &there);
     let sag = -there.last().unwrap()[2];
     eprintln!("after a failed edit: {d:.1e} m from a fresh session, tip sag {sag:.3e} m");
     assert!(d <= 1e-12 * sag, "{d:e} m, tip sag {sag:e} m");

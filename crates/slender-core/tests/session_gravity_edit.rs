@@ -3,6 +3,9 @@
 //! every rod model; a change that does not converge keeps the equilibrium and puts the loads
 //! back exactly, so that later edits end where they end in a session that never tried it.
 
+mod common;
+
+use common::max_distance;
 use slender_core::scene::{Scene, Session};
 
 /// A 1 m cantilever (d = 6 mm, E = 1 GPa, ρ = 1400 kg/m³) of `model` with `elements`
@@ -28,14 +31,6 @@ fn positions(s: &Session) -> Vec<[f64; 3]> {
     s.results(0, None, 1.0, 1).rods[0].positions.clone()
 }
 
-/// Largest distance (m) between corresponding vertices.
-fn worst_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt())
-        .fold(0.0, f64::max)
-}
-
 #[test]
 fn a_gravity_edit_ends_where_a_cold_solve_with_that_gravity_ends() {
     let (from, to) = ([0.0, 0.0, -9.81], [0.0, 4.0, -20.0]);
@@ -46,7 +41,7 @@ fn a_gravity_edit_ends_where_a_cold_solve_with_that_gravity_ends() {
         assert_eq!(s.spec().gravity, to);
         let cold = Session::new(cantilever(model, 20, to)).unwrap();
         let (here, there) = (positions(&s), positions(&cold));
-        let d = worst_distance(&here, &there);
+        let d = max_distance(&here, &there);
         let sag = -there.last().unwrap()[2];
         eprintln!("{model}: gravity edit vs cold solve {d:.1e} m (tip sag {sag:.3} m)");
         assert!(sag > 0.1, "{model}: a large deflection ({sag} m)");
@@ -86,7 +81,7 @@ fn a_gravity_change_that_does_not_converge_keeps_the_equilibrium_and_puts_the_lo
             assert!(r.converged, "{model}: {r:?}");
         }
         let (here, there) = (positions(&s), positions(&fresh));
-        let d = worst_distance(&here, &there);
+        let d = max_distance(&here, &there);
         let sag = -there.last().unwrap()[2];
         eprintln!(
             "{model}: after a failed edit: {d:.1e} m from a fresh session, tip sag {sag:.3e} m"

@@ -6,6 +6,9 @@
 //!
 //! Run with `cargo test -p slender-core --release --test session_shell_force_edit`.
 
+mod common;
+
+use common::max_distance;
 use slender_core::scene::{Scene, Session};
 
 const LENGTH: f64 = 0.2;
@@ -38,14 +41,6 @@ forces = [{{ station = 8, column = 1, force = {force:?} }}]
 
 fn positions(session: &Session) -> Vec<[f64; 3]> {
     session.results(0, None, 1.0, 1).shells[0].positions.clone()
-}
-
-/// Largest distance (m) between corresponding points.
-fn max_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt())
-        .fold(0.0, f64::max)
 }
 
 /// The y of the middle of the free edge (the loaded point: vertex 8·3 + 1).

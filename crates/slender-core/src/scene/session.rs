@@ -448,6 +448,27 @@ impl Session {
         r
     }
 
+    /// The report of an edit of a shell strip (`what`, e.g. "the move"), solved on its own: no
+    /// rod structure was re-solved.
+    fn strip_summary(&self, report: &SolveReport, what: &str) -> EditReport {
+        let reason = match &report.status {
+            SolveStatus::Converged => None,
+            SolveStatus::NotConverged { reason } => Some(format!(
+                "{what} did not converge ({reason}); the last equilibrium is kept"
+            )),
+        };
+        EditReport {
+            converged: reason.is_none(),
+            reason,
+            structures: StructureList::new(),
+            iterations: report.iterations,
+            load_steps: report.load_steps,
+            relative_residual: report.relative_residual,
+            stable: self.runs.iter().all(|r| r.stability.stable),
+            followed_unstable_mode: false,
+        }
+    }
+
     /// Moves support `support` of rod `rod` to `target` and re-solves warm from the last
     /// equilibrium. A move that does not converge leaves the support and the equilibrium where
     /// they were and says so. Errors (nothing changed): an unknown support, a non-finite pose,
@@ -848,25 +869,10 @@ impl Session {
         let old = StripLoad::PointForce(force, Vec3::from(spec.force));
         let new = StripLoad::PointForce(force, Vec3::from(value));
         let report = self.shells[shell].set_load(&mut self.scene.shells[shell], old, new);
-        let reason = (!report.converged()).then(|| {
-            format!(
-                "the force change did not converge ({:?}); the last equilibrium is kept",
-                report.status
-            )
-        });
-        if reason.is_none() {
+        if report.converged() {
             self.spec.shells[shell].forces[force].force = value;
         }
-        Ok(EditReport {
-            converged: reason.is_none(),
-            reason,
-            structures: StructureList::new(),
-            iterations: report.iterations,
-            load_steps: report.load_steps,
-            relative_residual: report.relative_residual,
-            stable: self.runs.iter().all(|r| r.stability.stable),
-            followed_unstable_mode: false,
-        })
+        Ok(self.strip_summary(&report, "the force change"))
     }
 
     /// Adds a support to rod `rod` where the rod is now (a clip or pin holds the current
@@ -1358,22 +1364,7 @@ impl Session {
             ));
         }
         let report = self.shells[shell].move_clamp(c, clamp, rotation, translation, steps);
-        let reason = match &report.status {
-            SolveStatus::Converged => None,
-            SolveStatus::NotConverged { reason } => Some(format!(
-                "the move did not converge ({reason}); the last equilibrium is kept"
-            )),
-        };
-        Ok(EditReport {
-            converged: reason.is_none(),
-            reason,
-            structures: StructureList::new(),
-            iterations: report.iterations,
-            load_steps: report.load_steps,
-            relative_residual: report.relative_residual,
-            stable: self.runs.iter().all(|r| r.stability.stable),
-            followed_unstable_mode: false,
-        })
+        Ok(self.strip_summary(&report, "the move"))
     }
 
     /// Moves clamp `clamp` of strip `shell` by a rotation vector (rad, about the centre of

@@ -1,9 +1,18 @@
 //! Shared references of the scene tests: Euler's elastica by elliptic integrals; the
-//! dropped rod of the time-stepped contact tests ([`dropped_rod`]).
+//! dropped rod of the time-stepped contact tests ([`dropped_rod`]); the distance between two
+//! equilibria.
 
 #![allow(dead_code)]
 
 pub mod dropped_rod;
+
+/// Largest distance (m) between corresponding points of two shapes.
+pub fn max_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+}
 
 /// Complete elliptic integrals K(m), E(m) of parameter m = k² by the arithmetic–geometric mean.
 pub fn elliptic_ke(m: f64) -> (f64, f64) {
