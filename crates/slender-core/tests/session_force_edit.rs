@@ -3,10 +3,13 @@
 //! loads ramped from rest), for every rod model, across an interior clamp, for a change large
 //! enough to need load steps; a small change of a weightless cantilever's tip force moves the
 //! tip by beam theory's ΔF L³/(3EI); bad input names its field and changes nothing.
+//! Adding a force at an arc length (snapped to the file's nearest vertex, across a vertex
+//! inserted for a clip) and removing one end where cold solves of the edited files end.
 
 mod common;
 
 use common::max_distance;
+use slender_core::scene::spec::VertexRef;
 use slender_core::scene::{Scene, Session};
 
 /// A 1 m cantilever (d = 6 mm, E = 1 GPa) of `model`, `elements` elements, clamped at the
@@ -193,4 +196,114 @@ fn a_force_change_that_does_not_converge_keeps_the_equilibrium_and_puts_the_forc
     let sag = -there.last().unwrap()[2];
     eprintln!("after a failed edit: {d:.1e} m from a fresh session, tip sag {sag:.3e} m");
     assert!(d <= 1e-12 * sag, "{d:e} m, tip sag {sag:e} m");
+}
+
+/// The cantilever with a clip given by arc length (0.33 m: a vertex inserted between the
+/// file's vertices 6 and 7, so the file's vertex 12 is the rod's vertex 13) and, besides the
+/// tip force, the forces `more` (TOML entries).
+fn clipped_with(model: &str, more: &str) -> Scene {
+    let text = toml::to_string(&cantilever(
+        model,
+        20,
+        [0.0, 0.0, -0.01],
+        -9.81,
+        r#", { kind = "clip", at = 0.33 }"#,
+    ))
+    .unwrap();
+    let mut scene: Scene = toml::from_str(&text).unwrap();
+    let extra: Scene = toml::from_str(&format!(
+        "[[rods]]\nname = \"x\"\nelements = 1\ncenterline = {{ kind = \"straight\", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 1.0 }}\nsection = {{ shape = \"circle\", diameter = 0.006 }}\nmaterial = {{ young = 1.0e9, poisson = 0.4, density = 1400.0 }}\nforces = [{more}]\n"
+    ))
+    .unwrap();
+    scene.rods[0]
+        .forces
+        .extend(extra.rods[0].forces.iter().cloned());
+    scene
+}
+
+#[test]
+fn an_added_force_ends_where_a_cold_solve_with_it_in_the_file_ends() {
+    for model in ["der", "cosserat", "se3"] {
+        let mut s = Session::new(clipped_with(model, "")).unwrap();
+        // 0.62 m is nearest the file's vertex 12 (0.60 m), the rod's vertex 13.
+        let r = s
+            .add_force(0, 0.62, [0.0, 0.01, -0.04])
+            .expect("a valid force");
+        assert!(r.converged, "{model}: {r:?}");
+        let added = &s.spec().rods[0].forces[1];
+        assert_eq!(added.force, [0.0, 0.01, -0.04]);
+        assert_eq!(added.vertex, VertexRef::Index(12), "{model}");
+        assert_eq!(s.compiled().rods[0].force_vertices, [21, 13], "{model}");
+        let cold = Session::new(clipped_with(
+            model,
+            "{ vertex = 12, force = [0.0, 0.01, -0.04] }",
+        ))
+        .unwrap();
+        let d = max_distance(&positions(&s), &positions(&cold));
+        eprintln!(
+            "{model}: added force vs cold solve {d:.1e} m ({} iterations)",
+            r.iterations
+        );
+        assert!(d <= 1e-9, "{model}: {d:e} m");
+        // And removed: back to the scene without it.
+        let r = s.remove_force(0, 1).expect("force 1 exists");
+        assert!(r.converged, "{model}: {r:?}");
+        assert_eq!(s.spec().rods[0].forces.len(), 1);
+        let without = Session::new(clipped_with(model, "")).unwrap();
+        let d = max_distance(&positions(&s), &positions(&without));
+        eprintln!("{model}: removed again vs cold solve {d:.1e} m");
+        assert!(d <= 1e-9, "{model}: {d:e} m");
+    }
+}
+
+#[test]
+fn removing_the_first_force_renumbers_the_rest() {
+    let mut s = Session::new(clipped_with(
+        "der",
+        "{ vertex = 5, force = [0.0, -0.02, 0.0] }",
+    ))
+    .unwrap();
+    let r = s.remove_force(0, 0).expect("force 0 exists");
+    assert!(r.converged, "{r:?}");
+    assert_eq!(s.spec().rods[0].forces.len(), 1);
+    assert_eq!(s.spec().rods[0].forces[0].force, [0.0, -0.02, 0.0]);
+    let mut cold = clipped_with("der", "{ vertex = 5, force = [0.0, -0.02, 0.0] }");
+    cold.rods[0].forces.remove(0);
+    let d = max_distance(&positions(&s), &positions(&Session::new(cold).unwrap()));
+    assert!(d <= 1e-9, "{d:e} m");
+    let again = Session::new(s.saved()).expect("the saved scene solves");
+    assert!(max_distance(&positions(&s), &positions(&again)) <= 1e-9);
+}
+
+#[test]
+fn bad_force_additions_and_removals_name_the_field_and_change_nothing() {
+    let mut s = Session::new(clipped_with("der", "")).unwrap();
+    let before = positions(&s);
+    let errors = [
+        s.add_force(2, 0.5, [0.0, 0.0, 1.0])
+            .expect_err("no rod 2")
+            .path,
+        s.add_force(0, 1.5, [0.0, 0.0, 1.0])
+            .expect_err("off the rod")
+            .path,
+        s.add_force(0, f64::NAN, [0.0, 0.0, 1.0])
+            .expect_err("NaN at")
+            .path,
+        s.add_force(0, 0.5, [0.0, f64::INFINITY, 1.0])
+            .expect_err("infinite")
+            .path,
+        s.remove_force(0, 4).expect_err("no force 4").path,
+    ];
+    assert_eq!(
+        errors,
+        [
+            "rods[2]",
+            "rods[0].forces.at",
+            "rods[0].forces.at",
+            "rods[0].forces[1].force",
+            "rods[0].forces[4]"
+        ]
+    );
+    assert_eq!(positions(&s), before);
+    assert_eq!(s.spec().rods[0].forces.len(), 1);
 }

@@ -31,7 +31,8 @@ use super::shell_contact_run::StripContact;
 use super::shell_run::{move_steps, pose_change, ShellRun, StripLoad, MAX_MOVE_STEPS};
 use super::shells::ShellResult;
 use super::spec::{
-    MotionStage, RodEnd, Scene, ShellClampSpec, SupportKind, SupportSpec, UnstablePolicy,
+    MotionStage, PointForceSpec, RodEnd, Scene, ShellClampSpec, SupportKind, SupportSpec,
+    UnstablePolicy, VertexRef,
 };
 use crate::bspline_shell::StripEnd;
 
@@ -894,6 +895,91 @@ impl Session {
             return Err(SceneError::new("rods", format!("{rod}: no such rod")));
         };
         r.supports.push(support);
+        self.rebuild(spec)
+    }
+
+    /// Adds a dead point force to rod `rod` at the vertex of the file's mesh nearest to rest
+    /// arc length `at` (m) and sets it to `value` (N): the force is added at zero, which
+    /// leaves the equilibrium where it is, and then changed along the load path as
+    /// [`Self::set_force`] does, warm from the last equilibrium. The new force is the last of
+    /// the rod's `forces`. If the change does not converge the force is taken away again and
+    /// the equilibrium kept (the report says so). Errors (nothing changed): an unknown rod,
+    /// `at` off the rod, a non-finite or absurd value.
+    pub fn add_force(
+        &mut self,
+        rod: usize,
+        at: f64,
+        value: [f64; 3],
+    ) -> Result<EditReport, SceneError> {
+        let Some(compiled) = self.scene.rods.get(rod) else {
+            return Err(SceneError::new(
+                format!("rods[{rod}]"),
+                format!("no such rod (the scene has {})", self.scene.rods.len()),
+            ));
+        };
+        let arc = &compiled.node_arclengths;
+        let length = arc.last().copied().unwrap_or(0.0);
+        if !(at.is_finite() && (0.0..=length).contains(&at)) {
+            return Err(SceneError::new(
+                format!("rods[{rod}].forces.at"),
+                format!(
+                    "{at} m: off the rod (its rest length is {length} m; valid: 0 ≤ at ≤ {length})"
+                ),
+            ));
+        }
+        let k = self.spec.rods[rod].forces.len();
+        check_force_value(&|| format!("rods[{rod}].forces[{k}]"), value)?;
+        // The file's vertex nearest to `at` (forces name vertices of the file's mesh).
+        let base = (0..compiled.base_vertices.len())
+            .min_by(|&a, &b| {
+                let d = |v: usize| (arc[compiled.base_vertices[v]] - at).abs();
+                d(a).total_cmp(&d(b))
+            })
+            .expect("a rod has vertices");
+        let mut spec = self.spec.clone();
+        spec.rods[rod].forces.push(PointForceSpec {
+            vertex: VertexRef::Index(base),
+            force: [0.0; 3],
+            follower: false,
+        });
+        let added = self.rebuild(spec)?;
+        if value == [0.0; 3] {
+            return Ok(added);
+        }
+        let report = self.set_force(rod, k, value)?;
+        if !report.converged {
+            // Take the zero force away again: the scene as it was.
+            let mut spec = self.spec.clone();
+            spec.rods[rod].forces.pop();
+            self.rebuild(spec)?;
+        }
+        Ok(report)
+    }
+
+    /// Removes point force `force` of rod `rod`: a dead force is first brought to zero along
+    /// the load path, warm from the last equilibrium (as [`Self::set_force`] does), then taken
+    /// out of the scene; a follower load is taken out and the rod re-solved from its current
+    /// shape. A change that does not converge keeps the force and the equilibrium (the report
+    /// says so). Errors (nothing changed): an unknown rod or force.
+    pub fn remove_force(&mut self, rod: usize, force: usize) -> Result<EditReport, SceneError> {
+        let Some(spec) = self.spec.rods.get(rod).and_then(|r| r.forces.get(force)) else {
+            return Err(SceneError::new(
+                format!("rods[{rod}].forces[{force}]"),
+                format!(
+                    "no such force (rods: {}, point forces of this rod: {})",
+                    self.spec.rods.len(),
+                    self.spec.rods.get(rod).map_or(0, |r| r.forces.len())
+                ),
+            ));
+        };
+        if !spec.follower && spec.force != [0.0; 3] {
+            let report = self.set_force(rod, force, [0.0; 3])?;
+            if !report.converged {
+                return Ok(report);
+            }
+        }
+        let mut spec = self.spec.clone();
+        spec.rods[rod].forces.remove(force);
         self.rebuild(spec)
     }
 

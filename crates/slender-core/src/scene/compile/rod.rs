@@ -90,6 +90,9 @@ pub struct CompiledRod {
     pub min_bend_radius: Option<f64>,
     /// The whole-rod vertex of each of the file's point forces (`forces`, in order).
     pub force_vertices: Vec<usize>,
+    /// The whole-rod vertex of every vertex of the file's mesh (what a `vertex` index in the
+    /// file names); supports given by arc length (`at`) may insert vertices between them.
+    pub base_vertices: Vec<usize>,
 }
 
 impl CompiledRod {
@@ -562,6 +565,7 @@ pub(super) fn compile_rod(
             closed: spec.closed,
             min_bend_radius: spec.min_bend_radius,
             force_vertices,
+            base_vertices: renumber.map,
         },
         members,
     })
