@@ -15,7 +15,9 @@
 //     the flat cable, tip at its vertex; the panel's editor refuses an empty box, sets the
 //     cable's tip force and the strip's force, and the page reaches the equilibrium of
 //     `slender solve` with those forces in the file (1e-9 of the length); the saved scene
-//     round-trips; a force that does not exist is refused, the equilibrium kept.
+//     round-trips; a click in "add a point force" mode adds one, set in its row (= slender
+//     solve with it in the file), removed by its ×; a force that does not exist is refused,
+//     the equilibrium kept.
 //  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar and a ramp read
 //     from an OBJ file): each is a mesh of the three.js scene, tagged with its obstacle, at its
 //     pose (the ball's bounds, the box's corners, the ramp's vertices as in the file); the
@@ -317,6 +319,31 @@ try {
   const saveGap = Math.max(maxRelativeDistance(stripEdited.rods.map((r) => r.positions), reSolved, 1.0),
     maxRelativeDistance([stripEdited.shells[0].positions], [reSolvedAll.shells[0].positions], 0.2));
   check(saveGap <= 1e-9, `point forces: the saved scene re-solves to the page's equilibrium (${saveGap.toExponential(2)} of the length)`);
+  // Add a force by clicking the cable in "add a point force" mode (at 0.7 m: its vertex 28),
+  // set it in its new row, then remove it with the row's ×.
+  await s3b.page.evaluate(() => window.slender.setTool("add-force"));
+  const clickAt = await s3b.page.evaluate(() => window.slender.screenPoint(0, 0.7));
+  await s3b.page.mouse.click(clickAt.x, clickAt.y);
+  await s3b.page.waitForFunction(() => window.slender.state().rods[0].forces.length === 3, null, { timeout: 20000 });
+  const addedForce = await s3b.page.evaluate(() => window.slender.state().rods[0].forces[2]);
+  check(Math.abs(addedForce.at - 0.7) <= 0.025 && addedForce.force.every((x) => x === 0),
+    `point forces: a click added a force at vertex ${addedForce.vertex} (${addedForce.at.toFixed(3)} m; aimed at 0.7 m), starting at zero`);
+  const added = [0.0, 0.0, -0.03];
+  for (const [i, c] of ["x", "y", "z"].entries()) await s3b.page.fill(`#f-0-2-${c}`, String(added[i]));
+  await s3b.page.click('#loads .force-apply[data-load="f-0-2"]');
+  await s3b.page.waitForFunction((f) => window.slender.state().rods[0].forces[2].force.every((x, i) => x === f[i]), added, { timeout: 20000 });
+  const withAdded = await s3b.page.evaluate(() => window.slender.state());
+  const addedText = stripText.replace("{ vertex = 20, force = [0.0, 0.01, 0.0] },",
+    `{ vertex = 20, force = [0.0, 0.01, 0.0] },\n    { vertex = ${addedForce.vertex}, force = [${added.map((x) => x.toFixed(3)).join(", ")}] },`);
+  const addedCold = solveScene("point_forces_added_cold", addedText);
+  const addedGap = maxRelativeDistance(withAdded.rods.map((r) => r.positions), addedCold, 1.0);
+  check(addedGap <= 1e-9, `point forces: with the added force set, the page = slender solve with it in the file (${addedGap.toExponential(2)} of the length)`);
+  await s3b.page.click('#loads .force-remove[data-load="f-0-2"]');
+  await s3b.page.waitForFunction(() => window.slender.state().rods[0].forces.length === 2, null, { timeout: 20000 });
+  const removed = await s3b.page.evaluate(() => window.slender.state());
+  const removedGap = maxRelativeDistance(removed.rods.map((r) => r.positions), stripEdited.rods.map((r) => r.positions), 1.0);
+  check(removedGap <= 1e-9, `point forces: × removed it, back to the equilibrium before (${removedGap.toExponential(2)} of the length)`);
+  await s3b.page.evaluate(() => window.slender.setTool("drag"));
   // Through the page's channel: a force that does not exist is refused, the equilibrium kept.
   const keptForce = await s3b.page.evaluate(async () => {
     const before = JSON.stringify(window.slender.state().rods[0].positions);

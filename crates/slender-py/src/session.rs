@@ -271,6 +271,27 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Adds a dead point force to rod `rod` at the file's vertex nearest rest arc length `at`
+    /// (m), set to `value` (N); it becomes the last of the rod's `forces`.
+    fn add_force(
+        &mut self,
+        py: Python<'_>,
+        rod: usize,
+        at: f64,
+        value: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.add_force(rod, at, value)))?;
+        edit(py, out)
+    }
+
+    /// Removes point force `force` of rod `rod` (a dead force is brought to zero warm first).
+    fn remove_force(&mut self, py: Python<'_>, rod: usize, force: usize) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.remove_force(rod, force)))?;
+        edit(py, out)
+    }
+
     /// Sets point force `force` of shell strip `shell` (its scene's `forces[force]`, a dead
     /// force) to `value` (N) and re-solves the strip warm.
     fn set_shell_force(

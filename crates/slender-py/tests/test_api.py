@@ -299,6 +299,28 @@ def test_flat_cable_force_edit_matches_a_cold_solve() -> None:
     assert np.array_equal(s.results().shells[0].positions, here)
 
 
+def test_add_and_remove_a_force() -> None:
+    """A force added at an arc length lands on the nearest vertex and ends where a session of
+    the scene with that force starts; removed, the first equilibrium comes back."""
+    s = slender.Session(cantilever(force=F))
+    first = s.results().rods[0].positions.copy()
+    rep = s.add_force(0, 0.51 * L, [0.0, 2.0 * F, 0.0])
+    assert rep.converged and rep.structures == [0]
+    added = s.scene()["rods"][0]["forces"][1]
+    assert added["vertex"] == 25 and added["force"] == [0.0, 2.0 * F, 0.0]  # 50 elements
+    scene = cantilever(force=F)
+    scene["rods"][0]["forces"].append({"vertex": 25, "force": [0.0, 2.0 * F, 0.0]})
+    cold = slender.Session(scene).results().rods[0].positions
+    assert np.abs(s.results().rods[0].positions - cold).max() <= 1e-12
+    rep = s.remove_force(0, 1)
+    assert rep.converged and len(s.scene()["rods"][0]["forces"]) == 1
+    assert np.abs(s.results().rods[0].positions - first).max() <= 1e-12
+    with pytest.raises(slender.SceneError, match=r"rods\[0\]\.forces\.at"):
+        s.add_force(0, 2.0 * L)
+    with pytest.raises(slender.SceneError, match=r"rods\[0\]\.forces\[3\]"):
+        s.remove_force(0, 3)
+
+
 def test_force_edit_matches_a_cold_solve() -> None:
     """A tip force edited in a session ends where a session of the scene with that force
     starts (loads ramped from rest), and the weightless tip moves by F L³/(3EI)."""

@@ -232,6 +232,20 @@ class Session:
         report = self._inner.set_force(r, f, _vec3(value, "value"))
         return self._checked(report, check, f"changing rods[{r}].forces[{f}]")
 
+    def add_force(self, rod: int, at: float, value: Sequence[float] = (0.0, 0.0, 0.0), *, check: bool = True) -> EditReport:
+        """Adds a dead point force to rod ``rod`` at the file's vertex nearest rest arc length
+        ``at`` (m), set to ``value`` (N) warm from the last equilibrium; it becomes the last of
+        the rod's ``forces``."""
+        r = _index(rod, "rod")
+        report = self._inner.add_force(r, float(at), _vec3(value, "value"))
+        return self._checked(report, check, f"adding a force to rods[{r}]")
+
+    def remove_force(self, rod: int, force: int, *, check: bool = True) -> EditReport:
+        """Removes point force ``force`` of rod ``rod`` (a dead force is brought to zero warm
+        first); the later forces move down by one."""
+        r, f = _index(rod, "rod"), _index(force, "force")
+        return self._checked(self._inner.remove_force(r, f), check, f"removing rods[{r}].forces[{f}]")
+
     def set_shell_force(self, shell: int, force: int, value: Sequence[float], *, check: bool = True) -> EditReport:
         """Sets point force ``force`` of shell strip ``shell`` (the scene's
         ``shells[shell].forces[force]``, a dead force) to ``value`` (N) and re-solves the strip

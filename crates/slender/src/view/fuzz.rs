@@ -356,6 +356,56 @@ forces = [{ vertex = 9, force = [0.0, 0.0, -0.01] }]"#,
 }
 
 #[test]
+fn add_force_and_remove_force_messages_edit_the_rods_forces() {
+    let mut s = session();
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "add_force", "rod": 0, "at": 0.46, "value": [0.0, 0.01, -0.02]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    // 0.46 m on a 0.6 m cable of 12 elements: vertex 9 (0.45 m).
+    let shown = &v["view"]["rods"][0]["forces"][0];
+    assert_eq!(shown["vertex"], json!(9), "{v}");
+    assert_eq!(shown["force"], json!([0.0, 0.01, -0.02]));
+    for (message, field) in [
+        (
+            r#"{"op": "add_force", "rod": 0, "at": 0.9}"#,
+            "rods[0].forces.at",
+        ),
+        (r#"{"op": "add_force", "rod": 5, "at": 0.1}"#, "rods[5]"),
+        (
+            r#"{"op": "add_force", "rod": 0, "at": 0.1, "value": [0, 1e300, 0]}"#,
+            "rods[0].forces[1].force",
+        ),
+        (
+            r#"{"op": "remove_force", "rod": 0, "force": 1}"#,
+            "rods[0].forces[1]",
+        ),
+    ] {
+        let (v, kept) = exchange(&mut s, message);
+        assert_eq!(error_of(&v).0, field, "{v}");
+        assert!(kept, "{message}");
+    }
+    let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
+    let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
+    assert_eq!(saved.rods[0].forces[0].force, [0.0, 0.01, -0.02]);
+    let (v, kept) = exchange(&mut s, r#"{"op": "remove_force", "rod": 0, "force": 0}"#);
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert!(!kept);
+    assert_eq!(v["view"]["rods"][0]["forces"], json!([]));
+    // Back to the equilibrium of the scene without the force.
+    let (a, b) = (equilibrium(&s).0, equilibrium(&session()).0);
+    let worst = a[0]
+        .iter()
+        .zip(&b[0])
+        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
+    assert!(worst <= 1e-9, "{worst:e} m");
+}
+
+#[test]
 fn a_shell_force_message_sets_the_strips_force_and_a_bad_one_keeps_the_equilibrium() {
     let text = SCENE.replace(
         r#"clamps = [{ edge = "start" }, { edge = "end", offset = [-0.01, 0.0, 0.0] }]"#,
@@ -506,6 +556,12 @@ fn request() -> impl Strategy<Value = String> {
         )),
         (index(), index(), vec3()).prop_map(|(r, f, v)| format!(
             r#"{{"op": "force", "shell": {r}, "force": {f}, "value": {v}}}"#
+        )),
+        (index(), hostile_number(), vec3()).prop_map(|(r, a, v)| format!(
+            r#"{{"op": "add_force", "rod": {r}, "at": {a}, "value": {v}}}"#
+        )),
+        (index(), index()).prop_map(|(r, f)| format!(
+            r#"{{"op": "remove_force", "rod": {r}, "force": {f}}}"#
         )),
         Just(r#"{"op": "follow_stable"}"#.to_string()),
         Just(r#"{"op": "unstable_policy", "policy": "keep"}"#.to_string()),

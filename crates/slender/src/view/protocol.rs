@@ -104,6 +104,24 @@ pub enum Request {
         /// Force (N).
         value: [f64; 3],
     },
+    /// Add a dead point force to a rod at the file's vertex nearest rest arc length `at` (m),
+    /// set to `value` (N; default zero); it becomes the last of the rod's `forces`.
+    AddForce {
+        /// Rod index.
+        rod: usize,
+        /// Rest arc length from vertex 0 (m).
+        at: f64,
+        /// Force (N).
+        #[serde(default)]
+        value: [f64; 3],
+    },
+    /// Remove point force `force` of a rod (a dead force is first brought to zero warm).
+    RemoveForce {
+        /// Rod index.
+        rod: usize,
+        /// Index in the rod's `forces`.
+        force: usize,
+    },
     /// Follow every unstable equilibrium to a stable one now.
     FollowStable {},
     /// What to do with unstable equilibria from now on.
@@ -206,6 +224,8 @@ fn op_name(r: &Request) -> &'static str {
         Request::RemoveSupport { .. } => "remove_support",
         Request::Gravity { .. } => "gravity",
         Request::Force { .. } => "force",
+        Request::AddForce { .. } => "add_force",
+        Request::RemoveForce { .. } => "remove_force",
         Request::FollowStable {} => "follow_stable",
         Request::UnstablePolicy { .. } => "unstable_policy",
         Request::Save {} => "save",
@@ -248,7 +268,7 @@ pub fn handle(session: &mut Session, message: &str) -> String {
             return error_reply(
                 "request",
                 format!(
-                    "{e}{hint} (expected a JSON object with \"op\": state, move, move_by, add_support, remove_support, gravity, force, follow_stable, unstable_policy, save or gltf)"
+                    "{e}{hint} (expected a JSON object with \"op\": state, move, move_by, add_support, remove_support, gravity, force, add_force, remove_force, follow_stable, unstable_policy, save or gltf)"
                 ),
             );
         }
@@ -377,6 +397,12 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
                 Target::Shell(shell) => Some(session.set_shell_force(shell, *force, *value)?),
             }
         }
+        Request::AddForce { rod, at, value } => {
+            finite("at", &[*at])?;
+            finite("value", value)?;
+            Some(session.add_force(*rod, *at, *value)?)
+        }
+        Request::RemoveForce { rod, force } => Some(session.remove_force(*rod, *force)?),
         Request::FollowStable {} => Some(session.follow_stable()),
         Request::UnstablePolicy { policy } => {
             session.set_unstable_policy(*policy);

@@ -468,7 +468,8 @@ function updateLoadsPanel() {
       if (l.f.follower) return `<div class="load"><span>${l.where}: follower [${l.f.force.map((x) => x.toPrecision(3)).join(", ")}]</span></div>`;
       const inputs = ["x", "y", "z"].map((c) =>
         `<input id="${l.id}-${c}" type="number" step="any" aria-label="${l.where} ${c} (N)">`).join("");
-      return `<div class="load"><span>${l.where}</span><div class="vec">${inputs}<button class="force-apply" data-load="${l.id}">Apply</button></div></div>`;
+      const remove = l.owner === "rod" ? `<button class="force-remove" data-load="${l.id}" title="remove this force" aria-label="remove ${l.where}">×</button>` : "";
+      return `<div class="load"><span>${l.where}</span><div class="vec">${inputs}<button class="force-apply" data-load="${l.id}">Apply</button>${remove}</div></div>`;
     }).join("");
     for (const b of document.querySelectorAll("#loads .force-apply")) {
       b.addEventListener("click", () => {
@@ -476,6 +477,12 @@ function updateLoadsPanel() {
         if (!l) return;
         const value = readVector(["x", "y", "z"].map((c) => `${l.id}-${c}`), l.field);
         if (value) edit({ op: "force", [l.owner]: l.index, force: l.k, value });
+      });
+    }
+    for (const b of document.querySelectorAll("#loads .force-remove")) {
+      b.addEventListener("click", () => {
+        const l = pointLoads().find((x) => x.id === b.dataset.load);
+        if (l) edit({ op: "remove_force", rod: l.index, force: l.k });
       });
     }
   }
@@ -1005,11 +1012,15 @@ canvas.addEventListener("pointerup", async (ev) => {
   if (!down || Math.hypot(ev.clientX - down.x, ev.clientY - down.y) > 4 || gizmo.dragging) { down = null; return; }
   down = null;
   const tool = document.querySelector('input[name="tool"]:checked').value;
-  if (tool === "add-clip") {
+  if (tool === "add-clip" || tool === "add-force") {
     const hit = pick(ev, rods.map((r) => r.mesh))[0];
     if (!hit) return;
     const ri = hit.object.userData.rod;
-    await edit({ op: "add_support", rod: ri, kind: "clip", at: arcLengthAt(ri, hit.point) });
+    const at = arcLengthAt(ri, hit.point);
+    if (tool === "add-clip") { await edit({ op: "add_support", rod: ri, kind: "clip", at }); return; }
+    // A new force starts at zero: its row in the panel takes the value.
+    const reply = await edit({ op: "add_force", rod: ri, at });
+    if (reply.ok) $(`f-${ri}-${view.rods[ri].forces.length - 1}-z`)?.focus();
     return;
   }
   const h = pick(ev, handles)[0];
@@ -1093,7 +1104,8 @@ function frameCamera() {
 
 document.querySelectorAll('input[name="gizmo"]').forEach((el) => el.addEventListener("change", () => setGizmoMode(el.value)));
 document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListener("change", () => {
-  $("hint").textContent = el.value === "add-clip" && el.checked ? "Click a cable to add a clip there." : "";
+  $("hint").textContent = !el.checked ? "" : el.value === "add-clip" ? "Click a cable to add a clip there."
+    : el.value === "add-force" ? "Click a cable to add a point force at its nearest vertex; set its value in the panel." : "";
 }));
 $("colour").addEventListener("change", () => { if (view) { updateRods(); render(); } });
 $("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateContacts(); render(); } });
