@@ -4,7 +4,8 @@
 //     vector (through the gizmo's objectChange path); the page's cable must reach the
 //     equilibrium of `slender solve` on the same scene with the equivalent [[motion]] stage:
 //     every vertex, the tip included, to 1e-9 of the cable length; no console errors; the
-//     canvas is not blank (pixels).
+//     canvas is not blank (pixels). Undo takes the whole drag back bit for bit, redo
+//     (Ctrl+Shift+Z) brings it back.
 //  2. clip + save: click on the cable in "add a clip" mode (a real mouse click, raycast to an
 //     arc length), then "Save scene": the downloaded TOML has the clip and its `slender solve`
 //     gives the page's equilibrium.
@@ -16,8 +17,8 @@
 //     cable's tip force and the strip's force, and the page reaches the equilibrium of
 //     `slender solve` with those forces in the file (1e-9 of the length); the saved scene
 //     round-trips; a click in "add a point force" mode adds one, set in its row (= slender
-//     solve with it in the file), removed by its ×; a force that does not exist is refused,
-//     the equilibrium kept.
+//     solve with it in the file), removed by its ×, put back by Ctrl+Z; a force that does not
+//     exist is refused, the equilibrium kept.
 //  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar and a ramp read
 //     from an OBJ file): each is a mesh of the three.js scene, tagged with its obstacle, at its
 //     pose (the ball's bounds, the box's corners, the ramp's vertices as in the file); the
@@ -154,6 +155,7 @@ try {
   const s1 = await open(dragScene);
   sessions.push(s1);
   const before = await paintedFraction(s1.page);
+  const restPositions = await s1.page.evaluate(() => JSON.stringify(window.slender.state().rods[0].positions));
   const v = await s1.page.evaluate((d) => window.slender.dragSupport(0, 2, d, 20), drag);
   check(v.converged, "drag: every update converged");
   const base = readFileSync(dragScene, "utf8");
@@ -173,6 +175,16 @@ try {
   const status = await s1.page.locator("#st-converged").textContent();
   check(status === "converged", `status panel says "${status}"`);
   await s1.page.screenshot({ path: join(out, "view-drag.png") });
+  // The whole drag is one step of undo: Undo gives the equilibrium before it bit for bit,
+  // Redo the dragged one.
+  const dragged = JSON.stringify(v.rods[0].positions);
+  await s1.page.click("#undo");
+  await s1.page.waitForFunction((p) => JSON.stringify(window.slender.state().rods[0].positions) === p, restPositions, { timeout: 20000 });
+  const handleBack = await s1.page.evaluate(() => window.slender.state().rods[0].supports[2].position);
+  await s1.page.keyboard.press("Control+Shift+Z");
+  await s1.page.waitForFunction((p) => JSON.stringify(window.slender.state().rods[0].positions) === p, dragged, { timeout: 20000 });
+  const historyText = await s1.page.locator("#history").textContent();
+  check(Math.abs(handleBack[1]) < 1e-12, `undo takes the 20-move drag back in one step, bit for bit; redo (Ctrl+Shift+Z) brings it back bit for bit (${historyText})`);
 
   // ---- 2. add a clip by clicking the cable, save, solve the saved scene ----
   await s1.page.evaluate(() => window.slender.setTool("add-clip"));
@@ -343,6 +355,12 @@ try {
   const removed = await s3b.page.evaluate(() => window.slender.state());
   const removedGap = maxRelativeDistance(removed.rods.map((r) => r.positions), stripEdited.rods.map((r) => r.positions), 1.0);
   check(removedGap <= 1e-9, `point forces: × removed it, back to the equilibrium before (${removedGap.toExponential(2)} of the length)`);
+  await s3b.page.evaluate(() => document.activeElement?.blur());
+  await s3b.page.keyboard.press("Control+Z");
+  await s3b.page.waitForFunction(() => window.slender.state().rods[0].forces.length === 3, null, { timeout: 20000 });
+  const undone = await s3b.page.evaluate(() => window.slender.state());
+  check(JSON.stringify(undone.rods[0].positions) === JSON.stringify(withAdded.rods[0].positions) && undone.rods[0].forces[2].force.join() === added.join(),
+    "point forces: Ctrl+Z puts the removed force back with its equilibrium, bit for bit");
   await s3b.page.evaluate(() => window.slender.setTool("drag"));
   // Through the page's channel: a force that does not exist is refused, the equilibrium kept.
   const keptForce = await s3b.page.evaluate(async () => {
@@ -438,7 +456,8 @@ try {
   await s4.page.evaluate(async () => {
     for (let k = 0; k < 8; k++) await window.slender.dragSupport(0, 0, [0, 0, -0.01], 1);
   });
-  const dragReplies = await Promise.all(s4.replies.slice(n4));
+  // The drags' move replies (each drag also sends its undo checkpoint).
+  const dragReplies = (await Promise.all(s4.replies.slice(n4))).filter((r) => r.op !== "checkpoint");
   const gaps = dragReplies.filter((r) => r.ok).map((r) => r.view.min_gap);
   const lowest = Math.min(...dragReplies.filter((r) => r.ok).flatMap((r) => r.view.rods[0].positions.map((p) => p[2])));
   const refused = dragReplies.filter((r) => !r.ok || !r.edit?.converged).length;

@@ -79,6 +79,7 @@ pub struct EditReport {
     pub followed_unstable_mode: bool,
 }
 
+#[derive(Clone)]
 struct Run {
     state: StructureState,
     backup: StructureState,
@@ -186,6 +187,7 @@ fn solve_structure(
 }
 
 /// A scene being solved and edited (see the module docs).
+#[derive(Clone)]
 pub struct Session {
     spec: Scene,
     scene: CompiledScene,
@@ -942,16 +944,23 @@ impl Session {
             force: [0.0; 3],
             follower: false,
         });
+        // The whole session as it was, to go back to exactly: the rebuild re-solves every
+        // structure from its current shape, which in contact can move it by the solver's
+        // tolerance, so taking the zero force away again would not give it back.
+        let before = self.clone();
         let added = self.rebuild(spec)?;
         if value == [0.0; 3] {
             return Ok(added);
         }
-        let report = self.set_force(rod, k, value)?;
+        let report = match self.set_force(rod, k, value) {
+            Ok(r) => r,
+            Err(e) => {
+                *self = before;
+                return Err(e);
+            }
+        };
         if !report.converged {
-            // Take the zero force away again: the scene as it was.
-            let mut spec = self.spec.clone();
-            spec.rods[rod].forces.pop();
-            self.rebuild(spec)?;
+            *self = before;
         }
         Ok(report)
     }
@@ -972,6 +981,8 @@ impl Session {
                 ),
             ));
         };
+        // The session as it was, should the rebuild fail after the force went to zero.
+        let before = self.clone();
         if !spec.follower && spec.force != [0.0; 3] {
             let report = self.set_force(rod, force, [0.0; 3])?;
             if !report.converged {
@@ -980,7 +991,7 @@ impl Session {
         }
         let mut spec = self.spec.clone();
         spec.rods[rod].forces.remove(force);
-        self.rebuild(spec)
+        self.rebuild(spec).inspect_err(|_| *self = before)
     }
 
     /// Removes support `support` of rod `rod` and re-solves from the current shape.

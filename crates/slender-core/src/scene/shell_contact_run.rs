@@ -39,6 +39,7 @@ pub(crate) struct StripContacts {
 }
 
 /// A strip in contact: state, backup, solver, last report, friction state.
+#[derive(Clone)]
 pub(crate) struct ContactStripRun {
     pub(crate) state: ShellState,
     backup: ShellState,

@@ -89,6 +89,7 @@ impl StripProblem for BsplineShell {
 }
 
 /// One model's strip: state, backup, solver, last report.
+#[derive(Clone)]
 pub(crate) struct StripRun<P: EquilibriumProblem> {
     pub(crate) state: P::State,
     backup: P::State,
@@ -136,6 +137,7 @@ impl<P: StripProblem> StripRun<P> {
     }
 }
 
+#[derive(Clone)]
 enum Runs {
     Midedge(StripRun<Shell>),
     Bspline(StripRun<BsplineShell>),
@@ -144,6 +146,7 @@ enum Runs {
 }
 
 /// A strip being solved and edited.
+#[derive(Clone)]
 pub struct ShellRun {
     runs: Runs,
     rod_predictor_used: bool,

@@ -2,11 +2,14 @@
 //! [`Session`] (the physics runs natively in this process, every model); the page (plain
 //! HTML, ES modules and vendored three.js, embedded in the binary) draws the equilibria, the
 //! obstacles and their contacts, and sends edits: drag a support, add a clip, delete a
-//! support, change gravity, snap to the stable branch, save the scene, export glTF.
+//! support, change gravity, edit, add and remove point forces, snap to the stable branch,
+//! undo and redo, save the scene, export glTF.
 //!
-//! Layout: [`protocol`] (the messages and their handler, socket-free), [`state`] (what the
-//! page draws), [`server`] (HTTP), `page/` (the page and `vendor/three`).
+//! Layout: [`protocol`] (the messages and their handler, socket-free), [`history`] (undo and
+//! redo around it), [`state`] (what the page draws), [`server`] (HTTP), `page/` (the page and
+//! `vendor/three`).
 
+pub mod history;
 pub mod protocol;
 pub mod server;
 pub mod state;

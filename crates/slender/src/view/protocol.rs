@@ -208,6 +208,25 @@ pub struct OkReply {
     /// `gltf`: the shapes as glTF.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gltf: Option<Value>,
+    /// `undo`, `redo`: the steps left each way (see `history.rs`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub history: Option<Value>,
+}
+
+/// The reply to `state`, named `op` and carrying `history` (the undo and redo steps left): what
+/// an undo or redo answers. Serialized once, so that the view's numbers are those of `state`
+/// to the bit (a parse and re-serialization of the text could move a float by an ulp).
+pub fn state_reply(session: &mut Session, op: &'static str, history: Value) -> String {
+    match apply(session, &Request::State {}) {
+        Ok(mut reply) => {
+            reply.op = op;
+            reply.history = Some(history);
+            serde_json::to_string(&reply).unwrap_or_else(|e| {
+                error_reply("reply", format!("the reply could not be encoded: {e}"))
+            })
+        }
+        Err(e) => json!({"ok": false, "op": op, "error": e}).to_string(),
+    }
 }
 
 fn error_reply(field: impl Into<String>, message: impl Into<String>) -> String {
@@ -442,6 +461,7 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
         geometry,
         toml: toml_text,
         gltf: gltf_value,
+        history: None,
     })
 }
 

@@ -15,7 +15,8 @@ use slender_core::scene::Session;
 use socket2::{Domain, Protocol, Socket, Type};
 use tiny_http::{Header, Method, Request, Response, Server};
 
-use super::protocol::{handle, MAX_REQUEST_BYTES};
+use super::history::History;
+use super::protocol::MAX_REQUEST_BYTES;
 
 /// One file of the page.
 struct Asset {
@@ -138,8 +139,9 @@ impl ViewServer {
 
     /// Serves until the process is stopped.
     pub fn serve(&self, session: &mut Session) -> Result<()> {
+        let mut history = History::default();
         for request in self.server.incoming_requests() {
-            self.respond(session, request);
+            self.respond(session, &mut history, request);
         }
         Ok(())
     }
@@ -167,7 +169,7 @@ impl ViewServer {
         .contains(&host)
     }
 
-    fn respond(&self, session: &mut Session, mut request: Request) {
+    fn respond(&self, session: &mut Session, history: &mut History, mut request: Request) {
         let plain = |code: u16, text: &str| {
             Response::from_string(text)
                 .with_status_code(code)
@@ -209,7 +211,7 @@ impl ViewServer {
                             serde_json::Value::from(format!("reading the request: {e}"))
                         ),
                         Ok(_) => match String::from_utf8(body) {
-                            Ok(text) => handle(session, &text),
+                            Ok(text) => history.handle(session, &text),
                             Err(_) => "{\"ok\":false,\"error\":{\"field\":\"request\",\"message\":\"not UTF-8 text\"}}".to_string(),
                         },
                     };

@@ -51,8 +51,12 @@ scene3.add(sun);
 const orbit = new OrbitControls(camera, canvas);
 const gizmo = new TransformControls(camera, canvas);
 scene3.add(gizmo.getHelper());
+// A drag is one step of undo: the server keeps the session as it was when the drag starts
+// (its moves wait for that checkpoint).
+let checkpointing = null;
 gizmo.addEventListener("dragging-changed", (e) => {
   orbit.enabled = !e.value;
+  if (e.value) checkpointing = request({ op: "checkpoint" });
   if (!e.value) afterDrag();
 });
 gizmo.addEventListener("objectChange", () => onHandleChange());
@@ -957,6 +961,7 @@ async function pump() {
   const { req, queued } = pendingMove;
   pendingMove = null;
   moveInFlight = true;
+  if (checkpointing) { const c = checkpointing; checkpointing = null; await c; }
   const sent = performance.now();
   const reply = await request(req);
   const received = performance.now();
@@ -1120,8 +1125,21 @@ $("gravity-apply").addEventListener("click", () => {
 });
 $("delete-support").addEventListener("click", () => deleteSelected());
 window.addEventListener("keydown", (ev) => {
-  if (ev.key === "Delete" && selected && document.activeElement?.tagName !== "INPUT") deleteSelected();
+  if (document.activeElement?.tagName === "INPUT") return;
+  if (ev.key === "Delete" && selected) deleteSelected();
+  const z = ev.key === "z" || ev.key === "Z";
+  if ((ev.ctrlKey || ev.metaKey) && z) { ev.preventDefault(); undoRedo(ev.shiftKey ? "redo" : "undo"); }
+  if ((ev.ctrlKey || ev.metaKey) && (ev.key === "y" || ev.key === "Y")) { ev.preventDefault(); undoRedo("redo"); }
 });
+$("undo").addEventListener("click", () => undoRedo("undo"));
+$("redo").addEventListener("click", () => undoRedo("redo"));
+/** One step back or forward: the server puts back the whole session (equilibrium, supports,
+ *  loads) as it was; the handles follow. */
+async function undoRedo(op) {
+  select(null);
+  const reply = await edit({ op });
+  if (reply.ok) $("history").textContent = `${reply.history.undo} back, ${reply.history.redo} forward`;
+}
 async function deleteSelected() {
   if (!selected || selected.userData.shell !== undefined) return;
   const { rod, support } = selected.userData;
@@ -1174,6 +1192,8 @@ const slender = {
   async dragSupport(rod, support, d, steps = 20) {
     const h = this.select(rod, support);
     gizmo.setMode("translate");
+    // What the gizmo's dragging-changed does when a drag starts: one step of undo.
+    checkpointing = request({ op: "checkpoint" });
     const start = h.position.clone();
     for (let k = 1; k <= steps; k++) {
       const f = k / steps;
