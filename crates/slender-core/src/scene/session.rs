@@ -451,6 +451,24 @@ impl Session {
         r
     }
 
+    /// Point force `force` of rod `rod` in the scene file; an error naming it if there is none.
+    fn rod_force(&self, rod: usize, force: usize) -> Result<&PointForceSpec, SceneError> {
+        self.spec
+            .rods
+            .get(rod)
+            .and_then(|r| r.forces.get(force))
+            .ok_or_else(|| {
+                SceneError::new(
+                    format!("rods[{rod}].forces[{force}]"),
+                    format!(
+                        "no such force (rods: {}, point forces of this rod: {})",
+                        self.spec.rods.len(),
+                        self.spec.rods.get(rod).map_or(0, |r| r.forces.len())
+                    ),
+                )
+            })
+    }
+
     /// The report of an edit of a shell strip (`what`, e.g. "the move"), solved on its own: no
     /// rod structure was re-solved.
     fn strip_summary(&self, report: &SolveReport, what: &str) -> EditReport {
@@ -787,16 +805,7 @@ impl Session {
         value: [f64; 3],
     ) -> Result<EditReport, SceneError> {
         let path = || format!("rods[{rod}].forces[{force}]");
-        let Some(spec) = self.spec.rods.get(rod).and_then(|r| r.forces.get(force)) else {
-            return Err(SceneError::new(
-                path(),
-                format!(
-                    "no such force (rods: {}, point forces of this rod: {})",
-                    self.spec.rods.len(),
-                    self.spec.rods.get(rod).map_or(0, |r| r.forces.len())
-                ),
-            ));
-        };
+        let spec = self.rod_force(rod, force)?;
         if spec.follower {
             return Err(SceneError::new(
                 format!("{}.follower", path()),
@@ -971,16 +980,7 @@ impl Session {
     /// shape. A change that does not converge keeps the force and the equilibrium (the report
     /// says so). Errors (nothing changed): an unknown rod or force.
     pub fn remove_force(&mut self, rod: usize, force: usize) -> Result<EditReport, SceneError> {
-        let Some(spec) = self.spec.rods.get(rod).and_then(|r| r.forces.get(force)) else {
-            return Err(SceneError::new(
-                format!("rods[{rod}].forces[{force}]"),
-                format!(
-                    "no such force (rods: {}, point forces of this rod: {})",
-                    self.spec.rods.len(),
-                    self.spec.rods.get(rod).map_or(0, |r| r.forces.len())
-                ),
-            ));
-        };
+        let spec = self.rod_force(rod, force)?;
         // The session as it was, should the rebuild fail after the force went to zero.
         let before = self.clone();
         if !spec.follower && spec.force != [0.0; 3] {
