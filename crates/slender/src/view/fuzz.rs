@@ -149,6 +149,26 @@ fn error_of(v: &Value) -> (String, String) {
     )
 }
 
+/// The coordinates of a message reach the session to the bit: the page writes each number in
+/// its shortest form, and the parser must give back exactly that double (serde_json's default
+/// fast path reads `0.0050000246600000004` as `0.00500002466`, one ulp off).
+#[test]
+fn the_numbers_of_a_message_are_read_to_the_bit() {
+    let mut s = session();
+    let y = 0.005_000_024_660_000_000_4_f64;
+    assert_eq!(format!("{y}"), "0.0050000246600000004");
+    let (v, _) = exchange(
+        &mut s,
+        r#"{"op": "move", "rod": 0, "support": 2, "position": [0.6, 0.0050000246600000004, 0.0]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    let pose = s.pose(0, 2).expect("the pin");
+    assert_eq!(pose.position.y.to_bits(), y.to_bits(), "{}", pose.position.y);
+    // And the reply gives it back as written.
+    let pin = &v["view"]["rods"][0]["supports"][2]["position"][1];
+    assert_eq!(pin.as_f64().map(f64::to_bits), Some(y.to_bits()), "{pin}");
+}
+
 #[test]
 fn hostile_messages_are_refused_by_name_and_keep_the_equilibrium() {
     let mut s = session();
