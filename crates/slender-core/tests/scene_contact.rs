@@ -24,8 +24,8 @@ fn contact_total(step: &SceneStep) -> [f64; 3] {
     let mut t = [0.0; 3];
     for o in &step.obstacles {
         for c in &o.contacts {
-            for i in 0..3 {
-                t[i] += c.normal_force[i] + c.friction_force[i];
+            for (i, ti) in t.iter_mut().enumerate() {
+                *ti += c.normal_force[i] + c.friction_force[i];
             }
         }
     }

@@ -75,8 +75,8 @@ activation = 1e-6
         // On the top face (x ≤ 0.25 m, the mid-surface h/2 + gap above it) or at its edge.
         assert!(c.position[0] <= 0.25 + 1e-3, "{c:?}");
         assert!(c.position[1] >= top + 0.5 * H, "{c:?}");
-        for i in 0..3 {
-            total[i] += c.normal_force[i] + c.friction_force[i];
+        for (i, t) in total.iter_mut().enumerate() {
+            *t += c.normal_force[i] + c.friction_force[i];
         }
     }
     let box_force = step.obstacles[0].force;

@@ -150,8 +150,11 @@ output_every = 1
     )
 }
 
+/// Positions (m) and frames of one member at one output step.
+type Snapshot = (Vec<Vector3<f64>>, Vec<UnitQuaternion<f64>>);
+
 /// Positions (m) and frames of structure 0's first member after every step of `text`.
-fn trajectory(text: &str) -> Vec<(Vec<Vector3<f64>>, Vec<UnitQuaternion<f64>>)> {
+fn trajectory(text: &str) -> Vec<Snapshot> {
     let compiled = scene(text).compile().expect("compiles");
     let mut run = TimeRun::new(&compiled).expect("starts");
     let mut out = Vec::new();

@@ -39,6 +39,9 @@ use super::segment_distance::{
 use super::sites::{ContactSite, ContactSites, SiteDof};
 use crate::shell::dual::Dual2;
 
+/// One active self-contact (see [`ContactProblem::self_contact_forces`]): the first site of
+/// each side as (member, vertex), the gap (m) and the barrier's force magnitude (N).
+pub type SelfContactForce = ((usize, usize), (usize, usize), f64, f64);
 /// The term group of the contact energy (the top bit, which no model uses).
 pub const CONTACT: TermGroup = TermGroup {
     bit: 31,
@@ -781,10 +784,7 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     /// Every active self-contact of `state`: the first site of each side as (member,
     /// vertex), the gap (m) and the barrier's force magnitude (N) pushing them apart (for an
     /// edge–edge pair, before the parallel-edge mollifier).
-    pub fn self_contact_forces(
-        &self,
-        state: &P::State,
-    ) -> Vec<((usize, usize), (usize, usize), f64, f64)> {
+    pub fn self_contact_forces(&self, state: &P::State) -> Vec<SelfContactForce> {
         let mut out = Vec::new();
         self.for_each_primitive(state, 0.0, |prim| {
             let gap = prim.gap(prim.clearance(self));
@@ -1223,6 +1223,10 @@ fn point3(g: &[f64], k: usize) -> Vector3<f64> {
     Vector3::new(g[3 * k], g[3 * k + 1], g[3 * k + 2])
 }
 
+/// What [`self_contact_edges`] finds: the edges as site pairs, the edge pairs that never
+/// interact, and each site's chain and arc length (m).
+type SelfContactEdges = (Vec<EdgeSites>, Vec<(usize, usize)>, Vec<(usize, f64)>);
+
 /// The edges of `model` as site pairs, and the edge pairs that never interact: those sharing a
 /// site, and those of one chain closer along it than π r + ĝ, r the larger of their radii
 /// (see [`ContactProblem::with_chains`], [`ContactProblem::with_radii`]: member m has
@@ -1233,7 +1237,7 @@ fn self_contact_edges<P: ContactSites>(
     params: &ContactParams,
     chains: &[(usize, f64)],
     radii: &[f64],
-) -> (Vec<EdgeSites>, Vec<(usize, usize)>, Vec<(usize, f64)>) {
+) -> SelfContactEdges {
     // A member not in `chains` is its own chain, numbered past every given one.
     let first_own = chains.iter().map(|c| c.0 + 1).max().unwrap_or(0);
     let chain_of = |m: usize| chains.get(m).copied().unwrap_or((first_own + m, 0.0));

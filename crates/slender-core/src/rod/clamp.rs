@@ -55,16 +55,16 @@ impl GhostEdge {
     }
 }
 
+/// A clamp hinge: its vertex, left and right edges, and Voronoi length (m).
+pub(super) type ClampHinge = (usize, EdgeId, EdgeId, f64);
+
 /// The clamp hinges of a rod of `rest_lengths` with clamps at the start and/or end:
 /// (vertex, left edge, right edge, Voronoi length) with half the adjacent real edge.
 pub(super) fn clamp_hinges(
     rest_lengths: &[f64],
     start: bool,
     end: bool,
-) -> (
-    Option<(usize, EdgeId, EdgeId, f64)>,
-    Option<(usize, EdgeId, EdgeId, f64)>,
-) {
+) -> (Option<ClampHinge>, Option<ClampHinge>) {
     let n = rest_lengths.len();
     (
         start.then(|| {

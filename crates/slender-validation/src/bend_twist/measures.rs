@@ -44,9 +44,14 @@ pub fn shape_measures(positions: &[Vec3], rest_lengths: &[f64], length: f64) -> 
         (b.norm() > MIN_TURN).then(|| b.normalize())
     };
     let mut xi_tau = 0.0;
-    for j in 1..n.saturating_sub(1) {
+    // Edges 1 … n − 2 of the n: each between two hinges.
+    for (j, &t) in tangents
+        .iter()
+        .enumerate()
+        .take(n.saturating_sub(1))
+        .skip(1)
+    {
         if let (Some(b0), Some(b1)) = (binormal(j), binormal(j + 1)) {
-            let t = tangents[j];
             let mut psi = signed_angle(&(b0 - t * t.dot(&b0)), &(b1 - t * t.dot(&b1)), &t);
             if psi > std::f64::consts::FRAC_PI_2 {
                 psi -= std::f64::consts::PI;

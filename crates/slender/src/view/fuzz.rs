@@ -163,7 +163,12 @@ fn the_numbers_of_a_message_are_read_to_the_bit() {
     );
     assert_eq!(v["ok"], json!(true), "{v}");
     let pose = s.pose(0, 2).expect("the pin");
-    assert_eq!(pose.position.y.to_bits(), y.to_bits(), "{}", pose.position.y);
+    assert_eq!(
+        pose.position.y.to_bits(),
+        y.to_bits(),
+        "{}",
+        pose.position.y
+    );
     // And the reply gives it back as written.
     let pin = &v["view"]["rods"][0]["supports"][2]["position"][1];
     assert_eq!(pin.as_f64().map(f64::to_bits), Some(y.to_bits()), "{pin}");

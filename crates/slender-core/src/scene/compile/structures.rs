@@ -122,8 +122,8 @@ pub(super) fn build_structures(
     let mut group_of_root: Vec<Option<usize>> = vec![None; n_parts];
     let mut groups: Vec<Vec<(usize, usize)>> = Vec::new();
     for (r, d) in drafts.iter().enumerate() {
-        for p in 0..d.rod.parts.len() {
-            let root = find(&mut parent, part_ids[r][p]);
+        for (p, &id) in part_ids[r].iter().enumerate().take(d.rod.parts.len()) {
+            let root = find(&mut parent, id);
             let g = *group_of_root[root].get_or_insert_with(|| {
                 groups.push(Vec::new());
                 groups.len() - 1
