@@ -2,7 +2,9 @@
 //! re-solve from the last equilibrium ends where a cold solve of the scene with the new force
 //! ends (a different path: loads ramped from the flat strip), for both strip models; a small
 //! change of a weightless strip's tip force moves the tip by beam theory's ΔF L³/(3EI); the
-//! saved scene carries the force; bad input names its field and changes nothing.
+//! saved scene carries the force; bad input names its field and changes nothing. Adding a
+//! force (`Session::add_shell_force`) ends where a cold solve with it ends, and removing it
+//! where a cold solve without it ends; an added zero force changes nothing.
 //!
 //! Run with `cargo test -p slender-core --release --test session_shell_force_edit`.
 
@@ -138,6 +140,125 @@ fn a_shell_force_change_that_does_not_converge_keeps_the_equilibrium() {
         );
         // The model's force is back too (assigned, not incremented): a small edit then ends
         // where it ends in a session that never tried the large one.
+        let mut fresh = Session::new(scene).unwrap();
+        for t in [&mut s, &mut fresh] {
+            let r = t.set_shell_force(0, 0, [0.0, -2e-5, 0.0]).unwrap();
+            assert!(r.converged, "{model}: {r:?}");
+        }
+        assert_eq!(positions(&s), positions(&fresh), "{model}");
+    }
+}
+
+/// The strip of [`strip`] with a second dead force `extra` (N) at (station, column).
+fn strip_with(model: &str, force: [f64; 3], extra: (usize, usize, [f64; 3])) -> Scene {
+    let mut scene = strip(model, -9.81, force);
+    scene.shells[0].forces.push(
+        toml::from_str(&format!(
+            "station = {}\ncolumn = {}\nforce = {:?}",
+            extra.0, extra.1, extra.2
+        ))
+        .expect("a force"),
+    );
+    scene
+}
+
+#[test]
+fn an_added_shell_force_ends_where_a_cold_solve_with_it_ends_and_its_removal_goes_back() {
+    let (first, extra) = ([0.0, -0.01, 0.0], (5, 0, [0.002, -0.03, 0.001]));
+    for model in ["midedge", "bspline"] {
+        let mut s = Session::new(strip(model, -9.81, first)).unwrap();
+        let start = positions(&s);
+        // At zero: a new load entry, the very same equilibrium.
+        let r = s
+            .add_shell_force(0, 2, 2, [0.0; 3])
+            .expect("a valid request");
+        assert!(r.converged, "{model}: {r:?}");
+        assert_eq!(
+            positions(&s),
+            start,
+            "{model}: a zero force moved the strip"
+        );
+        assert_eq!(s.spec().shells[0].forces.len(), 2);
+        let r = s.remove_shell_force(0, 1).expect("a valid request");
+        assert!(r.converged, "{model}: {r:?}");
+        assert_eq!(positions(&s), start, "{model}");
+        assert_eq!(s.spec().shells[0].forces.len(), 1);
+
+        let r = s
+            .add_shell_force(0, extra.0, extra.1, extra.2)
+            .expect("a valid request");
+        assert!(r.converged, "{model}: {r:?}");
+        let cold = Session::new(strip_with(model, first, extra)).unwrap();
+        let d = max_distance(&positions(&s), &positions(&cold));
+        let moved = max_distance(&positions(&s), &start);
+        eprintln!("{model}: added force vs cold solve {d:.1e} m (the strip moved {moved:.4} m)");
+        assert!(moved > 0.05 * LENGTH, "{model}: a large change ({moved} m)");
+        assert!(d <= 1e-9 * LENGTH, "{model}: {d:e} m");
+        let saved = s.saved();
+        assert_eq!(saved.shells[0].forces.len(), 2);
+        assert_eq!(saved.shells[0].forces[1].force, extra.2);
+        let d = max_distance(&positions(&s), &positions(&Session::new(saved).unwrap()));
+        assert!(d <= 1e-9 * LENGTH, "{model}: saved scene {d:e} m");
+
+        // Removing the first force leaves the second alone, as a cold solve of that scene.
+        let r = s.remove_shell_force(0, 0).expect("a valid request");
+        assert!(r.converged, "{model}: {r:?}");
+        assert_eq!(s.spec().shells[0].forces.len(), 1);
+        assert_eq!(s.spec().shells[0].forces[0].force, extra.2);
+        let only = Session::new(strip_with(model, [0.0; 3], extra)).unwrap();
+        let d = max_distance(&positions(&s), &positions(&only));
+        assert!(d <= 1e-9 * LENGTH, "{model}: after the removal {d:e} m");
+        // The remaining force is still edited by its new index.
+        let r = s.set_shell_force(0, 0, [0.0; 3]).expect("a valid request");
+        assert!(r.converged, "{model}: {r:?}");
+        let bare = Session::new(strip(model, -9.81, [0.0; 3])).unwrap();
+        let d = max_distance(&positions(&s), &positions(&bare));
+        assert!(
+            d <= 1e-9 * LENGTH,
+            "{model}: back to the bare strip {d:e} m"
+        );
+    }
+}
+
+#[test]
+fn bad_shell_force_additions_and_removals_name_the_field_and_change_nothing() {
+    for model in ["midedge", "bspline"] {
+        let mut s = Session::new(strip(model, -9.81, [0.0, -0.01, 0.0])).unwrap();
+        let before = positions(&s);
+        for (shell, station, column, value, field) in [
+            (1, 0, 0, [0.0, 0.0, 1.0], "shells[1]"),
+            (0, 9, 0, [0.0, 0.0, 1.0], "shells[0].forces[1].station"),
+            (0, 8, 3, [0.0, 0.0, 1.0], "shells[0].forces[1].column"),
+            (0, 8, 0, [f64::NAN, 0.0, 1.0], "shells[0].forces[1].force"),
+            (0, 8, 0, [0.0, -1e300, 0.0], "shells[0].forces[1].force"),
+        ] {
+            let e = s
+                .add_shell_force(shell, station, column, value)
+                .expect_err("refused");
+            assert_eq!(e.path, field, "{model}: {e}");
+        }
+        for (shell, force, field) in [(1, 0, "shells[1].forces[0]"), (0, 1, "shells[0].forces[1]")]
+        {
+            let e = s.remove_shell_force(shell, force).expect_err("refused");
+            assert_eq!(e.path, field, "{model}: {e}");
+        }
+        assert_eq!(positions(&s), before, "{model}");
+        assert_eq!(s.spec().shells[0].forces.len(), 1);
+    }
+}
+
+#[test]
+fn an_added_shell_force_that_does_not_converge_leaves_the_strip_as_it_was() {
+    for model in ["midedge", "bspline"] {
+        let mut scene = strip(model, 0.0, [0.0, -1e-5, 0.0]);
+        scene.solver.max_iterations = 3;
+        let mut s = Session::new(scene.clone()).unwrap();
+        let before = positions(&s);
+        let r = s.add_shell_force(0, 8, 0, [0.0, -0.05, 0.0]).unwrap();
+        assert!(!r.converged, "{model}: {r:?}");
+        assert_eq!(positions(&s), before, "{model}");
+        assert_eq!(s.spec().shells[0].forces.len(), 1, "{model}");
+        // The model has no trace of it: an edit then ends where it ends in a fresh session.
         let mut fresh = Session::new(scene).unwrap();
         for t in [&mut s, &mut fresh] {
             let r = t.set_shell_force(0, 0, [0.0, -2e-5, 0.0]).unwrap();

@@ -31,8 +31,8 @@ use super::shell_contact_run::StripContact;
 use super::shell_run::{move_steps, pose_change, ShellRun, StripLoad, MAX_MOVE_STEPS};
 use super::shells::ShellResult;
 use super::spec::{
-    MotionStage, PointForceSpec, RodEnd, Scene, ShellClampSpec, SupportKind, SupportSpec,
-    UnstablePolicy, VertexRef,
+    MotionStage, PointForceSpec, RodEnd, Scene, ShellClampSpec, ShellForceSpec, SupportKind,
+    SupportSpec, UnstablePolicy, VertexRef,
 };
 use crate::bspline_shell::StripEnd;
 
@@ -885,6 +885,106 @@ impl Session {
             self.spec.shells[shell].forces[force].force = value;
         }
         Ok(self.strip_summary(&report, "the force change"))
+    }
+
+    /// Adds a dead point force `value` (N) to shell strip `shell` at the vertex (`station`,
+    /// `column`) of its grid (station 0 … elements along the length, column 0 … width_elements
+    /// across, as the scene's `shells[].forces` name it) and re-solves the strip warm: its model
+    /// is rebuilt with the new force at zero (the same unknowns, the same equilibrium), then the
+    /// force is set as [`Self::set_shell_force`] sets it; it becomes the last of the strip's
+    /// forces. A change that does not converge leaves the strip as it was and says so. Errors
+    /// (nothing changed): an unknown strip, a vertex off the grid, a non-finite or absurd value.
+    pub fn add_shell_force(
+        &mut self,
+        shell: usize,
+        station: usize,
+        column: usize,
+        value: [f64; 3],
+    ) -> Result<EditReport, SceneError> {
+        let Some(spec) = self.spec.shells.get(shell) else {
+            return Err(SceneError::new(
+                format!("shells[{shell}]"),
+                format!("no such strip (the scene has {})", self.spec.shells.len()),
+            ));
+        };
+        let k = spec.forces.len();
+        check_force_value(&|| format!("shells[{shell}].forces[{k}]"), value)?;
+        let mut with = spec.clone();
+        with.forces.push(ShellForceSpec {
+            station,
+            column,
+            force: [0.0; 3],
+        });
+        let before = self.swap_shell_spec(shell, with)?;
+        if value == [0.0; 3] {
+            let report = self.shells[shell].report().clone();
+            return Ok(self.strip_summary(&report, "the new force"));
+        }
+        let report = self.set_shell_force(shell, k, value)?;
+        if !report.converged {
+            self.swap_shell_spec(shell, before)
+                .expect("the strip's previous spec compiled before");
+        }
+        Ok(report)
+    }
+
+    /// Removes point force `force` of shell strip `shell`: it is first brought to zero warm
+    /// (as [`Self::set_shell_force`] does), then taken out of the strip's model. A change that
+    /// does not converge keeps the force and the equilibrium and says so. Errors (nothing
+    /// changed): an unknown strip or force.
+    pub fn remove_shell_force(
+        &mut self,
+        shell: usize,
+        force: usize,
+    ) -> Result<EditReport, SceneError> {
+        let n = self.spec.shells.get(shell).map(|s| s.forces.len());
+        let Some(value) = self
+            .spec
+            .shells
+            .get(shell)
+            .and_then(|s| s.forces.get(force))
+        else {
+            return Err(SceneError::new(
+                format!("shells[{shell}].forces[{force}]"),
+                format!(
+                    "no such force (shells: {}, point forces of this strip: {})",
+                    self.spec.shells.len(),
+                    n.unwrap_or(0)
+                ),
+            ));
+        };
+        let report = if value.force != [0.0; 3] {
+            let r = self.set_shell_force(shell, force, [0.0; 3])?;
+            if !r.converged {
+                return Ok(r);
+            }
+            r
+        } else {
+            let report = self.shells[shell].report().clone();
+            self.strip_summary(&report, "the removal")
+        };
+        let mut without = self.spec.shells[shell].clone();
+        without.forces.remove(force);
+        self.swap_shell_spec(shell, without)?;
+        Ok(report)
+    }
+
+    /// Recompiles strip `shell` from `spec` (the scene's gravity) and puts it in place of the
+    /// current model, which only loads may differ from: the strip's unknowns, its state (the
+    /// clamp poses live there) and its solver carry over. Returns the spec it replaced.
+    fn swap_shell_spec(
+        &mut self,
+        shell: usize,
+        spec: super::spec::ShellSpec,
+    ) -> Result<super::spec::ShellSpec, SceneError> {
+        let compiled = super::shells::compile_shell(
+            &format!("shells[{shell}]"),
+            shell,
+            &spec,
+            Vec3::from(self.spec.gravity),
+        )?;
+        self.scene.shells[shell] = compiled;
+        Ok(std::mem::replace(&mut self.spec.shells[shell], spec))
     }
 
     /// Adds a support to rod `rod` where the rod is now (a clip or pin holds the current
