@@ -16,7 +16,8 @@
 //     the flat cable, tip at its vertex; the panel's editor refuses an empty box, sets the
 //     cable's tip force and the strip's force, and the page reaches the equilibrium of
 //     `slender solve` with those forces in the file (1e-9 of the length); the saved scene
-//     round-trips; a click in "add a point force" mode adds one, set in its row (= slender
+//     round-trips; a click in "add a point force" mode adds one (on the cable and on the flat
+//     cable), set in its row (= slender
 //     solve with it in the file), removed by its ×, put back by Ctrl+Z; a force that does not
 //     exist is refused, the equilibrium kept.
 //  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar and a ramp read
@@ -361,6 +362,35 @@ try {
   const undone = await s3b.page.evaluate(() => window.slender.state());
   check(JSON.stringify(undone.rods[0].positions) === JSON.stringify(withAdded.rods[0].positions) && undone.rods[0].forces[2].force.join() === added.join(),
     "point forces: Ctrl+Z puts the removed force back with its equilibrium, bit for bit");
+  // The same on the flat cable: a click near its grid vertex (station 4, column 1) adds a
+  // force there at zero, its row sets it (= slender solve with it in the file), × removes it.
+  const stripBefore = (await s3b.page.evaluate(() => window.slender.state())).shells[0];
+  const cols = stripBefore.width_elements + 1;
+  const vertexAt = (v) => stripBefore.positions[v];
+  const aim = [0, 1, 2].map((k) => 0.9 * vertexAt(4 * cols + 1)[k] + 0.05 * vertexAt(4 * cols + 2)[k] + 0.05 * vertexAt(5 * cols + 1)[k]);
+  const stripClick = await s3b.page.evaluate((x) => window.slender.screenPointOf(x), aim);
+  await s3b.page.mouse.click(stripClick.x, stripClick.y);
+  await s3b.page.waitForFunction(() => window.slender.state().shells[0].forces.length === 2, null, { timeout: 20000 });
+  const stripAdded = await s3b.page.evaluate(() => window.slender.state().shells[0].forces[1]);
+  check(stripAdded.station === 4 && stripAdded.column === 1 && stripAdded.force.every((x) => x === 0),
+    `point forces: a click on the flat cable added a force at station ${stripAdded.station}, column ${stripAdded.column} (aimed at 4, 1), starting at zero`);
+  const stripExtra = [0.0, 0.01, 0.0];
+  for (const [i, c] of ["x", "y", "z"].entries()) await s3b.page.fill(`#fs-0-1-${c}`, String(stripExtra[i]));
+  await s3b.page.click('#loads .force-apply[data-load="fs-0-1"]');
+  await s3b.page.waitForFunction((f) => window.slender.state().shells[0].forces[1].force.every((x, i) => x === f[i]), stripExtra, { timeout: 20000 });
+  const stripWith = await s3b.page.evaluate(() => window.slender.state().shells[0]);
+  const stripAddedText = stripText.replace(/forces = \[\{ station = 8, column = 1, force = (\[[^\]]*\]) \}\]/,
+    `forces = [{ station = 8, column = 1, force = $1 }, { station = 4, column = 1, force = [${stripExtra.map((x) => x.toFixed(3)).join(", ")}] }]`);
+  const stripAddedCold = solveSceneResult("point_forces_strip_added_cold", stripAddedText).shells[0].positions;
+  const stripAddedGap = maxRelativeDistance([stripWith.positions], [stripAddedCold], 0.2);
+  const stripAddedMoved = Math.max(...stripWith.positions.map((p, v) => Math.hypot(...p.map((x, k) => x - stripBefore.positions[v][k]))));
+  check(stripAddedMoved > 1e-4 && stripAddedGap <= 1e-9,
+    `point forces: with the strip's added force set (moved ${(stripAddedMoved * 1000).toFixed(2)} mm), the page = slender solve with it in the file (${stripAddedGap.toExponential(2)} of its length)`);
+  await s3b.page.click('#loads .force-remove[data-load="fs-0-1"]');
+  await s3b.page.waitForFunction(() => window.slender.state().shells[0].forces.length === 1, null, { timeout: 20000 });
+  const stripRemoved = await s3b.page.evaluate(() => window.slender.state().shells[0]);
+  const stripRemovedGap = maxRelativeDistance([stripRemoved.positions], [stripBefore.positions], 0.2);
+  check(stripRemovedGap <= 1e-9, `point forces: × removed the strip's force, back to its equilibrium before (${stripRemovedGap.toExponential(2)} of its length)`);
   await s3b.page.evaluate(() => window.slender.setTool("drag"));
   // Through the page's channel: a force that does not exist is refused, the equilibrium kept.
   const keptForce = await s3b.page.evaluate(async () => {

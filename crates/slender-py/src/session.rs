@@ -306,6 +306,33 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Adds a dead point force to shell strip `shell` at grid vertex (`station`, `column`),
+    /// set to `value` (N) warm; it becomes the last of the strip's `forces`.
+    fn add_shell_force(
+        &mut self,
+        py: Python<'_>,
+        shell: usize,
+        station: usize,
+        column: usize,
+        value: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.add_shell_force(shell, station, column, value)))?;
+        edit(py, out)
+    }
+
+    /// Removes point force `force` of shell strip `shell` (brought to zero warm first).
+    fn remove_shell_force(
+        &mut self,
+        py: Python<'_>,
+        shell: usize,
+        force: usize,
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.remove_shell_force(shell, force)))?;
+        edit(py, out)
+    }
+
     /// Follows every unstable equilibrium along its unstable mode to a stable one.
     fn follow_stable(&mut self, py: Python<'_>) -> PyResult<PyEditReport> {
         let inner = &mut self.inner;

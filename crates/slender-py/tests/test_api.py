@@ -299,6 +299,33 @@ def test_flat_cable_force_edit_matches_a_cold_solve() -> None:
     assert np.array_equal(s.results().shells[0].positions, here)
 
 
+def test_flat_cable_force_added_and_removed() -> None:
+    """A force added to a flat cable at a grid vertex ends where a session of the scene with it
+    starts; removed, the strip is back where it was; bad input names the field."""
+    s = slender.Session(flat_cable([0.0, -0.005, 0.0]))
+    first = s.results().shells[0].positions.copy()
+    rep = s.add_shell_force(0, 4, 0, [0.0, 0.01, 0.002])
+    assert rep.converged and rep.structures == []
+    scene = flat_cable([0.0, -0.005, 0.0])
+    scene["shells"][0]["forces"].append({"station": 4, "column": 0, "force": [0.0, 0.01, 0.002]})
+    cold = slender.Session(scene).results().shells[0].positions
+    here = s.results().shells[0].positions
+    assert np.abs(here - first).max() > 1e-3
+    assert np.abs(here - cold).max() <= 1e-9 * 0.2
+    assert s.scene()["shells"][0]["forces"][1] == {"station": 4, "column": 0, "force": [0.0, 0.01, 0.002]}
+    with pytest.raises(slender.SceneError, match=r"shells\[0\]\.forces\[2\]\.station"):
+        s.add_shell_force(0, 9, 0, [0.0, 0.0, 1.0])
+    with pytest.raises(slender.SceneError, match=r"shells\[0\]\.forces\[2\]\.column"):
+        s.add_shell_force(0, 1, 3)
+    with pytest.raises(slender.SceneError, match=r"shells\[0\]\.forces\[5\]"):
+        s.remove_shell_force(0, 5)
+    assert np.array_equal(s.results().shells[0].positions, here)
+    rep = s.remove_shell_force(0, 1)
+    assert rep.converged
+    assert len(s.scene()["shells"][0]["forces"]) == 1
+    assert np.abs(s.results().shells[0].positions - first).max() <= 1e-9 * 0.2
+
+
 def test_add_and_remove_a_force() -> None:
     """A force added at an arc length lands on the nearest vertex and ends where a session of
     the scene with that force starts; removed, the first equilibrium comes back."""

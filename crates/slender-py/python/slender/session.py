@@ -254,6 +254,21 @@ class Session:
         report = self._inner.set_shell_force(s, f, _vec3(value, "value"))
         return self._checked(report, check, f"changing shells[{s}].forces[{f}]")
 
+    def add_shell_force(self, shell: int, station: int, column: int, value: Sequence[float] = (0.0, 0.0, 0.0), *, check: bool = True) -> EditReport:
+        """Adds a dead point force to shell strip ``shell`` at the vertex (``station``,
+        ``column``) of its grid (station 0 … elements along the length, column 0 …
+        width_elements across), set to ``value`` (N) warm from the last equilibrium; it becomes
+        the last of the strip's ``forces``."""
+        s, i, j = _index(shell, "shell"), _index(station, "station"), _index(column, "column")
+        report = self._inner.add_shell_force(s, i, j, _vec3(value, "value"))
+        return self._checked(report, check, f"adding a force to shells[{s}]")
+
+    def remove_shell_force(self, shell: int, force: int, *, check: bool = True) -> EditReport:
+        """Removes point force ``force`` of shell strip ``shell`` (brought to zero warm first);
+        the later forces move down by one."""
+        s, f = _index(shell, "shell"), _index(force, "force")
+        return self._checked(self._inner.remove_shell_force(s, f), check, f"removing shells[{s}].forces[{f}]")
+
     def follow_stable(self) -> EditReport:
         """Follows every unstable equilibrium along its unstable mode to a stable one."""
         return self._inner.follow_stable()

@@ -589,6 +589,94 @@ forces = [{ station = 2, column = 1, force = [0.0, -0.01, 0.0] }]"#,
 }
 
 #[test]
+fn add_force_and_remove_force_messages_edit_the_strips_forces() {
+    // The strip clamped at its rest length (the test scene's pushes it in by 1 cm: a flat
+    // strip under compression, which a lateral force snaps to a buckled shape that stays).
+    let flat = SCENE.replace("offset = [-0.01, 0.0, 0.0]", "offset = [0.0, 0.0, 0.0]");
+    let mut s = Session::new(toml::from_str(&flat).unwrap()).unwrap();
+    let strip = |s: &Session| s.results(0, None, 1.0, 1).shells[0].positions.clone();
+    let rest = strip(&s);
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "add_force", "shell": 0, "station": 2, "column": 1, "value": [0.0, -0.05, 0.0]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    // Station 2, column 1 of the 4 × 1 grid: vertex 2·2 + 1, drawn where the strip is now.
+    let shown = &v["view"]["shells"][0]["forces"][0];
+    assert_eq!(shown["vertex"], json!(5), "{v}");
+    assert_eq!(shown["force"], json!([0.0, -0.05, 0.0]));
+    assert_eq!(shown["position"], v["view"]["shells"][0]["positions"][5]);
+    // The scene with that force, solved cold: the same equilibrium.
+    let with = flat.replace(
+        r#"clamps = [{ edge = "start" }, { edge = "end", offset = [0.0, 0.0, 0.0] }]"#,
+        r#"clamps = [{ edge = "start" }, { edge = "end", offset = [0.0, 0.0, 0.0] }]
+forces = [{ station = 2, column = 1, force = [0.0, -0.05, 0.0] }]"#,
+    );
+    let cold = Session::new(toml::from_str(&with).unwrap()).unwrap();
+    let gap = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).abs()).fold(0.0, f64::max))
+            .fold(0.0, f64::max)
+    };
+    let moved = gap(&strip(&s), &rest);
+    assert!(moved > 1e-4, "the force moved the strip by {moved:e} m");
+    assert!(
+        gap(&strip(&s), &strip(&cold)) <= 1e-12,
+        "{:e} m",
+        gap(&strip(&s), &strip(&cold))
+    );
+    for (message, field) in [
+        (
+            r#"{"op": "add_force", "shell": 0, "station": 5, "column": 0}"#,
+            "shells[0].forces[1].station",
+        ),
+        (
+            r#"{"op": "add_force", "shell": 0, "station": 1, "column": 2}"#,
+            "shells[0].forces[1].column",
+        ),
+        (r#"{"op": "add_force", "shell": 0, "station": 1}"#, "column"),
+        (r#"{"op": "add_force", "shell": 0, "at": 0.1}"#, "station"),
+        (
+            r#"{"op": "add_force", "rod": 0, "station": 1, "column": 0}"#,
+            "at",
+        ),
+        (
+            r#"{"op": "add_force", "shell": 2, "station": 1, "column": 0}"#,
+            "shells[2]",
+        ),
+        (
+            r#"{"op": "add_force", "shell": 0, "station": 1, "column": 0, "value": [0, 1e300, 0]}"#,
+            "shells[0].forces[1].force",
+        ),
+        (
+            r#"{"op": "remove_force", "shell": 0, "force": 1}"#,
+            "shells[0].forces[1]",
+        ),
+        (r#"{"op": "remove_force", "force": 0}"#, "rod"),
+    ] {
+        let (v, kept) = exchange(&mut s, message);
+        assert_eq!(error_of(&v).0, field, "{message}: {v}");
+        assert!(kept, "{message}");
+    }
+    let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
+    let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
+    assert_eq!(saved.shells[0].forces.len(), 1);
+    assert_eq!(saved.shells[0].forces[0].force, [0.0, -0.05, 0.0]);
+    let (v, kept) = exchange(&mut s, r#"{"op": "remove_force", "shell": 0, "force": 0}"#);
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert!(!kept);
+    assert_eq!(v["view"]["shells"][0]["forces"], json!([]));
+    assert!(
+        gap(&strip(&s), &rest) <= 1e-12,
+        "back to the unloaded strip: {:e} m",
+        gap(&strip(&s), &rest)
+    );
+}
+
+#[test]
 fn every_rod_model_is_dragged_to_the_equilibrium_of_the_equivalent_prescribed_motion() {
     // The drag a page sends for the end pin, and the same move as a motion stage of the scene
     // file (what `slender solve` runs): the same equilibrium, whatever the rod's formulation.
@@ -696,6 +784,12 @@ fn request() -> impl Strategy<Value = String> {
         )),
         (index(), index()).prop_map(|(r, f)| format!(
             r#"{{"op": "remove_force", "rod": {r}, "force": {f}}}"#
+        )),
+        (index(), index(), index(), vec3()).prop_map(|(s, i, j, v)| format!(
+            r#"{{"op": "add_force", "shell": {s}, "station": {i}, "column": {j}, "value": {v}}}"#
+        )),
+        (index(), index()).prop_map(|(s, f)| format!(
+            r#"{{"op": "remove_force", "shell": {s}, "force": {f}}}"#
         )),
         Just(r#"{"op": "follow_stable"}"#.to_string()),
         Just(r#"{"op": "unstable_policy", "policy": "keep"}"#.to_string()),

@@ -104,22 +104,39 @@ pub enum Request {
         /// Force (N).
         value: [f64; 3],
     },
-    /// Add a dead point force to a rod at the file's vertex nearest rest arc length `at` (m),
-    /// set to `value` (N; default zero); it becomes the last of the rod's `forces`.
+    /// Add a dead point force, set to `value` (N; default zero), as the last of the rod's or
+    /// strip's `forces`: on a rod at the file's vertex nearest rest arc length `at` (m), on a
+    /// shell strip at grid vertex (`station`, `column`).
     AddForce {
-        /// Rod index.
-        rod: usize,
-        /// Rest arc length from vertex 0 (m).
-        at: f64,
+        /// Rod index (or give `shell`).
+        #[serde(default)]
+        rod: Option<usize>,
+        /// Shell strip index (or give `rod`).
+        #[serde(default)]
+        shell: Option<usize>,
+        /// A rod's: rest arc length from vertex 0 (m).
+        #[serde(default)]
+        at: Option<f64>,
+        /// A strip's: station along the length, 0 … elements.
+        #[serde(default)]
+        station: Option<usize>,
+        /// A strip's: column across the width, 0 … width_elements.
+        #[serde(default)]
+        column: Option<usize>,
         /// Force (N).
         #[serde(default)]
         value: [f64; 3],
     },
-    /// Remove point force `force` of a rod (a dead force is first brought to zero warm).
+    /// Remove point force `force` of a rod or a shell strip (a dead force is first brought to
+    /// zero warm).
     RemoveForce {
-        /// Rod index.
-        rod: usize,
-        /// Index in the rod's `forces`.
+        /// Rod index (or give `shell`).
+        #[serde(default)]
+        rod: Option<usize>,
+        /// Shell strip index (or give `rod`).
+        #[serde(default)]
+        shell: Option<usize>,
+        /// Index in the rod's or strip's `forces`.
         force: usize,
     },
     /// Follow every unstable equilibrium to a stable one now.
@@ -416,12 +433,42 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
                 Target::Shell(shell) => Some(session.set_shell_force(shell, *force, *value)?),
             }
         }
-        Request::AddForce { rod, at, value } => {
-            finite("at", &[*at])?;
+        Request::AddForce {
+            rod,
+            shell,
+            at,
+            station,
+            column,
+            value,
+        } => {
             finite("value", value)?;
-            Some(session.add_force(*rod, *at, *value)?)
+            let missing = |field: &str, what: &str| ErrorReply {
+                field: field.into(),
+                message: format!("missing: {what}"),
+            };
+            match target_of(*rod, *shell)? {
+                Target::Rod(rod) => {
+                    let at = at.ok_or_else(|| {
+                        missing(
+                            "at",
+                            "a rod's force is placed by its rest arc length `at` (m)",
+                        )
+                    })?;
+                    finite("at", &[at])?;
+                    Some(session.add_force(rod, at, *value)?)
+                }
+                Target::Shell(shell) => {
+                    let grid = "a strip's force is placed at grid vertex `station` (0 … elements) and `column` (0 … width_elements)";
+                    let station = station.ok_or_else(|| missing("station", grid))?;
+                    let column = column.ok_or_else(|| missing("column", grid))?;
+                    Some(session.add_shell_force(shell, station, column, *value)?)
+                }
+            }
         }
-        Request::RemoveForce { rod, force } => Some(session.remove_force(*rod, *force)?),
+        Request::RemoveForce { rod, shell, force } => match target_of(*rod, *shell)? {
+            Target::Rod(rod) => Some(session.remove_force(rod, *force)?),
+            Target::Shell(shell) => Some(session.remove_shell_force(shell, *force)?),
+        },
         Request::FollowStable {} => Some(session.follow_stable()),
         Request::UnstablePolicy { policy } => {
             session.set_unstable_policy(*policy);

@@ -171,8 +171,11 @@ pub struct StructureView {
 pub struct ShellView {
     /// Strip name.
     pub name: String,
-    /// Vertex positions (m).
+    /// Vertex positions (m): the grid's vertex (station i, column j) is
+    /// i·(width_elements + 1) + j.
     pub positions: Vec<[f64; 3]>,
+    /// Elements across the width (the grid has width_elements + 1 columns).
+    pub width_elements: usize,
     /// Triangles.
     pub faces: Vec<[usize; 3]>,
     /// True if its solve converged.
@@ -334,6 +337,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
         .map(|(i, s)| ShellView {
             name: s.name.clone(),
             positions: s.positions.clone(),
+            width_elements: scene.shells[i].width_elements(),
             faces: s.faces.clone(),
             converged: s.converged,
             clamps: scene.shells[i]

@@ -264,6 +264,7 @@ function updateShells() {
     g.computeVertexNormals();
     const m = new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: 0x8aa4c0, side: THREE.DoubleSide, roughness: 0.7 }));
     m.add(new THREE.LineSegments(new THREE.WireframeGeometry(g), new THREE.LineBasicMaterial({ color: 0x4a6078 })));
+    m.userData.shell = shells.length;
     world.add(m);
     shells.push(m);
   }
@@ -472,7 +473,7 @@ function updateLoadsPanel() {
       if (l.f.follower) return `<div class="load"><span>${l.where}: follower [${l.f.force.map((x) => x.toPrecision(3)).join(", ")}]</span></div>`;
       const inputs = ["x", "y", "z"].map((c) =>
         `<input id="${l.id}-${c}" type="number" step="any" aria-label="${l.where} ${c} (N)">`).join("");
-      const remove = l.owner === "rod" ? `<button class="force-remove" data-load="${l.id}" title="remove this force" aria-label="remove ${l.where}">×</button>` : "";
+      const remove = `<button class="force-remove" data-load="${l.id}" title="remove this force" aria-label="remove ${l.where}">×</button>`;
       return `<div class="load"><span>${l.where}</span><div class="vec">${inputs}<button class="force-apply" data-load="${l.id}">Apply</button>${remove}</div></div>`;
     }).join("");
     for (const b of document.querySelectorAll("#loads .force-apply")) {
@@ -486,7 +487,7 @@ function updateLoadsPanel() {
     for (const b of document.querySelectorAll("#loads .force-remove")) {
       b.addEventListener("click", () => {
         const l = pointLoads().find((x) => x.id === b.dataset.load);
-        if (l) edit({ op: "remove_force", rod: l.index, force: l.k });
+        if (l) edit({ op: "remove_force", [l.owner]: l.index, force: l.k });
       });
     }
   }
@@ -1011,6 +1012,18 @@ function arcLengthAt(ri, p) {
   return best.s;
 }
 
+/** The grid vertex (station along the length, column across) of strip `si` nearest to `p`. */
+function gridVertexAt(si, p) {
+  const sh = view.shells[si];
+  const columns = sh.width_elements + 1;
+  let best = { d: Infinity, v: 0 };
+  sh.positions.forEach((x, v) => {
+    const d = v3(x).distanceTo(p);
+    if (d < best.d) best = { d, v };
+  });
+  return { station: Math.floor(best.v / columns), column: best.v % columns };
+}
+
 let down = null;
 canvas.addEventListener("pointerdown", (ev) => { down = { x: ev.clientX, y: ev.clientY }; });
 canvas.addEventListener("pointerup", async (ev) => {
@@ -1018,8 +1031,19 @@ canvas.addEventListener("pointerup", async (ev) => {
   down = null;
   const tool = document.querySelector('input[name="tool"]:checked').value;
   if (tool === "add-clip" || tool === "add-force") {
-    const hit = pick(ev, rods.map((r) => r.mesh))[0];
+    const targets = rods.map((r) => r.mesh).concat(tool === "add-force" ? shells : []);
+    // Meshes only: a strip's wireframe child is a line, which the ray "hits" within a metre.
+    const hit = pick(ev, targets).find((h) => h.object.isMesh
+      && (h.object.userData.shell !== undefined || h.object.userData.rod !== undefined));
     if (!hit) return;
+    if (hit.object.userData.shell !== undefined) {
+      // A strip's force goes on the grid vertex nearest the click; it starts at zero.
+      const si = hit.object.userData.shell;
+      const { station, column } = gridVertexAt(si, hit.point);
+      const reply = await edit({ op: "add_force", shell: si, station, column });
+      if (reply.ok) $(`fs-${si}-${view.shells[si].forces.length - 1}-z`)?.focus();
+      return;
+    }
     const ri = hit.object.userData.rod;
     const at = arcLengthAt(ri, hit.point);
     if (tool === "add-clip") { await edit({ op: "add_support", rod: ri, kind: "clip", at }); return; }
@@ -1110,7 +1134,7 @@ function frameCamera() {
 document.querySelectorAll('input[name="gizmo"]').forEach((el) => el.addEventListener("change", () => setGizmoMode(el.value)));
 document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListener("change", () => {
   $("hint").textContent = !el.checked ? "" : el.value === "add-clip" ? "Click a cable to add a clip there."
-    : el.value === "add-force" ? "Click a cable to add a point force at its nearest vertex; set its value in the panel." : "";
+    : el.value === "add-force" ? "Click a cable or a flat cable to add a point force at its nearest vertex; set its value in the panel." : "";
 }));
 $("colour").addEventListener("change", () => { if (view) { updateRods(); render(); } });
 $("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateContacts(); render(); } });
