@@ -5,7 +5,8 @@
 //     equilibrium of `slender solve` on the same scene with the equivalent [[motion]] stage:
 //     every vertex, the tip included, to 1e-9 of the cable length; no console errors; the
 //     canvas is not blank (pixels). Undo takes the whole drag back bit for bit, redo
-//     (Ctrl+Shift+Z) brings it back.
+//     (Ctrl+Shift+Z) brings it back. A pose typed in the panel (position, rotation in
+//     degrees) moves the clamp there = `slender solve` along the same path; one Undo.
 //  2. clip + save: click on the cable in "add a clip" mode (a real mouse click, raycast to an
 //     arc length), then "Save scene": the downloaded TOML has the clip and its `slender solve`
 //     gives the page's equilibrium.
@@ -186,6 +187,43 @@ try {
   await s1.page.waitForFunction((p) => JSON.stringify(window.slender.state().rods[0].positions) === p, dragged, { timeout: 20000 });
   const historyText = await s1.page.locator("#history").textContent();
   check(Math.abs(handleBack[1]) < 1e-12, `undo takes the 20-move drag back in one step, bit for bit; redo (Ctrl+Shift+Z) brings it back bit for bit (${historyText})`);
+
+  // A pose typed in the panel: the end clamp to a position and a rotation (degrees) from
+  // where the drag left it, one step of undo; = slender solve with the equivalent motion stage
+  // from rest (a translation and a rotation vector about the clamp's vertex).
+  await s1.page.evaluate(() => window.slender.select(0, 2));
+  const typedAt = [0.8, 0.12, 0.62], typedDeg = [0, 10, 30];
+  const typedRad = typedDeg.map((x) => x * Math.PI / 180);
+  const poseShown = await s1.page.evaluate(() => !document.getElementById("pose-box").hidden
+    && ["x", "y", "z"].map((c) => Number(document.getElementById(`pose-p${c}`).value)));
+  for (const [i, c] of ["x", "y", "z"].entries()) {
+    await s1.page.fill(`#pose-p${c}`, String(typedAt[i]));
+    await s1.page.fill(`#pose-r${c}`, String(typedDeg[i]));
+  }
+  await s1.page.click("#pose-apply");
+  // (The clamp's vertex is carried there by the load steps: at the typed point to rounding.)
+  await s1.page.waitForFunction((p) => window.slender.state().rods[0].supports[2].position.every((x, i) => Math.abs(x - p[i]) <= 1e-12), typedAt, { timeout: 20000 });
+  const placed = await s1.page.evaluate(() => window.slender.state());
+  const rot = placed.rods[0].supports[2].rotation;
+  // The same path in two stages (the drag, then the typed move): a cable turned this far is
+  // bistable, and a single stage from rest ends on the other branch (0.23 m away).
+  const dragEnd = [1.0 + drag[0], drag[1], 0.5 + drag[2]];
+  const placedSolve = solveScene("drag_cable_placed",
+    `${base}\n[[motion]]\nrod = 0\nsupport = 2\ntranslate = [${drag.join(", ")}]\nsteps = 4\n`
+    + `\n[[motion]]\nrod = 0\nsupport = 2\ntranslate = [${typedAt.map((x, k) => x - dragEnd[k]).join(", ")}]\nrotate = [${typedRad.join(", ")}]\nsteps = 4\n`);
+  const placedGap = maxRelativeDistance(placed.rods.map((r) => r.positions), placedSolve, 1.0);
+  check(poseShown && Math.hypot(...poseShown.map((x, k) => x - JSON.parse(dragged).at(-1)[k])) <= 1e-12
+    && Math.hypot(...rot.map((x, k) => x - typedRad[k])) <= 1e-12 && placedGap <= 1e-9,
+    `typed pose: the panel showed the clamp where the drag left it; moved to [${typedAt}] m turned [${typedDeg}]° = slender solve along the same path (the drag, then the typed move), every vertex within ${placedGap.toExponential(2)} of the length`);
+  await s1.page.click("#undo");
+  await s1.page.waitForFunction((p) => JSON.stringify(window.slender.state().rods[0].positions) === p, dragged, { timeout: 20000 });
+  const poseRefused = await s1.page.evaluate(async () => {
+    window.slender.select(0, 2);
+    document.getElementById("pose-px").value = "";
+    document.getElementById("pose-apply").click();
+    return window.slender.errors.splice(0);
+  });
+  check(poseRefused.some((e) => e.field === "rods[0].supports[2].position"), `typed pose: one Undo goes back to the dragged equilibrium bit for bit; an empty box is refused naming ${poseRefused.map((e) => e.field).join(", ")}`);
 
   // ---- 2. add a clip by clicking the cable, save, solve the saved scene ----
   await s1.page.evaluate(() => window.slender.setTool("add-clip"));

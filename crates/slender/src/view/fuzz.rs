@@ -490,6 +490,36 @@ fn a_drag_after_a_checkpoint_is_undone_in_one_step() {
 }
 
 #[test]
+fn a_typed_pose_is_one_step_of_undo_and_ends_where_the_same_move_ends() {
+    // `place` is `move` to an absolute pose, undone by itself (no checkpoint needed).
+    let mut h = History::default();
+    let mut s = session();
+    let before = equilibrium(&s);
+    let message = r#"{"op": "place", "rod": 0, "support": 2, "position": [0.58, 0.03, 0.02]}"#;
+    let v = through(&mut h, &mut s, message);
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert_eq!(v["op"], json!("place"));
+    let mut moved = session();
+    let (w, _) = exchange(&mut moved, &message.replace("place", "move"));
+    assert_eq!(w["edit"]["converged"], json!(true), "{w}");
+    assert_eq!(equilibrium(&s), equilibrium(&moved), "place = move");
+    let v = through(&mut h, &mut s, r#"{"op": "undo"}"#);
+    assert_eq!(v["history"]["undo"], json!(0), "{v}");
+    assert_eq!(equilibrium(&s), before, "one undo takes it back");
+    // A pin has no orientation: refused by name, no step.
+    let v = through(
+        &mut h,
+        &mut s,
+        r#"{"op": "place", "rod": 0, "support": 2, "position": [0.6, 0.0, 0.0], "rotation": [0.0, 0.0, 0.3]}"#,
+    );
+    assert_eq!(error_of(&v).0, "rods[0].supports[2].rotation", "{v}");
+    assert_eq!(equilibrium(&s), before);
+    let v = through(&mut h, &mut s, r#"{"op": "undo"}"#);
+    assert_eq!(v["ok"], json!(false), "a refused place is no step: {v}");
+}
+
+#[test]
 fn add_force_and_remove_force_messages_edit_the_rods_forces() {
     let mut s = session();
     let (v, kept) = exchange(
@@ -761,6 +791,10 @@ fn request() -> impl Strategy<Value = String> {
         (index(), index(), vec3(), vec3()).prop_map(|(r, s, t, q)| format!(
             r#"{{"op": "move_by", "rod": {r}, "support": {s}, "translation": {t}, "rotation": {q}}}"#
         )),
+        (index(), index(), vec3(), proptest::option::of(vec3())).prop_map(|(r, s, p, q)| match q {
+            Some(q) => format!(r#"{{"op": "place", "rod": {r}, "support": {s}, "position": {p}, "rotation": {q}}}"#),
+            None => format!(r#"{{"op": "place", "shell": {r}, "support": {s}, "position": {p}}}"#),
+        }),
         (index(), index(), vec3(), proptest::option::of(vec3())).prop_map(|(r, s, p, q)| match q {
             Some(q) => format!(r#"{{"op": "move", "shell": {r}, "support": {s}, "position": {p}, "rotation": {q}}}"#),
             None => format!(r#"{{"op": "move", "shell": {r}, "support": {s}, "position": {p}}}"#),

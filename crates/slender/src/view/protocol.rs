@@ -51,6 +51,25 @@ pub enum Request {
         #[serde(default)]
         rotation: Option<[f64; 3]>,
     },
+    /// Move a support to a typed pose: as `move`, but one step of undo by itself (a `move` is
+    /// a piece of a drag, undone with the drag from its `checkpoint`).
+    Place {
+        /// Rod index (or give `shell`).
+        #[serde(default)]
+        rod: Option<usize>,
+        /// Shell strip index (or give `rod`).
+        #[serde(default)]
+        shell: Option<usize>,
+        /// Support index (a strip's clamp index with `shell`).
+        support: usize,
+        /// Target position of the support's vertex (m; a strip's clamp: the centre of its
+        /// edge).
+        position: [f64; 3],
+        /// Target orientation relative to rest, as a rotation vector (rad); absent: keep the
+        /// current orientation.
+        #[serde(default)]
+        rotation: Option<[f64; 3]>,
+    },
     /// Move a support by a translation (m) and a rotation vector (rad, about its vertex).
     MoveBy {
         /// Rod index (or give `shell`).
@@ -255,6 +274,7 @@ fn op_name(r: &Request) -> &'static str {
     match r {
         Request::State {} => "state",
         Request::Move { .. } => "move",
+        Request::Place { .. } => "place",
         Request::MoveBy { .. } => "move_by",
         Request::AddSupport { .. } => "add_support",
         Request::RemoveSupport { .. } => "remove_support",
@@ -304,7 +324,7 @@ pub fn handle(session: &mut Session, message: &str) -> String {
             return error_reply(
                 "request",
                 format!(
-                    "{e}{hint} (expected a JSON object with \"op\": state, move, move_by, add_support, remove_support, gravity, force, add_force, remove_force, follow_stable, unstable_policy, save or gltf)"
+                    "{e}{hint} (expected a JSON object with \"op\": state, move, place, move_by, add_support, remove_support, gravity, force, add_force, remove_force, follow_stable, unstable_policy, save or gltf)"
                 ),
             );
         }
@@ -324,6 +344,13 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
     let edit: Option<EditReport> = match request {
         Request::State {} => None,
         Request::Move {
+            rod,
+            shell,
+            support,
+            position,
+            rotation,
+        }
+        | Request::Place {
             rod,
             shell,
             support,

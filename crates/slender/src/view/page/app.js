@@ -862,6 +862,7 @@ function showError(err) {
 }
 
 function updateSelectionPanel() {
+  updatePoseEditor();
   if (!selected) {
     $("selection").textContent = "Click a support handle to select it; drag it with the gizmo.";
     $("delete-support").disabled = true;
@@ -878,6 +879,49 @@ function updateSelectionPanel() {
   $("delete-support").disabled = false;
 }
 
+// ---------- typed pose of the selected support ----------
+
+const POSE_IDS = ["pose-px", "pose-py", "pose-pz"];
+const TURN_IDS = ["pose-rx", "pose-ry", "pose-rz"];
+const DEG = 180 / Math.PI;
+
+/** The selected support's pose in the editor: its position (m) and its rotation from rest as a
+ *  rotation vector in degrees (what `place` takes, in radians). Pins and sliders have no
+ *  orientation, a twist hold no position: those boxes are disabled. Refreshed on every update
+ *  except while one of its boxes is being typed in. */
+function updatePoseEditor() {
+  const target = selected && view ? handleTarget(selected.userData) : null;
+  $("pose-box").hidden = !target;
+  if (!target) return;
+  const kind = selected.userData.kind;
+  POSE_IDS.forEach((id) => ($(id).disabled = kind === "twist_hold"));
+  TURN_IDS.forEach((id) => ($(id).disabled = kind === "pin" || kind === "slider"));
+  // Not during a drag (the boxes would only flicker; the drag's end fills them).
+  const active = document.activeElement;
+  if (dragging || (active?.tagName === "INPUT" && active.closest("#pose-box"))) return;
+  POSE_IDS.forEach((id, i) => ($(id).value = target.position[i]));
+  TURN_IDS.forEach((id, i) => ($(id).value = target.rotation[i] * DEG));
+}
+
+/** Moves the selected support to the typed pose (one step of undo); the continuation splits a
+ *  long move, and one that does not converge leaves the support where it was. */
+async function placeSelected() {
+  if (!selected) return;
+  const { rod, shell, support, kind } = selected.userData;
+  const where = shell !== undefined ? `shells[${shell}].clamps[${support}]` : `rods[${rod}].supports[${support}]`;
+  const position = kind === "twist_hold"
+    ? handleTarget(selected.userData).position
+    : readVector(POSE_IDS, `${where}.position`);
+  if (!position) return;
+  const req = shell !== undefined ? { op: "place", shell, support, position } : { op: "place", rod, support, position };
+  if (kind !== "pin" && kind !== "slider") {
+    const deg = readVector(TURN_IDS, `${where}.rotation`);
+    if (!deg) return;
+    req.rotation = deg.map((x) => x / DEG);
+  }
+  await edit(req);
+}
+
 // ---------- applying a reply ----------
 
 function applyView(reply) {
@@ -892,6 +936,7 @@ function applyView(reply) {
   updateLoadArrows();
   updateContacts();
   updatePanel(reply);
+  updatePoseEditor();
   updateLoadsPanel();
   updateContactPanel();
 }
@@ -978,7 +1023,7 @@ async function pump() {
 
 function afterDrag() {
   dragging = false;
-  if (!moveInFlight && !pendingMove && view) { syncHandles(); render(); }
+  if (!moveInFlight && !pendingMove && view) { syncHandles(); updatePoseEditor(); render(); }
 }
 
 const idleWaiters = [];
@@ -1148,6 +1193,10 @@ $("gravity-apply").addEventListener("click", () => {
   if (gravity) edit({ op: "gravity", gravity });
 });
 $("delete-support").addEventListener("click", () => deleteSelected());
+$("pose-apply").addEventListener("click", () => placeSelected());
+for (const id of POSE_IDS.concat(TURN_IDS)) {
+  $(id).addEventListener("keydown", (e) => { if (e.key === "Enter") placeSelected(); });
+}
 window.addEventListener("keydown", (ev) => {
   if (document.activeElement?.tagName === "INPUT") return;
   if (ev.key === "Delete" && selected) deleteSelected();
