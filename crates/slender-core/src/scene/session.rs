@@ -469,6 +469,24 @@ impl Session {
             })
     }
 
+    /// Point force `force` of strip `shell` in the scene, or the error naming it.
+    fn shell_force(&self, shell: usize, force: usize) -> Result<&ShellForceSpec, SceneError> {
+        self.spec
+            .shells
+            .get(shell)
+            .and_then(|s| s.forces.get(force))
+            .ok_or_else(|| {
+                SceneError::new(
+                    format!("shells[{shell}].forces[{force}]"),
+                    format!(
+                        "no such force (shells: {}, point forces of this strip: {})",
+                        self.spec.shells.len(),
+                        self.spec.shells.get(shell).map_or(0, |s| s.forces.len())
+                    ),
+                )
+            })
+    }
+
     /// The report of an edit of a shell strip (`what`, e.g. "the move"), solved on its own: no
     /// rod structure was re-solved.
     fn strip_summary(&self, report: &SolveReport, what: &str) -> EditReport {
@@ -862,21 +880,7 @@ impl Session {
         value: [f64; 3],
     ) -> Result<EditReport, SceneError> {
         let path = || format!("shells[{shell}].forces[{force}]");
-        let Some(spec) = self
-            .spec
-            .shells
-            .get(shell)
-            .and_then(|s| s.forces.get(force))
-        else {
-            return Err(SceneError::new(
-                path(),
-                format!(
-                    "no such force (shells: {}, point forces of this strip: {})",
-                    self.spec.shells.len(),
-                    self.spec.shells.get(shell).map_or(0, |s| s.forces.len())
-                ),
-            ));
-        };
+        let spec = self.shell_force(shell, force)?;
         check_force_value(&path, value)?;
         let old = StripLoad::PointForce(force, Vec3::from(spec.force));
         let new = StripLoad::PointForce(force, Vec3::from(value));
@@ -937,23 +941,7 @@ impl Session {
         shell: usize,
         force: usize,
     ) -> Result<EditReport, SceneError> {
-        let n = self.spec.shells.get(shell).map(|s| s.forces.len());
-        let Some(value) = self
-            .spec
-            .shells
-            .get(shell)
-            .and_then(|s| s.forces.get(force))
-        else {
-            return Err(SceneError::new(
-                format!("shells[{shell}].forces[{force}]"),
-                format!(
-                    "no such force (shells: {}, point forces of this strip: {})",
-                    self.spec.shells.len(),
-                    n.unwrap_or(0)
-                ),
-            ));
-        };
-        let report = if value.force != [0.0; 3] {
+        let report = if self.shell_force(shell, force)?.force != [0.0; 3] {
             let r = self.set_shell_force(shell, force, [0.0; 3])?;
             if !r.converged {
                 return Ok(r);
