@@ -4,7 +4,7 @@
 //     vector (through the gizmo's objectChange path); the page's cable must reach the
 //     equilibrium of `slender solve` on the same scene with the equivalent [[motion]] stage:
 //     every vertex, the tip included, to 1e-9 of the cable length; no console errors; the
-//     canvas is not blank (pixels). Undo takes the whole drag back bit for bit, redo
+//     canvas is not blank (pixels); colour by axial force (legend, range). Undo takes the whole drag back bit for bit, redo
 //     (Ctrl+Shift+Z) brings it back. A pose typed in the panel (position, rotation in
 //     degrees) moves the clamp there = `slender solve` along the same path; one Undo.
 //  2. clip + save: click on the cable in "add a clip" mode (a real mouse click, raycast to an
@@ -176,6 +176,17 @@ try {
   check(before > 0.01 && painted > 0.01, `canvas not blank (${(100 * painted).toFixed(1)} % of pixels drawn)`);
   const status = await s1.page.locator("#st-converged").textContent();
   check(status === "converged", `status panel says "${status}"`);
+  // Colour by axial force: the legend's title and unit, its range the largest vertex value
+  // (each vertex the mean of its edges' EA·ε).
+  const colourBefore = await s1.page.inputValue("#colour");
+  await s1.page.selectOption("#colour", "axial");
+  const axialLegend = await s1.page.evaluate(() => ({ title: document.getElementById("legend-title").textContent,
+    max: Number(document.getElementById("legend-max").textContent), axial: window.slender.state().rods[0].axial_force }));
+  const ax = axialLegend.axial;
+  const axMax = Math.max(...ax.map((_, i) => Math.abs(i === 0 ? ax[0] : 0.5 * (ax[i - 1] + ax[i]))), Math.abs(ax.at(-1)));
+  check(axialLegend.title === "axial force, tension + (N)" && Math.abs(axialLegend.max - axMax) <= 1e-2 * axMax && axMax > 0,
+    `colour by axial force: legend "${axialLegend.title}", range ±${axialLegend.max} N (largest vertex value ${axMax.toPrecision(4)} N)`);
+  await s1.page.selectOption("#colour", colourBefore);
   await s1.page.screenshot({ path: join(out, "view-drag.png") });
   // The whole drag is one step of undo: Undo gives the equilibrium before it bit for bit,
   // Redo the dragged one.

@@ -707,6 +707,36 @@ forces = [{ station = 2, column = 1, force = [0.0, -0.05, 0.0] }]"#,
 }
 
 #[test]
+fn the_axial_force_of_a_cable_pulled_at_its_end_is_the_pull_in_every_edge() {
+    // Weightless, clamped at its start, pulled along its axis by F at its end: equilibrium
+    // of any cut gives N = F in every edge, whatever the model (EA·ε with EA = E·πd²/4).
+    let pull = 3.0;
+    for model in ["der", "cosserat", "se3"] {
+        let text = format!(
+            r#"
+gravity = [0.0, 0.0, 0.0]
+[[rods]]
+name = "cable"
+model = "{model}"
+elements = 10
+centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 0.5 }}
+section = {{ shape = "circle", diameter = 0.002 }}
+material = {{ young = 1.0e9, poisson = 0.4, density = 1400.0 }}
+supports = [{{ kind = "clamp", vertex = "start" }}]
+forces = [{{ vertex = "end", force = [{pull}, 0.0, 0.0] }}]
+"#
+        );
+        let mut s = Session::new(toml::from_str(&text).unwrap()).unwrap();
+        let (v, _) = exchange(&mut s, r#"{"op": "state"}"#);
+        let axial: Vec<f64> =
+            serde_json::from_value(v["view"]["rods"][0]["axial_force"].clone()).unwrap();
+        assert_eq!(axial.len(), 10, "{model}: one per edge");
+        let worst = axial.iter().map(|n| (n - pull).abs()).fold(0.0, f64::max);
+        assert!(worst <= 1e-6 * pull, "{model}: {axial:?}");
+    }
+}
+
+#[test]
 fn every_rod_model_is_dragged_to_the_equilibrium_of_the_equivalent_prescribed_motion() {
     // The drag a page sends for the end pin, and the same move as a motion stage of the scene
     // file (what `slender solve` runs): the same equilibrium, whatever the rod's formulation.

@@ -9,7 +9,9 @@ use serde::Serialize;
 use serde_json::Value;
 use slender_core::bspline_shell::StripEnd;
 use slender_core::geometry::Vec3;
-use slender_core::scene::spec::{ObstacleShapeSpec, SectionSpec, SupportKind, UnstablePolicy};
+use slender_core::scene::spec::{
+    ObstacleShapeSpec, RodSpec, SectionSpec, SupportKind, UnstablePolicy,
+};
 use slender_core::scene::{CompiledRod, ObstacleResult, SceneStep, Session};
 use slender_core::solver::SolveStatus;
 
@@ -74,6 +76,9 @@ pub struct RodView {
     pub curvature: Vec<f64>,
     /// Axial strain of every edge.
     pub edge_strain: Vec<f64>,
+    /// Axial force of every edge (N; tension positive): EA·ε, EA from the section and the
+    /// material (or the section's own `ea`).
+    pub axial_force: Vec<f64>,
     /// Largest bending stress in the section at every vertex (Pa), from the change of
     /// curvature from rest: E·|Δκ|·d/2 (circle), E·(|Δκ₁|·w/2 + |Δκ₂|·h/2) (rectangle);
     /// `None` for a section given by its stiffnesses (no material, no fibre distance).
@@ -293,6 +298,10 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                     .map(|k| (k[0] * k[0] + k[1] * k[1]).sqrt())
                     .collect(),
                 edge_strain: res.edge_strain.clone(),
+                axial_force: {
+                    let ea = axial_stiffness(&session.spec().rods[r]);
+                    res.edge_strain.iter().map(|e| ea * e).collect()
+                },
                 bending_stress: bending_stress(session, r),
                 min_bend_radius: res
                     .min_bend_radius
@@ -629,6 +638,19 @@ pub fn scene_geometry(session: &Session, step: &SceneStep) -> SceneGeometry {
         activation: params.iter().map(|p| p.activation).reduce(f64::max),
         self_contact: params.iter().any(|p| p.self_contact),
         extent: [arr(lo), arr(hi)],
+    }
+}
+
+/// Axial stiffness EA (N) of a rod's section: E times the area of a circle or rectangle, or
+/// the section's own `ea`.
+fn axial_stiffness(spec: &RodSpec) -> f64 {
+    let young = spec.material.as_ref().map_or(0.0, |m| m.young);
+    match spec.section {
+        SectionSpec::Circle { diameter } => {
+            young * std::f64::consts::PI * diameter * diameter / 4.0
+        }
+        SectionSpec::Rectangle { width, height } => young * width * height,
+        SectionSpec::Stiffness { ea, .. } => ea,
     }
 }
 

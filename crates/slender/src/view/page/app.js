@@ -102,9 +102,17 @@ function cssGradient(stops) {
 /** The colour field of a rod: values per vertex, the map, range and unit. */
 function field(rod, what) {
   if (what === "twist") return { values: rod.twist, signed: true, scale: 1, unit: "rad/m", title: "twist rate" };
+  if (what === "axial") return { values: vertexAverage(rod.axial_force), signed: true, scale: 1, unit: "N", title: "axial force, tension +" };
   if (what === "stress" && rod.bending_stress)
     return { values: rod.bending_stress, signed: false, scale: 1e-6, unit: "MPa", title: "bending stress" };
   return { values: rod.curvature, signed: false, scale: 1, unit: "1/m", title: "curvature |κ|" };
+}
+
+/** Per-vertex values from per-edge ones: the mean of the edges beside each vertex. */
+function vertexAverage(edges) {
+  const n = edges.length;
+  if (n === 0) return [0];
+  return Array.from({ length: n + 1 }, (_, i) => (i === 0 ? edges[0] : i === n ? edges[n - 1] : 0.5 * (edges[i - 1] + edges[i])));
 }
 
 function colourRange(what) {
