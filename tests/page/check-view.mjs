@@ -655,6 +655,9 @@ try {
   check(s5c.errors.length === 0, "no console errors (crossing cables page)");
 
   // ---- 6. speed (measured, not asserted) ----
+  // One page at a time, as a user has it: the pages and servers of the checks above are
+  // closed first (their renderers would share the two cores with the measured page).
+  for (const s of sessions.splice(0)) { await s.page.close(); s.proc.kill(); }
   const speed = {};
   for (const [name, scene, support, d, n] of [
     ["cable_100_elements_3_clips", "bench_cable_3clips.toml", 4, [-0.4, 0.3, 0.3], 300],
@@ -678,6 +681,7 @@ try {
     console.log(`view speed: ${name}: ${r.updates} updates, ${r.updates_per_second.toFixed(1)} updates/s; frame interval median ${r.frame_interval_ms.median.toFixed(2)} ms, p95 ${r.frame_interval_ms.p95.toFixed(2)} ms; server solve median ${r.server_solve_ms.median.toFixed(2)} ms, p95 ${r.server_solve_ms.p95.toFixed(2)} ms; request round trip median ${r.round_trip_ms.median.toFixed(2)} ms; page update ${r.page_update_ms.median.toFixed(2)} ms + render ${r.page_render_ms.median.toFixed(2)} ms (medians); all converged: ${r.all_converged}`);
     await s.page.screenshot({ path: join(out, `view-speed-${name}.png`) });
     for (const e of s.errors) fail(e);
+    await s.page.close();
   }
   writeFileSync(join(out, "speed.json"), JSON.stringify(speed, null, 2) + "\n");
 } finally {
