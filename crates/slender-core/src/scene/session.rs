@@ -29,7 +29,7 @@ use super::error::SceneError;
 use super::result::{scene_results_with, SceneStep, StabilityResult};
 use super::shell_contact_run::StripContact;
 use super::shell_run::{move_steps, pose_change, ShellRun, StripLoad, MAX_MOVE_STEPS};
-use super::shells::ShellResult;
+use super::shells::{CompiledShell, ShellResult};
 use super::spec::{
     MotionStage, PointForceSpec, RodEnd, Scene, ShellClampSpec, ShellForceSpec, SupportKind,
     SupportSpec, UnstablePolicy, VertexRef,
@@ -919,17 +919,20 @@ impl Session {
             column,
             force: [0.0; 3],
         });
-        let before = self.swap_shell_spec(shell, with)?;
+        let compiled = self.compile_shell_spec(shell, &with)?;
+        let before = self.install_shell(shell, with, compiled);
         if value == [0.0; 3] {
             let report = self.shells[shell].report().clone();
             return Ok(self.strip_summary(&report, "the new force"));
         }
-        let report = self.set_shell_force(shell, k, value)?;
-        if !report.converged {
-            self.swap_shell_spec(shell, before)
-                .expect("the strip's previous spec compiled before");
+        match self.set_shell_force(shell, k, value) {
+            Ok(report) if report.converged => Ok(report),
+            other => {
+                // Back to the strip without the force (its equilibrium was kept).
+                self.install_shell(shell, before.0, before.1);
+                other
+            }
         }
-        Ok(report)
     }
 
     /// Removes point force `force` of shell strip `shell`: it is first brought to zero warm
@@ -941,7 +944,12 @@ impl Session {
         shell: usize,
         force: usize,
     ) -> Result<EditReport, SceneError> {
-        let report = if self.shell_force(shell, force)?.force != [0.0; 3] {
+        let nonzero = self.shell_force(shell, force)?.force != [0.0; 3];
+        let mut without = self.spec.shells[shell].clone();
+        without.forces.remove(force);
+        // Compiled first: nothing changes unless it compiles.
+        let compiled = self.compile_shell_spec(shell, &without)?;
+        let report = if nonzero {
             let r = self.set_shell_force(shell, force, [0.0; 3])?;
             if !r.converged {
                 return Ok(r);
@@ -951,28 +959,37 @@ impl Session {
             let report = self.shells[shell].report().clone();
             self.strip_summary(&report, "the removal")
         };
-        let mut without = self.spec.shells[shell].clone();
-        without.forces.remove(force);
-        self.swap_shell_spec(shell, without)?;
+        self.install_shell(shell, without, compiled);
         Ok(report)
     }
 
-    /// Recompiles strip `shell` from `spec` (the scene's gravity) and puts it in place of the
-    /// current model, which only loads may differ from: the strip's unknowns, its state (the
-    /// clamp poses live there) and its solver carry over. Returns the spec it replaced.
-    fn swap_shell_spec(
+    /// Strip `shell` compiled from `spec` with the scene's gravity.
+    fn compile_shell_spec(
+        &self,
+        shell: usize,
+        spec: &super::spec::ShellSpec,
+    ) -> Result<CompiledShell, SceneError> {
+        super::shells::compile_shell(
+            &format!("shells[{shell}]"),
+            shell,
+            spec,
+            Vec3::from(self.spec.gravity),
+        )
+    }
+
+    /// Puts `compiled` (from `spec`) in place of strip `shell`'s model, which only its loads
+    /// may differ from: the strip's unknowns, its state (the clamp poses live there) and its
+    /// solver carry over. Returns the spec and model it replaced.
+    fn install_shell(
         &mut self,
         shell: usize,
         spec: super::spec::ShellSpec,
-    ) -> Result<super::spec::ShellSpec, SceneError> {
-        let compiled = super::shells::compile_shell(
-            &format!("shells[{shell}]"),
-            shell,
-            &spec,
-            Vec3::from(self.spec.gravity),
-        )?;
-        self.scene.shells[shell] = compiled;
-        Ok(std::mem::replace(&mut self.spec.shells[shell], spec))
+        compiled: CompiledShell,
+    ) -> (super::spec::ShellSpec, CompiledShell) {
+        (
+            std::mem::replace(&mut self.spec.shells[shell], spec),
+            std::mem::replace(&mut self.scene.shells[shell], compiled),
+        )
     }
 
     /// Adds a support to rod `rod` where the rod is now (a clip or pin holds the current
