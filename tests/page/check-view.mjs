@@ -4,7 +4,8 @@
 //     vector (through the gizmo's objectChange path); the page's cable must reach the
 //     equilibrium of `slender solve` on the same scene with the equivalent [[motion]] stage:
 //     every vertex, the tip included, to 1e-9 of the cable length; no console errors; the
-//     canvas is not blank (pixels); colour by axial force (legend, range). Undo takes the whole drag back bit for bit, redo
+//     canvas is not blank (pixels); colour by axial force (legend, range); the supports
+//     table's reactions along the cable. Undo takes the whole drag back bit for bit, redo
 //     (Ctrl+Shift+Z) brings it back. A pose typed in the panel (position, rotation in
 //     degrees) moves the clamp there = `slender solve` along the same path; one Undo.
 //  2. clip + save: click on the cable in "add a clip" mode (a real mouse click, raycast to an
@@ -187,6 +188,18 @@ try {
   check(axialLegend.title === "axial force, tension + (N)" && Math.abs(axialLegend.max - axMax) <= 1e-2 * axMax && axMax > 0,
     `colour by axial force: legend "${axialLegend.title}", range ±${axialLegend.max} N (largest vertex value ${axMax.toPrecision(4)} N)`);
   await s1.page.selectOption("#colour", colourBefore);
+  // The supports table's "along": each reaction's component along the cable's tangent there.
+  const alongCheck = await s1.page.evaluate(() => ({ shown: [...document.querySelectorAll("#rods .rod td.along")].map((td) => td.textContent),
+    rod: window.slender.state().rods[0] }));
+  const alongExpected = alongCheck.rod.supports.map((sp) => {
+    const p = alongCheck.rod.positions, v = sp.vertex;
+    const a = p[Math.max(0, v - 1)], b = p[Math.min(p.length - 1, v + 1)];
+    const t = b.map((x, k) => x - a[k]), n = Math.hypot(...t);
+    return sp.force.reduce((acc, f, k) => acc + f * t[k] / n, 0);
+  });
+  check(alongCheck.shown.length === alongExpected.length
+    && alongCheck.shown.every((txt, i) => Math.abs(parseFloat(txt) - alongExpected[i]) <= 5e-3 * Math.abs(alongExpected[i]) + 1e-9),
+    `supports table: the reactions along the cable [${alongCheck.shown.join(", ")}] (= force · tangent)`);
   await s1.page.screenshot({ path: join(out, "view-drag.png") });
   // The whole drag is one step of undo: Undo gives the equilibrium before it bit for bit,
   // Redo the dragged one.

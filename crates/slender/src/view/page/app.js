@@ -108,6 +108,16 @@ function field(rod, what) {
   return { values: rod.curvature, signed: false, scale: 1, unit: "1/m", title: "curvature |κ|" };
 }
 
+/** What the supports table's "along" column is. */
+const ALONG_TITLE = "the reaction's component along the cable at the support (N; positive toward the cable's end, increasing arc length): what a clip holds against the cable sliding through it, the pull on an end's connector";
+
+/** Unit tangent of the centerline at vertex `v` (along increasing arc length). */
+function tangentAt(rod, v) {
+  const p = rod.positions;
+  const a = v3(p[Math.max(0, v - 1)]), b = v3(p[Math.min(p.length - 1, v + 1)]);
+  return b.sub(a).normalize();
+}
+
 /** Per-vertex values from per-edge ones: the mean of the edges beside each vertex. */
 function vertexAverage(edges) {
   const n = edges.length;
@@ -853,10 +863,11 @@ function updatePanel(reply) {
       (allowed ? ` (allowed ${fmtLength(allowed)}${tight ? `: <b class="bad">${tight} vertex${tight === 1 ? "" : "es"} too tight</b>, in red` : ""})` : "");
     const rows = rod.supports.map((s, si) => {
       const sel = selected && selected.userData.rod === ri && selected.userData.support === si ? "selected" : "";
-      return `<tr class="${sel}"><td>${si}</td><td>${s.kind.replace("_", " ")}</td><td>v ${s.vertex}</td><td>${fmtForce(Math.hypot(...s.force))}</td><td>${Math.hypot(...s.moment).toExponential(2)} N m</td></tr>`;
+      const along = v3(s.force).dot(tangentAt(rod, s.vertex));
+      return `<tr class="${sel}"><td>${si}</td><td>${s.kind.replace("_", " ")}</td><td>v ${s.vertex}</td><td>${fmtForce(Math.hypot(...s.force))}</td><td class="along">${fmtForce(along)}</td><td>${Math.hypot(...s.moment).toExponential(2)} N m</td></tr>`;
     }).join("");
     return `<div class="rod"><b>${rod.name}</b> <span class="muted">${rod.model}</span>${rod.stable ? "" : ' <b class="bad">unstable</b>'}${rod.converged ? "" : ' <b class="bad">not converged</b>'}<br>${radius}
-      <table><tr><td>#</td><td>support</td><td>at</td><td>|force|</td><td>|moment|</td></tr>${rows}</table></div>`;
+      <table><tr><td>#</td><td>support</td><td>at</td><td>|force|</td><td title="${ALONG_TITLE}">along</td><td>|moment|</td></tr>${rows}</table></div>`;
   }).join("");
   $("rods").innerHTML = html;
 }
