@@ -7,7 +7,8 @@
 //     canvas is not blank (pixels); colour by axial force (legend, range); the supports
 //     table's reactions along the cable. Undo takes the whole drag back bit for bit, redo
 //     (Ctrl+Shift+Z) brings it back. A pose typed in the panel (position, rotation in
-//     degrees) moves the clamp there = `slender solve` along the same path; one Undo.
+//     degrees) moves the clamp there = `slender solve` along the same path; one Undo. The
+//     arrow and Page keys nudge it by 1 mm (1 cm with Shift), each press one step of undo.
 //  2. clip + save: click on the cable in "add a clip" mode (a real mouse click, raycast to an
 //     arc length), then "Save scene": the downloaded TOML has the clip and its `slender solve`
 //     gives the page's equilibrium.
@@ -248,6 +249,21 @@ try {
     return window.slender.errors.splice(0);
   });
   check(poseRefused.some((e) => e.field === "rods[0].supports[2].position"), `typed pose: one Undo goes back to the dragged equilibrium bit for bit; an empty box is refused naming ${poseRefused.map((e) => e.field).join(", ")}`);
+
+  // Keyboard nudges: → moves the selected clamp 1 mm along x, Shift+Page Up 1 cm along z;
+  // each is one step of undo.
+  await s1.page.evaluate(() => { document.activeElement?.blur(); window.slender.select(0, 2); });
+  const nudgeFrom = await s1.page.evaluate(() => window.slender.state().rods[0].supports[2].position);
+  await s1.page.keyboard.press("ArrowRight");
+  await s1.page.waitForFunction((x) => window.slender.state().rods[0].supports[2].position[0] > x + 5e-4, nudgeFrom[0], { timeout: 20000 });
+  await s1.page.keyboard.press("Shift+PageUp");
+  await s1.page.waitForFunction((z) => window.slender.state().rods[0].supports[2].position[2] > z + 5e-3, nudgeFrom[2], { timeout: 20000 });
+  const nudged = await s1.page.evaluate(() => window.slender.state().rods[0].supports[2].position);
+  const nudgeErr = Math.hypot(nudged[0] - nudgeFrom[0] - 1e-3, nudged[1] - nudgeFrom[1], nudged[2] - nudgeFrom[2] - 1e-2);
+  await s1.page.keyboard.press("Control+Z");
+  await s1.page.keyboard.press("Control+Z");
+  await s1.page.waitForFunction((p) => JSON.stringify(window.slender.state().rods[0].positions) === p, dragged, { timeout: 20000 });
+  check(nudgeErr <= 1e-12, `keyboard: → and Shift+Page Up moved the clamp by [1 mm, 0, 1 cm] (to ${nudgeErr.toExponential(1)} m); two Ctrl+Z back bit for bit`);
 
   // ---- 2. add a clip by clicking the cable, save, solve the saved scene ----
   await s1.page.evaluate(() => window.slender.setTool("add-clip"));

@@ -1216,9 +1216,20 @@ $("pose-apply").addEventListener("click", () => placeSelected());
 for (const id of POSE_IDS.concat(TURN_IDS)) {
   $(id).addEventListener("keydown", (e) => { if (e.key === "Enter") placeSelected(); });
 }
+/** Keyboard nudges of the selected support: world axis per key (m per press, ×10 with Shift). */
+const NUDGE = { ArrowRight: [1, 0, 0], ArrowLeft: [-1, 0, 0], ArrowUp: [0, 1, 0], ArrowDown: [0, -1, 0], PageUp: [0, 0, 1], PageDown: [0, 0, -1] };
+const NUDGE_STEP = 1e-3;
 window.addEventListener("keydown", (ev) => {
   if (document.activeElement?.tagName === "INPUT") return;
   if (ev.key === "Delete" && selected) deleteSelected();
+  if (NUDGE[ev.key] && selected && selected.userData.kind !== "twist_hold" && !ev.ctrlKey && !ev.metaKey) {
+    // One `move_by` per press: one step of undo each, solved warm like any edit.
+    ev.preventDefault();
+    const translation = NUDGE[ev.key].map((x) => x * NUDGE_STEP * (ev.shiftKey ? 10 : 1));
+    const { rod, shell, support } = selected.userData;
+    const target = shell !== undefined ? { shell } : { rod };
+    edit({ op: "move_by", ...target, support, translation, rotation: [0, 0, 0] });
+  }
   const z = ev.key === "z" || ev.key === "Z";
   if ((ev.ctrlKey || ev.metaKey) && z) { ev.preventDefault(); undoRedo(ev.shiftKey ? "redo" : "undo"); }
   if ((ev.ctrlKey || ev.metaKey) && (ev.key === "y" || ev.key === "Y")) { ev.preventDefault(); undoRedo("redo"); }
