@@ -23,9 +23,10 @@
 //     cable), set in its row (= slender
 //     solve with it in the file), removed by its ×, put back by Ctrl+Z; a force that does not
 //     exist is refused, the equilibrium kept.
-//  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar and a ramp read
-//     from an OBJ file): each is a mesh of the three.js scene, tagged with its obstacle, at its
-//     pose (the ball's bounds, the box's corners, the ramp's vertices as in the file); the
+//  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar, a ramp read
+//     from an OBJ file and a ring): each is a mesh of the three.js scene, tagged with its
+//     obstacle, at its pose (the ball's and the ring's bounds, the box's corners, the ramp's
+//     vertices as in the file); the
 //     toggle hides them; one marker per active contact of the server's reply; the clamp
 //     dragged 8 cm down, into the floor: every reply's min gap > 0, no vertex under the floor,
 //     the page shows the min gap ≥ 0 and the refused move, no console errors.
@@ -518,7 +519,7 @@ try {
   const countContacts = (reply) => reply.view.obstacles.reduce((n, o) => n + o.contacts.length, 0);
   let d4 = await drawn(s4.page);
   const kinds = d4.obstacles.map((o) => `${o.name.slice(9)}=${o.kind}`).join(", ");
-  check(shapes.length === 5 && d4.obstacles.length === 5 && d4.obstacles.every((o, i) => o.obstacle === i && o.kind === shapes[i].shape.kind && o.visible),
+  check(shapes.length === 6 && d4.obstacles.length === 6 && d4.obstacles.every((o, i) => o.obstacle === i && o.kind === shapes[i].shape.kind && o.visible),
     `obstacles: every obstacle is a mesh of the scene, tagged (${kinds})`);
   const ball = d4.obstacles.find((o) => o.kind === "sphere");
   const ballErr = Math.max(...[0, 1, 2].flatMap((k) => [Math.abs(ball.box[0][k] - ([0.4, 0, 0][k] - 0.045)), Math.abs(ball.box[1][k] - ([0.4, 0, 0][k] + 0.045))]));
@@ -546,6 +547,11 @@ try {
   const ramp = d4.obstacles.find((o) => o.kind === "mesh");
   const rampErr = Math.max(...ramp.world.map((p) => nearest(p, objVertices)), ...objVertices.map((p) => nearest(p, ramp.world)));
   check(ramp.triangles === objFaces && rampErr < 1e-6, `obstacles: the ramp has the OBJ file's ${objFaces} triangles at its vertices (${ramp.triangles} drawn, ${rampErr.toExponential(1)} m)`);
+  // The ring (axis z): its circle's radius plus its tube's across the axis, the tube's along it.
+  const ring = d4.obstacles.find((o) => o.kind === "torus");
+  const ringReach = [0.038, 0.038, 0.008];
+  const ringErr = Math.max(...[0, 1, 2].flatMap((k) => [Math.abs(ring.box[0][k] - ([0.7, 0.08, 0.03][k] - ringReach[k])), Math.abs(ring.box[1][k] - ([0.7, 0.08, 0.03][k] + ringReach[k]))]));
+  check(ringErr < 1e-6, `obstacles: the ring's bounds are its centre ± (radius + tube radius) across its axis, ± its tube radius along it (${ringErr.toExponential(1)} m)`);
   const floor = d4.obstacles.find((o) => o.kind === "plane");
   const floorShape = shapes.find((o) => o.shape.kind === "plane").shape;
   check(Math.max(Math.abs(floor.box[0][2]), Math.abs(floor.box[1][2])) < 1e-9 && Math.abs(floor.box[1][0] - floor.box[0][0] - floorShape.size) < 1e-6,

@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 use slender_core::assembly::TermSet;
 use slender_core::contact::{
     ContactParams, ContactProblem, ContactSites, Cylinder, Friction, Obstacle, Plane, Sphere,
-    CONTACT, FRICTION,
+    Torus, CONTACT, FRICTION,
 };
 use slender_core::rod::{RestCurve, RodBuilder, RodProperties, SectionStiffness};
 use slender_core::solver::{EquilibriumProblem, EquilibriumSolver, SolverParams};
@@ -67,6 +67,9 @@ fn barrier_derivatives_match_finite_differences_for_every_obstacle() {
         boxed(Plane::new(Vector3::new(0.0, 0.0, -0.03), Vector3::z(), 0.0).unwrap()),
         boxed(Sphere::new(Vector3::new(0.5, 0.0, 0.07), 0.03, 0.0).unwrap()),
         boxed(Cylinder::new(Vector3::new(0.8, 0.0, -0.06), Vector3::y(), 0.02, 0.0).unwrap()),
+        // The rod runs through the ring off its axis (the medial axis, where the distance has a
+        // cone point, stays 2 cm away).
+        boxed(Torus::new(Vector3::new(0.3, 0.0, 0.02), Vector3::x(), 0.06, 0.02, 0.0).unwrap()),
     ];
     let params = ContactParams {
         radius: 0.01,

@@ -1512,3 +1512,79 @@ fn a_cable_dropped_on_a_bracket_comes_to_rest_on_it_and_balances() {
     );
     assert!(err <= 1e-6, "imbalance {err:e}");
 }
+
+/// Where the centerline crosses the plane x = `x` (first crossing): the point and its rest arc
+/// length (`h` the edge length).
+fn crossing(p: &[V3], x: f64, h: f64) -> (V3, f64) {
+    let j = (0..p.len() - 1)
+        .find(|&j| p[j][0] <= x && p[j + 1][0] > x)
+        .expect("the cable crosses the plane");
+    let t = (x - p[j][0]) / (p[j + 1][0] - p[j][0]);
+    (add(p[j], scale(sub(p[j + 1], p[j]), t)), (j as f64 + t) * h)
+}
+
+#[test]
+fn a_cable_slides_through_its_rings_and_never_leaves_them() {
+    let out = solve("cable_through_rings");
+    let steps = n_steps(&out);
+    // Rings at x = 0.35 and 0.85 on the x axis; hole radius 14 mm, the cable's 3 mm.
+    let rings = [0.35, 0.85];
+    let (hole, radius, h) = (0.02 - 0.006, 0.003, 0.01);
+    let mut at_b = Vec::new();
+    for k in 0..steps {
+        let s = step(&out, k);
+        let rod = &s["rods"][0];
+        assert!(
+            rod["relative_force_imbalance"].as_f64().unwrap() < 1e-9,
+            "step {k}"
+        );
+        let p = positions(rod);
+        for (i, &x) in rings.iter().enumerate() {
+            // Through the hole, never through the tube. Only vertices touch: an edge passing a
+            // tube (section radius ρ = tube + cable radius) may cut into it by its sagitta
+            // ρ − √(ρ² − h²/4) (1.5 mm here).
+            let (c, s_at) = crossing(&p, x, h);
+            let off = (c[1] * c[1] + c[2] * c[2]).sqrt();
+            let rho: f64 = 0.006 + radius;
+            let sagitta = rho - (rho * rho - h * h / 4.0).sqrt();
+            assert!(
+                off < hole - radius + sagitta,
+                "step {k}: ring {i} crossed at {off} m from its axis"
+            );
+            if i == 1 {
+                at_b.push((s_at, c));
+            }
+            // Frictionless: the rings push, they do not hold along the cable.
+            for contact in s["obstacles"][i]["contacts"].as_array().unwrap() {
+                assert_eq!(norm(v3(&contact["friction_force"])), 0.0);
+            }
+        }
+        // The rings carry part of the weight: the clamps' vertical reactions fall short of it.
+        let weight = 1400.0 * circle_area(0.006) * 1.2 * 9.81;
+        let clamps: f64 = (0..2)
+            .map(|i| rod["supports"][i]["force"][2].as_f64().unwrap())
+            .sum();
+        assert!(
+            clamps < 0.9 * weight,
+            "step {k}: the clamps hold {clamps} N of {weight} N"
+        );
+    }
+    // Pushing the end clamp in by 15 cm (stage 1, steps 1–6) pushed cable through ring B; pulling
+    // it out by 8 cm (stage 2) drew some back: the material at ring B moved by about as much.
+    // Between ring B and the end clamp the cable then runs nearly straight, so its length there
+    // is the distance between them.
+    let (s0, s6, s10) = (at_b[0].0, at_b[6].0, at_b[steps - 1].0);
+    println!("cable at ring B: s = {s0:.4} m at rest, {s6:.4} m pushed in, {s10:.4} m pulled out");
+    assert!(s6 - s0 > 0.12 && s6 - s10 > 0.06, "{s0} {s6} {s10}");
+    for k in [6, steps - 1] {
+        let s = step(&out, k);
+        let end = v3(&s["rods"][0]["supports"][1]["position"]);
+        let (s_at, c) = at_b[k];
+        let span = norm(sub(end, c));
+        assert!(
+            (1.2 - s_at - span).abs() < 5e-3,
+            "step {k}: {} m of cable past ring B, {span} m to the clamp",
+            1.2 - s_at
+        );
+    }
+}

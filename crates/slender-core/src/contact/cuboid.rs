@@ -5,9 +5,6 @@ use nalgebra::{Matrix3, Rotation3, Vector3};
 use super::obstacle::{Obstacle, SurfacePoint};
 use crate::ModelError;
 
-/// Conservative-advancement iterations of a step that leaves a face's region.
-const ADVANCE_ITERATIONS: usize = 64;
-
 /// The box of centre `center`, half-extents `half` along its axes, turned by `rotation`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cuboid {
@@ -130,28 +127,8 @@ impl Obstacle for Cuboid {
                 };
             }
         }
-        // Elsewhere, conservative advancement: the distance is 1-Lipschitz, so a move of the
-        // current distance minus the clearance never reaches the inflated box.
-        let length = dp.norm();
-        if length == 0.0 {
-            return 1.0;
-        }
-        let mut alpha = 0.0;
-        let mut room0: Option<f64> = None;
-        for _ in 0..ADVANCE_ITERATIONS {
-            let room = self.surface(&(p + dp * alpha)).distance - clearance;
-            // Stop once the room left is a small fraction of the room at the start (it is
-            // positive at the start: the point keeps at least its clearance).
-            let start = *room0.get_or_insert(room);
-            if room <= 1e-3 * start {
-                return alpha;
-            }
-            alpha += room / length;
-            if alpha >= 1.0 {
-                return 1.0;
-            }
-        }
-        alpha
+        // Elsewhere, conservative advancement.
+        super::conservative_advancement(|x| self.surface(x).distance, p, dp, clearance)
     }
 
     fn friction(&self) -> f64 {

@@ -2,7 +2,8 @@
 //!
 //! [`obstacle`] is the one interface every rigid obstacle implements (closest-point queries with
 //! the derivatives an exact Hessian needs, and the time of impact that caps a step);
-//! [`plane`], [`sphere`] and [`cylinder`] are obstacles. [`barrier`] is the contact energy of
+//! [`plane`], [`sphere`], [`cylinder`], [`cuboid`], [`torus`] (a ring a cable runs through: a
+//! sliding clip) and [`mesh`] are obstacles. [`barrier`] is the contact energy of
 //! one gap, [`sites`] says where a model's contact points are (its vertices) and which DOFs
 //! move them ([`shell_sites`]: the mid-edge shell strip's vertices, weighted by area), and [`problem`] adds the contacts to any model as an
 //! [`EquilibriumProblem`](crate::solver::EquilibriumProblem) for the unchanged solver.
@@ -22,6 +23,7 @@ pub mod segment_distance;
 pub mod shell_sites;
 pub mod sites;
 pub mod sphere;
+pub mod torus;
 
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
@@ -35,6 +37,7 @@ pub use problem::{
 };
 pub use sites::{ContactEdge, ContactSite, ContactSites, SiteDof};
 pub use sphere::Sphere;
+pub use torus::Torus;
 
 use nalgebra::Vector3;
 
@@ -57,4 +60,39 @@ pub(crate) fn ball_time_of_impact(r: Vector3<f64>, dr: Vector3<f64>, radius: f64
     // Smaller root, in the cancellation-free form c / (−b + √disc).
     let alpha = c / (-b + disc.sqrt());
     alpha.clamp(0.0, 1.0)
+}
+
+/// Conservative-advancement iterations of [`conservative_advancement`].
+const ADVANCE_ITERATIONS: usize = 64;
+
+/// The time of impact of the segment p + [0, 1]·dp against the surface whose exact signed
+/// distance is `distance` (1-Lipschitz), for a point that keeps `clearance` (m) at α = 0:
+/// conservative advancement, a move of the current distance minus the clearance never
+/// reaching the inflated surface. Returns α ∈ [0, 1] (stops once the room left is 1e-3 of the
+/// room at the start, or after [`ADVANCE_ITERATIONS`] moves).
+pub(crate) fn conservative_advancement(
+    distance: impl Fn(&Vector3<f64>) -> f64,
+    p: &Vector3<f64>,
+    dp: &Vector3<f64>,
+    clearance: f64,
+) -> f64 {
+    let length = dp.norm();
+    if length == 0.0 {
+        return 1.0;
+    }
+    let mut alpha = 0.0;
+    let mut room0: Option<f64> = None;
+    for _ in 0..ADVANCE_ITERATIONS {
+        let room = distance(&(p + dp * alpha)) - clearance;
+        // The room is positive at the start: the point keeps at least its clearance.
+        let start = *room0.get_or_insert(room);
+        if room <= 1e-3 * start {
+            return alpha;
+        }
+        alpha += room / length;
+        if alpha >= 1.0 {
+            return 1.0;
+        }
+    }
+    alpha
 }

@@ -268,6 +268,70 @@ struct SelfScratch {
 }
 
 impl<'m, P: ContactSites> ContactProblem<'m, P> {
+    /// The largest fraction (≤ `alpha`, the model's own cap) of the step `dx` along which
+    /// every site keeps its clearance from every obstacle and, with self-contact, every pair of
+    /// segments theirs (a fraction [`KEEP_GAP`] of each gap stays open).
+    fn contact_step_limit(&self, state: &P::State, dx: &[f64], mut alpha: f64) -> f64 {
+        for (site, &radius) in self.sites.iter().zip(&self.site_radius) {
+            let mut dp = Vector3::zeros();
+            for (c, d) in site.dofs.iter().enumerate() {
+                if d.dof != crate::assembly::FIXED {
+                    dp[c] = d.coef * dx[d.dof];
+                }
+            }
+            if dp == Vector3::zeros() {
+                continue;
+            }
+            let p = self.model.site_position(state, site);
+            for obstacle in &self.obstacles {
+                let gap = obstacle.surface(&p).distance - radius;
+                let clearance = radius + KEEP_GAP * gap.max(0.0);
+                alpha = alpha.min(obstacle.time_of_impact(&p, &(dp * alpha), clearance) * alpha);
+            }
+        }
+        if !self.edges.is_empty() {
+            // Additive conservative advancement (Li et al. 2021): two segments whose end
+            // points move by at most Δ_a and Δ_b come closer by at most Δ_a + Δ_b, so the
+            // motion can be advanced by (1 − KEEP_GAP)·gap / (Δ_a + Δ_b) and the gap measured
+            // again there. Repeating it lets a pressed contact slide along the other segment
+            // (its gap stays, its motion is mostly tangential) where one such bound would cap
+            // the step at gap / motion. The gap stays above a tenth of a tenth of its start
+            // along the whole capped motion.
+            let moved = |site: usize| -> Vector3<f64> {
+                let mut dp = Vector3::zeros();
+                for (c, d) in self.sites[site].dofs.iter().enumerate() {
+                    if d.dof != crate::assembly::FIXED {
+                        dp[c] = d.coef * dx[d.dof];
+                    }
+                }
+                dp
+            };
+            let largest = (0..self.sites.len())
+                .map(|k| moved(k).norm())
+                .fold(0.0, f64::max);
+            self.for_each_primitive(state, 2.0 * alpha * largest, |prim| {
+                let clearance = prim.clearance(self);
+                let t = match prim {
+                    Primitive::EdgeEdge { a, b, x } => {
+                        let sites = [self.edges[*a].sites, self.edges[*b].sites].concat();
+                        let dp: [f64; 12] =
+                            std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
+                        additive_ccd(x, &dp, 2, |y| segment_distance(y) - clearance)
+                    }
+                    Primitive::VertexEdge { v, e, x } => {
+                        let [e0, e1] = self.edges[*e].sites;
+                        let sites = [*v, e0, e1];
+                        let dp: [f64; 9] =
+                            std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
+                        additive_ccd(x, &dp, 1, |y| point_segment_distance(y) - clearance)
+                    }
+                };
+                alpha *= t;
+            });
+        }
+        alpha
+    }
+
     /// `model` with `obstacles`, every member of radius `params.radius`. Errors: invalid
     /// parameters, a model that already uses the contact group's bit, or a site of `start`
     /// that is not outside every obstacle by more than its radius (the cable would start
@@ -1076,7 +1140,52 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
     }
 
     fn impose_load(&self, state: &mut P::State, from: f64, to: f64, guess: bool) {
-        self.model.impose_load(state, from, to, guess)
+        if !guess || self.obstacles.is_empty() {
+            return self.model.impose_load(state, from, to, guess);
+        }
+        // The model's first guess moves the free vertices by a blend of the supports' motion,
+        // in one jump. Each vertex's jump is capped like a Newton step (its time of impact
+        // with every obstacle, keeping a fraction of its gap), so that the guess cannot carry
+        // a vertex through a thin obstacle (a ring's tube, a panel) to a feasible state on its
+        // far side; the vertices an obstacle stops stay short of it, the rest follow the blend.
+        let before = state.clone();
+        self.model.impose_load(state, from, to, true);
+        let mut fraction = vec![1.0_f64; self.sites.len()];
+        let mut capped = false;
+        for (k, (site, &radius)) in self.sites.iter().zip(&self.site_radius).enumerate() {
+            let p0 = self.model.site_position(&before, site);
+            let dp = self.model.site_position(state, site) - p0;
+            if dp == Vector3::zeros() || site.dofs.iter().all(|d| d.dof == crate::assembly::FIXED) {
+                continue;
+            }
+            for o in &self.obstacles {
+                let gap = o.surface(&p0).distance - radius;
+                let clearance = radius + KEEP_GAP * gap.max(0.0);
+                let t = o.time_of_impact(&p0, &dp, clearance);
+                if t < fraction[k] {
+                    fraction[k] = t;
+                    capped = true;
+                }
+            }
+        }
+        if !capped {
+            return;
+        }
+        // The guess as a step from the supports-only state, each site's coordinates scaled by
+        // its fraction.
+        let guessed = std::mem::replace(state, before);
+        self.model.impose_load(state, from, to, false);
+        let mut dx = vec![0.0; self.model.n_free()];
+        self.model.difference(&guessed, state, &mut dx);
+        for (site, &f) in self.sites.iter().zip(&fraction) {
+            for d in &site.dofs {
+                if d.dof != crate::assembly::FIXED {
+                    dx[d.dof] *= f;
+                }
+            }
+        }
+        let moved = state.clone();
+        self.model.chart(&moved, &dx, state);
     }
 
     fn refresh_loads(&self, state: &mut P::State) -> f64 {
@@ -1084,65 +1193,11 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
     }
 
     fn max_step(&self, state: &P::State, dx: &[f64]) -> f64 {
-        let mut alpha = self.model.max_step(state, dx);
-        for (site, &radius) in self.sites.iter().zip(&self.site_radius) {
-            let mut dp = Vector3::zeros();
-            for (c, d) in site.dofs.iter().enumerate() {
-                if d.dof != crate::assembly::FIXED {
-                    dp[c] = d.coef * dx[d.dof];
-                }
-            }
-            if dp == Vector3::zeros() {
-                continue;
-            }
-            let p = self.model.site_position(state, site);
-            for obstacle in &self.obstacles {
-                let gap = obstacle.surface(&p).distance - radius;
-                let clearance = radius + KEEP_GAP * gap.max(0.0);
-                alpha = alpha.min(obstacle.time_of_impact(&p, &(dp * alpha), clearance) * alpha);
-            }
-        }
-        if !self.edges.is_empty() {
-            // Additive conservative advancement (Li et al. 2021): two segments whose end
-            // points move by at most Δ_a and Δ_b come closer by at most Δ_a + Δ_b, so the
-            // motion can be advanced by (1 − KEEP_GAP)·gap / (Δ_a + Δ_b) and the gap measured
-            // again there. Repeating it lets a pressed contact slide along the other segment
-            // (its gap stays, its motion is mostly tangential) where one such bound would cap
-            // the step at gap / motion. The gap stays above a tenth of a tenth of its start
-            // along the whole capped motion.
-            let moved = |site: usize| -> Vector3<f64> {
-                let mut dp = Vector3::zeros();
-                for (c, d) in self.sites[site].dofs.iter().enumerate() {
-                    if d.dof != crate::assembly::FIXED {
-                        dp[c] = d.coef * dx[d.dof];
-                    }
-                }
-                dp
-            };
-            let largest = (0..self.sites.len())
-                .map(|k| moved(k).norm())
-                .fold(0.0, f64::max);
-            self.for_each_primitive(state, 2.0 * alpha * largest, |prim| {
-                let clearance = prim.clearance(self);
-                let t = match prim {
-                    Primitive::EdgeEdge { a, b, x } => {
-                        let sites = [self.edges[*a].sites, self.edges[*b].sites].concat();
-                        let dp: [f64; 12] =
-                            std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
-                        additive_ccd(x, &dp, 2, |y| segment_distance(y) - clearance)
-                    }
-                    Primitive::VertexEdge { v, e, x } => {
-                        let [e0, e1] = self.edges[*e].sites;
-                        let sites = [*v, e0, e1];
-                        let dp: [f64; 9] =
-                            std::array::from_fn(|i| alpha * moved(sites[i / 3])[i % 3]);
-                        additive_ccd(x, &dp, 1, |y| point_segment_distance(y) - clearance)
-                    }
-                };
-                alpha *= t;
-            });
-        }
-        alpha
+        self.contact_step_limit(state, dx, self.model.max_step(state, dx))
+    }
+
+    fn kick_limit(&self, state: &P::State, dx: &[f64]) -> f64 {
+        self.contact_step_limit(state, dx, 1.0)
     }
 
     fn caps_predictor(&self) -> bool {

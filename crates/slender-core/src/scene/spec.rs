@@ -110,6 +110,22 @@ pub enum ObstacleShapeSpec {
         #[serde(default)]
         rotate: [f64; 3],
     },
+    /// A solid ring (torus) a cable runs through and slides in: a sliding clip, a grommet, an
+    /// eyelet. Only the cable's vertices touch obstacles: near the ring keep its elements
+    /// shorter than `2 × (tube_radius + the cable's contact radius)`, or an edge could straddle
+    /// the tube; an edge of length h may cut into the tube by its sagitta ρ − √(ρ² − h²/4),
+    /// ρ = tube_radius + contact radius.
+    Torus {
+        /// Centre (m).
+        center: [f64; 3],
+        /// Axis (any non-zero length): the direction a cable runs through the ring.
+        axis: [f64; 3],
+        /// Radius (m, > 0) from the centre to the tube's centre circle.
+        radius: f64,
+        /// Radius of the tube (m, > 0 and < `radius`); the hole's radius is
+        /// `radius − tube_radius`.
+        tube_radius: f64,
+    },
     /// A triangle mesh (contact with its surface, from either side), inline or from a file.
     Mesh {
         /// An STL (ASCII or binary) or OBJ file, relative to the scene file, whose triangles

@@ -36,6 +36,25 @@ pub fn kick_scale<P: EquilibriumProblem>(problem: &P, mode: &[f64], amplitude: f
     }
 }
 
+/// Puts into `out` the state `from` kicked by `scale` × `mode`, or by the part of that kick the
+/// problem allows ([`EquilibriumProblem::kick_limit`]: a kick must not push a cable into or
+/// through an obstacle).
+pub(crate) fn kick<P: EquilibriumProblem>(
+    problem: &P,
+    from: &P::State,
+    mode: &[f64],
+    scale: f64,
+    out: &mut P::State,
+) {
+    let dx: Vec<f64> = mode.iter().map(|m| m * scale).collect();
+    let limit = problem.kick_limit(from, &dx);
+    if limit >= 1.0 {
+        problem.displace(from, mode, scale, out);
+    } else {
+        problem.displace(from, &dx, limit.max(0.0), out);
+    }
+}
+
 /// From the converged unstable equilibrium `state` at load factor `load` (the solver's last
 /// solve, with its lowest mode computed), follows the lowest mode to a stable equilibrium with
 /// minimizations of at most `max_iterations` Newton iterations, kicking by `amplitude` (m, the
@@ -66,7 +85,7 @@ pub fn follow_unstable_mode<P: EquilibriumProblem>(
         let mut best: Option<(f64, P::State, SolveReport)> = None;
         let mut kicked = current.clone();
         for sign in [1.0, -1.0] {
-            problem.displace(&current, &mode, sign * scale, &mut kicked);
+            kick(problem, &current, &mode, sign * scale, &mut kicked);
             let report = solver.solve_in_place(problem, &mut kicked, load, load);
             if !report.converged() {
                 continue;

@@ -487,7 +487,13 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         let mut best: Option<(f64, S, super::newton::NewtonOutcome)> = None;
         let mut kicked = start.clone();
         for sign in [1.0, -1.0] {
-            problem.displace(&start, &self.mode.shape, sign * scale, &mut kicked);
+            super::branch_switch::kick(
+                problem,
+                &start,
+                &self.mode.shape,
+                sign * scale,
+                &mut kicked,
+            );
             let out = newton(problem, &mut kicked, load, &long, &mut self.ws);
             its += out.iterations;
             let stable = out.last.inertia.is_some_and(|i| i.negative == 0);

@@ -149,6 +149,14 @@ pub trait EquilibriumProblem: MassMetric {
         0.0
     }
 
+    /// The largest fraction α ∈ [0, 1] of a kick `dx` (a branch switch's push along a mode,
+    /// taken whole rather than by Newton's capped steps) that keeps `state` admissible for
+    /// constraints the model's own [`max_step`](Self::max_step) does not hold: a contact's
+    /// obstacles, which a kick must not push a vertex into or through. 1 by default.
+    fn kick_limit(&self, _state: &Self::State, _dx: &[f64]) -> f64 {
+        1.0
+    }
+
     /// Largest α ∈ (0, 1] such that `alpha·dx` respects the model's step caps (e.g. no edge
     /// turns by more than π/4 in one step).
     fn max_step(&self, state: &Self::State, dx: &[f64]) -> f64;

@@ -75,6 +75,9 @@ shape = { kind = "cylinder", point = [0.55, 0.0, 0.025], axis = [0.0, 3.0, 0.0],
 name = "ramp"
 friction = 0.1
 shape = { kind = "mesh", vertices = [[0.6, -0.12, 0.0], [0.85, -0.12, 0.04], [0.85, 0.12, 0.04], [0.6, 0.12, 0.0]], triangles = [[0, 1, 2], [0, 2, 3]] }
+[[obstacles]]
+name = "ring"
+shape = { kind = "torus", center = [0.7, 0.08, 0.02], axis = [0.0, 0.0, 2.0], radius = 0.03, tube_radius = 0.008 }
 [contact]
 activation = 1e-4
 "#;
@@ -953,14 +956,20 @@ fn the_state_reply_draws_every_obstacle_and_every_update_carries_the_contacts() 
         .iter()
         .map(|o| o["shape"]["kind"].as_str().unwrap())
         .collect();
-    assert_eq!(kinds, ["plane", "box", "sphere", "cylinder", "mesh"]);
+    assert_eq!(
+        kinds,
+        ["plane", "box", "sphere", "cylinder", "mesh", "torus"]
+    );
     let names: Vec<&str> = g["obstacles"]
         .as_array()
         .unwrap()
         .iter()
         .map(|o| o["name"].as_str().unwrap())
         .collect();
-    assert_eq!(names, ["floor", "block", "obstacle2", "bar", "ramp"]);
+    assert_eq!(
+        names,
+        ["floor", "block", "obstacle2", "bar", "ramp", "ring"]
+    );
     assert_eq!(g["activation"], json!(1e-4));
     assert_eq!(g["self_contact"], json!(false));
     let f = |x: &Value| x.as_f64().unwrap();
@@ -997,6 +1006,11 @@ fn the_state_reply_draws_every_obstacle_and_every_update_carries_the_contacts() 
         g["obstacles"][4]["shape"]["triangles"],
         json!([[0, 1, 2], [0, 2, 3]])
     );
+    // The ring: its centre and radii as given, a unit axis.
+    let ring = &g["obstacles"][5]["shape"];
+    assert_eq!(v3(&ring["center"]), [0.7, 0.08, 0.02]);
+    assert_eq!(v3(&ring["axis"]), [0.0, 0.0, 1.0]);
+    assert_eq!((f(&ring["radius"]), f(&ring["tube_radius"])), (0.03, 0.008));
     assert_eq!(g["obstacles"][2]["friction"], json!(0.2));
     // The contacts: on the ball, the bar and the ramp, each within ĝ of the surface; the
     // resultant of an obstacle is the sum of its contacts' forces.

@@ -494,6 +494,18 @@ pub enum ShapeGeometry {
         /// Length of the drawn piece.
         length: f64,
     },
+    /// A ring (solid torus): the tube's centre circle of radius `radius` about `center` in the
+    /// plane normal to `axis`, and the tube's radius.
+    Torus {
+        /// Centre.
+        center: [f64; 3],
+        /// Unit axis.
+        axis: [f64; 3],
+        /// Radius of the tube's centre circle.
+        radius: f64,
+        /// Radius of the tube.
+        tube_radius: f64,
+    },
     /// A box of edge lengths `size` along its axes, turned by `rotation` about its centre.
     Box {
         /// Centre.
@@ -604,6 +616,17 @@ pub fn scene_geometry(session: &Session, step: &SceneStep) -> SceneGeometry {
                         length: (smax - smin) + 0.5 * diagonal,
                     }
                 }
+                ObstacleShapeSpec::Torus {
+                    center,
+                    axis,
+                    radius,
+                    tube_radius,
+                } => ShapeGeometry::Torus {
+                    center: *center,
+                    axis: arr(unit(*axis)),
+                    radius: *radius,
+                    tube_radius: *tube_radius,
+                },
                 ObstacleShapeSpec::Box {
                     center,
                     size,

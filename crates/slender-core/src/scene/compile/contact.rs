@@ -8,7 +8,7 @@ use std::sync::Arc;
 use nalgebra::{Rotation3, Vector3};
 
 use crate::contact::{
-    ContactParams, ContactProblem, ContactSites, Cuboid, Cylinder, Obstacle, Plane, Sphere,
+    ContactParams, ContactProblem, ContactSites, Cuboid, Cylinder, Obstacle, Plane, Sphere, Torus,
     TriangleMesh,
 };
 use crate::error::ModelError;
@@ -134,6 +134,18 @@ fn obstacle(path: &str, spec: &ObstacleSpec) -> Result<Arc<dyn Obstacle>, SceneE
             let a = nonzero("axis", *axis)?;
             positive("radius", *radius)?;
             Arc::new(Cylinder::new(p, a, *radius, mu).map_err(|e| shape_error(path, e))?)
+        }
+        ObstacleShapeSpec::Torus {
+            center,
+            axis,
+            radius,
+            tube_radius,
+        } => {
+            let c = finite3(format!("{sp}.center"), *center)?;
+            let a = nonzero("axis", *axis)?;
+            positive("radius", *radius)?;
+            positive("tube_radius", *tube_radius)?;
+            Arc::new(Torus::new(c, a, *radius, *tube_radius, mu).map_err(|e| shape_error(path, e))?)
         }
         ObstacleShapeSpec::Box {
             center,

@@ -597,6 +597,11 @@ function obstacleMesh(shape) {
     g = new THREE.CylinderGeometry(shape.radius, shape.radius, shape.length, 48, 1, true);
     position = v3(shape.center);
     quaternion = quaternionFromTo(new THREE.Vector3(0, 1, 0), shape.axis);
+  } else if (shape.kind === "torus") {
+    // three.js's torus lies in its xy plane, around its z axis.
+    g = new THREE.TorusGeometry(shape.radius, shape.tube_radius, 24, 96);
+    position = v3(shape.center);
+    quaternion = quaternionFromTo(new THREE.Vector3(0, 0, 1), shape.axis);
   } else if (shape.kind === "box") {
     g = new THREE.BoxGeometry(...shape.size);
     position = v3(shape.center);
