@@ -11,7 +11,7 @@ use slender_validation::materials::OMEGA_ROD;
 use super::scene_io::{parse_scene, Syntax};
 
 /// The examples of `examples/`, embedded so that validation needs no files.
-pub const EXAMPLES: [(&str, &str); 20] = [
+pub const EXAMPLES: [(&str, &str); 21] = [
     (
         "rod_models_cantilever",
         include_str!("../../../../examples/rod_models_cantilever.toml"),
@@ -91,6 +91,10 @@ pub const EXAMPLES: [(&str, &str); 20] = [
     (
         "flat_cable_on_bracket",
         include_str!("../../../../examples/flat_cable_on_bracket.toml"),
+    ),
+    (
+        "cable_through_rings",
+        include_str!("../../../../examples/cable_through_rings.toml"),
     ),
 ];
 
