@@ -165,29 +165,7 @@ mod tests {
             Vector3::new(-0.28, 0.15, -0.41), // corner
             Vector3::new(0.05, -0.02, 0.1),   // inside
         ] {
-            let p = world(q);
-            let s = b.surface(&p);
-            let h = 1e-6;
-            for k in 0..3 {
-                let mut e = Vector3::zeros();
-                e[k] = h;
-                let (sp, sm) = (b.surface(&(p + e)), b.surface(&(p - e)));
-                let fd = (sp.distance - sm.distance) / (2.0 * h);
-                assert!(
-                    (fd - s.normal[k]).abs() < 1e-8,
-                    "{q:?} ∂{k}: {fd} vs {}",
-                    s.normal[k]
-                );
-                let fd_n = (sp.normal - sm.normal) / (2.0 * h);
-                for i in 0..3 {
-                    assert!(
-                        (fd_n[i] - s.normal_derivative[(i, k)]).abs() < 1e-6,
-                        "{q:?} ∂n{i}/∂{k}: {} vs {}",
-                        fd_n[i],
-                        s.normal_derivative[(i, k)]
-                    );
-                }
-            }
+            crate::contact::assert_surface_derivatives(&b, &world(q), 1e-8, 1e-6);
         }
         // A face point's distance is its height over the face.
         let s = b.surface(&world(Vector3::new(0.35, 0.01, -0.05)));

@@ -23,24 +23,13 @@ impl Cylinder {
         radius: f64,
         friction: f64,
     ) -> Result<Self, ModelError> {
-        if point.iter().any(|v| !v.is_finite()) {
-            return Err(ModelError::structure(
-                "point",
-                format!("must be finite, got {point:?}"),
-            ));
-        }
-        let length = axis.norm();
-        if !(length.is_finite() && length > 0.0) {
-            return Err(ModelError::structure(
-                "axis",
-                format!("must be finite and non-zero, got {axis:?}"),
-            ));
-        }
+        let point = super::finite_point("point", point)?;
+        let axis = super::unit_direction("axis", axis)?;
         crate::error::require_positive("radius", radius)?;
         crate::error::require_non_negative("friction", friction)?;
         Ok(Self {
             point,
-            axis: axis / length,
+            axis,
             radius,
             friction,
         })

@@ -96,3 +96,69 @@ pub(crate) fn conservative_advancement(
     }
     alpha
 }
+
+/// `p` if every coordinate is finite, else an error naming `field` (an obstacle's point or
+/// centre, m).
+pub(crate) fn finite_point(
+    field: &str,
+    p: Vector3<f64>,
+) -> Result<Vector3<f64>, crate::ModelError> {
+    if p.iter().all(|v| v.is_finite()) {
+        Ok(p)
+    } else {
+        Err(crate::ModelError::structure(
+            field,
+            format!("must be finite, got {p:?}"),
+        ))
+    }
+}
+
+/// The unit vector along `v` (any finite, non-zero length), else an error naming `field` (an
+/// obstacle's axis or normal).
+pub(crate) fn unit_direction(
+    field: &str,
+    v: Vector3<f64>,
+) -> Result<Vector3<f64>, crate::ModelError> {
+    let length = v.norm();
+    if length.is_finite() && length > 0.0 {
+        Ok(v / length)
+    } else {
+        Err(crate::ModelError::structure(
+            field,
+            format!("must be finite and non-zero, got {v:?}"),
+        ))
+    }
+}
+
+/// Test aid: the distance's gradient (the normal) and the normal's derivative at `p` against
+/// central differences (step 1e-6 m), to `tol_normal` and `tol_curvature`.
+#[cfg(test)]
+pub(crate) fn assert_surface_derivatives(
+    o: &dyn Obstacle,
+    p: &Vector3<f64>,
+    tol_normal: f64,
+    tol_curvature: f64,
+) {
+    let s = o.surface(p);
+    let h = 1e-6;
+    for k in 0..3 {
+        let mut e = Vector3::zeros();
+        e[k] = h;
+        let (sp, sm) = (o.surface(&(p + e)), o.surface(&(p - e)));
+        let fd = (sp.distance - sm.distance) / (2.0 * h);
+        assert!(
+            (fd - s.normal[k]).abs() < tol_normal,
+            "{p:?} ∂{k}: {fd} vs {}",
+            s.normal[k]
+        );
+        let fd_n = (sp.normal - sm.normal) / (2.0 * h);
+        for i in 0..3 {
+            assert!(
+                (fd_n[i] - s.normal_derivative[(i, k)]).abs() < tol_curvature,
+                "{p:?} ∂n{i}/∂{k}: {} vs {}",
+                fd_n[i],
+                s.normal_derivative[(i, k)]
+            );
+        }
+    }
+}

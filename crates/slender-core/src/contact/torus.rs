@@ -33,19 +33,8 @@ impl Torus {
         tube_radius: f64,
         friction: f64,
     ) -> Result<Self, ModelError> {
-        if center.iter().any(|v| !v.is_finite()) {
-            return Err(ModelError::structure(
-                "center",
-                format!("must be finite, got {center:?}"),
-            ));
-        }
-        let length = axis.norm();
-        if !(length.is_finite() && length > 0.0) {
-            return Err(ModelError::structure(
-                "axis",
-                format!("must be finite and non-zero, got {axis:?}"),
-            ));
-        }
+        let center = super::finite_point("center", center)?;
+        let axis = super::unit_direction("axis", axis)?;
         crate::error::require_positive("radius", radius)?;
         crate::error::require_positive("tube_radius", tube_radius)?;
         if !(tube_radius < radius) {
@@ -57,7 +46,7 @@ impl Torus {
         crate::error::require_non_negative("friction", friction)?;
         Ok(Self {
             center,
-            axis: axis / length,
+            axis,
             radius,
             tube_radius,
             friction,
@@ -165,27 +154,7 @@ mod tests {
         ] {
             let p = t.center + u * x + v * y + a * z;
             let s = t.surface(&p);
-            let h = 1e-6;
-            for k in 0..3 {
-                let mut e = Vector3::zeros();
-                e[k] = h;
-                let (sp, sm) = (t.surface(&(p + e)), t.surface(&(p - e)));
-                let fd = (sp.distance - sm.distance) / (2.0 * h);
-                assert!(
-                    (fd - s.normal[k]).abs() < 1e-8,
-                    "({x}, {y}, {z}) ∂{k}: {fd} vs {}",
-                    s.normal[k]
-                );
-                let fd_n = (sp.normal - sm.normal) / (2.0 * h);
-                for i in 0..3 {
-                    assert!(
-                        (fd_n[i] - s.normal_derivative[(i, k)]).abs() < 1e-5,
-                        "({x}, {y}, {z}) ∂n{i}/∂{k}: {} vs {}",
-                        fd_n[i],
-                        s.normal_derivative[(i, k)]
-                    );
-                }
-            }
+            crate::contact::assert_surface_derivatives(&t, &p, 1e-8, 1e-5);
             // The distance against the closed form: the hypot of the offsets from the circle.
             let rho = (x * x + y * y).sqrt();
             let exact = ((rho - 0.05).powi(2) + z * z).sqrt() - 0.01;
