@@ -222,3 +222,37 @@ fn a_clamp_jumped_past_the_ring_leaves_the_cable_in_it() {
         "the ring holds it down"
     );
 }
+
+#[test]
+fn a_barrier_far_too_soft_gives_up_within_its_iteration_budget() {
+    // The rings' example with its barrier 10⁴ times softer (1 N/m² instead of 1e4): the
+    // cable's weight then closes the gaps to round-off, every load step of the first push
+    // needs some fifteen Newton iterations and never grows, and without a budget the edit
+    // crawled through ~16 000 load steps (minutes). Now it stops at the solver's budget of
+    // Newton iterations, says so, and keeps the last equilibrium.
+    let text = include_str!("../../../examples/cable_through_rings.toml");
+    assert!(text.contains("\nstiffness = 1.0e4"));
+    let scene: Scene =
+        toml::from_str(&text.replace("\nstiffness = 1.0e4", "\nstiffness = 1.0")).expect("scene");
+    let budget = scene.solver.max_total_iterations;
+    let mut s = Session::new(scene).expect("compiles");
+    assert!(s.report(0).converged(), "the cable hangs through the rings");
+    let before = s.results(0, None, 1.0, 1).rods[0].positions.clone();
+    let r = s
+        .move_support_by(0, 1, Vec3::zeros(), Vec3::new(-0.025, 0.0, 0.0))
+        .expect("edit");
+    assert!(!r.converged, "{r:?}");
+    let reason = r.reason.unwrap_or_default();
+    assert!(
+        reason.contains("max_total_iterations") && reason.contains(&budget.to_string()),
+        "{reason}"
+    );
+    // Within one load step's Newton solve of the budget (contact re-solves add none here:
+    // the rings are frictionless).
+    assert!(r.iterations < budget + 400, "{} iterations", r.iterations);
+    assert_eq!(
+        s.results(0, None, 1.0, 1).rods[0].positions,
+        before,
+        "the last equilibrium is kept"
+    );
+}

@@ -154,6 +154,77 @@ fn a_solve_that_cannot_converge_says_so() {
 }
 
 #[test]
+fn a_solve_past_its_iteration_budget_stops_and_says_so() {
+    // A heavy cantilever (Γ = 100) ramped in load steps of 1/500: about three Newton
+    // iterations each, some 1500 in all. With a budget of 200 the solve must stop early, say
+    // why and where, and claim no equilibrium at the requested load; with the default budget
+    // the same ramp converges, so the budget is what stopped it.
+    let rod = straight(1.0, 1.0)
+        .elements(20)
+        .clamp_start()
+        .gravity(Vec3::new(0.0, -500.0, 0.0))
+        .build()
+        .unwrap();
+    let ramp = SolverParams {
+        initial_load_step: 2e-3,
+        max_load_step: 2e-3,
+        ..Default::default()
+    };
+    let budget = 200;
+    let sol = solve(
+        &rod,
+        SolverParams {
+            max_total_iterations: budget,
+            ..ramp
+        },
+    );
+    match &sol.report.status {
+        SolveStatus::NotConverged { reason } => assert!(
+            reason.contains("max_total_iterations") && reason.contains("200"),
+            "{reason}"
+        ),
+        SolveStatus::Converged => panic!("200 iterations cannot take 500 load steps"),
+    }
+    assert!(
+        sol.report.load_reached > 0.0 && sol.report.load_reached < 0.5,
+        "{}",
+        sol.report.load_reached
+    );
+    // The budget is checked before each load step: one step's Newton solve (and its snap
+    // retry) may finish past it, no more.
+    let defaults = SolverParams::default();
+    assert!(
+        sol.report.iterations >= budget
+            && sol.report.iterations < budget + defaults.max_iterations + defaults.snap_iterations,
+        "{} iterations",
+        sol.report.iterations
+    );
+    assert_eq!(sol.report.stable(), None);
+
+    let full = solve(&rod, ramp);
+    assert!(full.report.converged(), "{:?}", full.report.status);
+    assert!(
+        full.report.iterations > budget,
+        "{} iterations",
+        full.report.iterations
+    );
+}
+
+#[test]
+fn an_iteration_budget_below_one_load_step_is_refused() {
+    let params = SolverParams {
+        max_iterations: 30,
+        max_total_iterations: 29,
+        ..Default::default()
+    };
+    let e = params.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("max_total_iterations") && e.contains(">= max_iterations"),
+        "{e}"
+    );
+}
+
+#[test]
 fn stability_margin_matches_the_cantilever_frequency() {
     // Unloaded clamped-free beam: lowest ω² = (1.8751)⁴ EI/(ρA L⁴) = 12.362 EI/(ρA L⁴).
     let rod = straight(1.0, 1.0)

@@ -211,6 +211,15 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                     ));
                     break;
                 }
+                if iterations >= params.max_total_iterations {
+                    // Deterministic, unlike a time limit: the same input gives up at the same
+                    // iterate whatever the machine.
+                    failure = Some(format!(
+                        "the solve's budget of {} Newton iterations (solver.max_total_iterations) ran out at load factor {load:.6}, after {load_steps} load steps and {rejected} rejected ones",
+                        params.max_total_iterations
+                    ));
+                    break;
+                }
                 let remaining = to - load;
                 if step.abs() > remaining.abs() {
                     step = remaining;

@@ -32,6 +32,15 @@ pub struct SolverParams {
     pub initial_load_step: f64,
     /// Smallest load step fraction before load stepping gives up. Default 1e-6.
     pub min_load_step: f64,
+    /// Newton iterations allowed per solve, over all its load steps, snap retries and branch
+    /// switches, before it gives up and reports that it did not converge. Default 20000.
+    ///
+    /// Why a budget: halving down to `min_load_step` alone allows about 10⁶ load steps, so a
+    /// badly conditioned problem (e.g. a contact barrier far too soft for its loads, whose
+    /// load steps each converge slowly and never grow) could crawl towards its load for many
+    /// minutes per edit instead of saying that it cannot get there. The default is about ten
+    /// times the largest solve of `slender validate` (1504 iterations, 141 load steps).
+    pub max_total_iterations: usize,
     /// Largest load step as a fraction of the whole load change: steps are doubled after fast
     /// convergence up to this. Default 1.
     pub max_load_step: f64,
@@ -116,6 +125,7 @@ impl Default for SolverParams {
             max_backtracks: 40,
             initial_load_step: 1.0,
             min_load_step: 1e-6,
+            max_total_iterations: 20_000,
             max_load_step: 1.0,
             fast_iterations: 5,
             compute_lambda_min: true,
@@ -173,6 +183,13 @@ impl SolverParams {
         }
         if self.max_iterations == 0 {
             return Err(ModelError::parameter("max_iterations", 0.0, ">= 1"));
+        }
+        if self.max_total_iterations < self.max_iterations {
+            return Err(ModelError::parameter(
+                "max_total_iterations",
+                self.max_total_iterations as f64,
+                format!(">= max_iterations ({})", self.max_iterations),
+            ));
         }
         Ok(())
     }
