@@ -123,6 +123,11 @@ async function open(scene) {
   const errors = [];
   const replies = [];
   page.on("response", (r) => { if (r.url().endsWith("/api")) replies.push(r.json()); });
+  // The page's requests go over its WebSocket (GET /ws) when it opens: its replies too.
+  page.on("websocket", (ws) => {
+    ws.on("framereceived", (f) => replies.push(Promise.resolve(JSON.parse(f.payload.toString()))));
+    ws.on("socketerror", (e) => errors.push(`WebSocket error: ${e}`));
+  });
   page.on("console", (m) => { if (m.type() === "error") errors.push(`console error: ${m.text()}`); });
   page.on("pageerror", (e) => errors.push(`page error: ${e.message}`));
   page.on("requestfailed", (r) => errors.push(`request failed: ${r.url()} (${r.failure()?.errorText})`));
@@ -163,6 +168,14 @@ try {
   const restPositions = await s1.page.evaluate(() => JSON.stringify(window.slender.state().rods[0].positions));
   const v = await s1.page.evaluate((d) => window.slender.dragSupport(0, 2, d, 20), drag);
   check(v.converged, "drag: every update converged");
+  // The drag went over the page's socket, and POST /api (the fallback) answers the same.
+  const transports = await s1.page.evaluate(() => [...new Set(window.slender.timing.updates.map((u) => u.transport))]);
+  const posted = await s1.page.evaluate(async () => {
+    const r = await fetch("/api", { method: "POST", headers: { "Content-Type": "application/json" }, body: '{"op":"state"}' });
+    return JSON.stringify((await r.json()).view.rods[0].positions);
+  });
+  check(transports.length === 1 && transports[0] === "websocket" && posted === JSON.stringify(v.rods[0].positions),
+    `requests over the page's WebSocket (${transports.join(", ")}); POST /api gives the same state`);
   const base = readFileSync(dragScene, "utf8");
   const solved = solveScene("drag_cable_solved",
     `${base}\n[[motion]]\nrod = 0\nsupport = 2\ntranslate = [${drag.join(", ")}]\nsteps = 4\n`);
@@ -711,9 +724,10 @@ try {
       round_trip_ms: { median: quantile(b.roundTripMs, 0.5), p95: quantile(b.roundTripMs, 0.95) },
       page_update_ms: { median: quantile(b.updateMs, 0.5), p95: quantile(b.updateMs, 0.95) },
       page_render_ms: { median: quantile(b.renderMs, 0.5), p95: quantile(b.renderMs, 0.95) },
+      transports: b.transports,
     };
     speed[name] = r;
-    console.log(`view speed: ${name}: ${r.updates} updates, ${r.updates_per_second.toFixed(1)} updates/s; frame interval median ${r.frame_interval_ms.median.toFixed(2)} ms, p95 ${r.frame_interval_ms.p95.toFixed(2)} ms; server solve median ${r.server_solve_ms.median.toFixed(2)} ms, p95 ${r.server_solve_ms.p95.toFixed(2)} ms; request round trip median ${r.round_trip_ms.median.toFixed(2)} ms; page update ${r.page_update_ms.median.toFixed(2)} ms + render ${r.page_render_ms.median.toFixed(2)} ms (medians); all converged: ${r.all_converged}`);
+    console.log(`view speed: ${name}: ${r.updates} updates, ${r.updates_per_second.toFixed(1)} updates/s; frame interval median ${r.frame_interval_ms.median.toFixed(2)} ms, p95 ${r.frame_interval_ms.p95.toFixed(2)} ms; server solve median ${r.server_solve_ms.median.toFixed(2)} ms, p95 ${r.server_solve_ms.p95.toFixed(2)} ms; request round trip (${r.transports.join(", ")}) median ${r.round_trip_ms.median.toFixed(2)} ms; page update ${r.page_update_ms.median.toFixed(2)} ms + render ${r.page_render_ms.median.toFixed(2)} ms (medians); all converged: ${r.all_converged}`);
     await s.page.screenshot({ path: join(out, `view-speed-${name}.png`) });
     for (const e of s.errors) fail(e);
     await s.page.close();

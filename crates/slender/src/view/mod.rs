@@ -6,12 +6,13 @@
 //! undo and redo, save the scene, export glTF.
 //!
 //! Layout: [`protocol`] (the messages and their handler, socket-free), [`history`] (undo and
-//! redo around it), [`state`] (what the page draws), [`server`] (HTTP), `page/` (the page and
+//! redo around it), [`state`] (what the page draws), [`server`] (HTTP), [`socket`] (the page's WebSocket), `page/` (the page and
 //! `vendor/three`).
 
 pub mod history;
 pub mod protocol;
 pub mod server;
+pub mod socket;
 pub mod state;
 
 #[cfg(test)]

@@ -1,6 +1,8 @@
-//! The local HTTP server of `slender view` (tiny_http, one thread): serves the page and its
-//! vendored three.js from the binary, and passes each `POST /api` body to
-//! [`protocol::handle`](super::protocol::handle) with the one [`Session`].
+//! The local HTTP server of `slender view` (tiny_http): serves the page and its vendored
+//! three.js from the binary, and passes each request, a `POST /api` body or a message of the
+//! page's WebSocket ([`socket`](super::socket)), to
+//! [`protocol::handle`](super::protocol::handle) with the one [`Session`], on one thread, in
+//! the order they arrive.
 //!
 //! Bound to 127.0.0.1 unless `--host` says otherwise. On a loopback address a request whose
 //! `Host` header names another host is refused (a web page elsewhere cannot reach the server
@@ -9,6 +11,7 @@
 
 use std::io::Read;
 use std::net::{SocketAddr, TcpListener, ToSocketAddrs};
+use std::sync::mpsc::{channel, Sender};
 
 use anyhow::{anyhow, Context as _, Result};
 use slender_core::scene::Session;
@@ -17,6 +20,19 @@ use tiny_http::{Header, Method, Request, Response, Server};
 
 use super::history::History;
 use super::protocol::MAX_REQUEST_BYTES;
+use super::socket::{self, SocketRequest};
+
+/// What the session's thread handles next: an HTTP request or a WebSocket message.
+enum Incoming {
+    Http(Request),
+    Socket(SocketRequest),
+}
+
+impl From<SocketRequest> for Incoming {
+    fn from(r: SocketRequest) -> Self {
+        Self::Socket(r)
+    }
+}
 
 /// One file of the page.
 struct Asset {
@@ -140,9 +156,31 @@ impl ViewServer {
     /// Serves until the process is stopped.
     pub fn serve(&self, session: &mut Session) -> Result<()> {
         let mut history = History::default();
-        for request in self.server.incoming_requests() {
-            self.respond(session, &mut history, request);
-        }
+        let (events, incoming) = channel::<Incoming>();
+        std::thread::scope(|scope| {
+            // tiny_http's requests and the sockets' messages meet in one queue, read by this
+            // thread, which alone touches the session.
+            let http = events.clone();
+            let server = &self.server;
+            scope.spawn(move || {
+                for request in server.incoming_requests() {
+                    if http.send(Incoming::Http(request)).is_err() {
+                        return;
+                    }
+                }
+            });
+            for event in incoming {
+                match event {
+                    Incoming::Http(request) => {
+                        self.respond(session, &mut history, request, &events)
+                    }
+                    Incoming::Socket(SocketRequest { text, reply }) => {
+                        // A socket that closed meanwhile no longer wants its reply.
+                        let _ = reply.send(history.handle(session, &text));
+                    }
+                }
+            }
+        });
         Ok(())
     }
 
@@ -169,7 +207,13 @@ impl ViewServer {
         .contains(&host)
     }
 
-    fn respond(&self, session: &mut Session, history: &mut History, mut request: Request) {
+    fn respond(
+        &self,
+        session: &mut Session,
+        history: &mut History,
+        mut request: Request,
+        events: &Sender<Incoming>,
+    ) {
         let plain = |code: u16, text: &str| {
             Response::from_string(text)
                 .with_status_code(code)
@@ -181,6 +225,13 @@ impl ViewServer {
         }
         let url = request.url().split('?').next().unwrap_or("").to_string();
         let response = match (request.method(), url.as_str()) {
+            (Method::Get, "/ws") => match socket::check_upgrade(&request) {
+                Ok(key) => {
+                    socket::accept(request, &key, events.clone());
+                    return;
+                }
+                Err((code, message)) => plain(code, &message),
+            },
             (Method::Get, "/" | "/index.html") => Response::from_data(self.index.as_bytes())
                 .with_header(header("Content-Type", "text/html; charset=utf-8")),
             (Method::Get, path) => match ASSETS.iter().find(|a| a.path == path) {

@@ -1,5 +1,7 @@
 // The page of `slender view`: draws the equilibria the slender process computes and sends it
-// the user's edits (POST /api, one JSON request, one reply: see src/view/protocol.rs).
+// the user's edits: one JSON request, one reply (see src/view/protocol.rs), over the page's
+// WebSocket (GET /ws) when it opens, else by POST /api. A fetch costs the page several
+// milliseconds per request on a busy machine, a socket message under one (src/view/socket.rs).
 //
 // Drags are throttled to one request in flight: while a reply is awaited, only the latest
 // pose is kept, and it is sent when the reply arrives. All requests go through one queue, so
@@ -14,21 +16,62 @@ const $ = (id) => document.getElementById(id);
 
 // ---------- talking to the server ----------
 
+/** The open WebSocket, or null (then requests are POSTed). */
+let socket = null;
+/** Takes the reply text (null: the socket closed) of the request in flight on the socket. */
+let socketWaiter = null;
+/** Settles once the socket is open or has failed (after at most two seconds). */
+const socketReady = new Promise((resolve) => {
+  let ws;
+  try {
+    ws = new WebSocket(`ws://${location.host}/ws`);
+  } catch {
+    resolve();
+    return;
+  }
+  setTimeout(resolve, 2000);
+  ws.onopen = () => { socket = ws; resolve(); };
+  ws.onmessage = (e) => { const w = socketWaiter; socketWaiter = null; if (w) w(e.data); };
+  ws.onclose = () => {
+    if (socket === ws) socket = null;
+    resolve();
+    const w = socketWaiter; socketWaiter = null; if (w) w(null);
+  };
+});
+
 let queue = Promise.resolve();
 /** Sends one request after the previous ones; resolves to the reply (or a transport error). */
 function request(req) {
   const p = queue.then(async () => {
+    await socketReady;
     const t0 = performance.now();
+    const body = JSON.stringify(req);
     let reply;
-    try {
-      const r = await fetch("/api", {
-        method: "POST",
-        headers: { "Content-Type": "application/json" },
-        body: JSON.stringify(req),
-      });
-      reply = await r.json();
-    } catch (e) {
-      reply = { ok: false, error: { field: "connection", message: `${e}` } };
+    if (socket) {
+      const ws = socket;
+      const text = await new Promise((r) => { socketWaiter = r; ws.send(body); });
+      try {
+        // A socket that closed mid-request is not retried by POST: the server may have
+        // applied the edit already.
+        reply = text === null
+          ? { ok: false, error: { field: "connection", message: "the WebSocket closed before the reply" } }
+          : JSON.parse(text);
+      } catch (e) {
+        reply = { ok: false, error: { field: "connection", message: `${e}` } };
+      }
+      reply.transport = "websocket";
+    } else {
+      try {
+        const r = await fetch("/api", {
+          method: "POST",
+          headers: { "Content-Type": "application/json" },
+          body,
+        });
+        reply = await r.json();
+      } catch (e) {
+        reply = { ok: false, error: { field: "connection", message: `${e}` } };
+      }
+      reply.transport = "post";
     }
     reply.roundTripMs = performance.now() - t0;
     return reply;
@@ -1038,6 +1081,7 @@ async function pump() {
   const ok = applyReply(reply);
   const rendered = performance.now();
   timing.updates.push({ queued, sent, received, rendered, serverMs: (reply.solve_seconds ?? 0) * 1e3,
+    transport: reply.transport,
     ...lastApply, ok, converged: reply.edit?.converged ?? false });
   moveInFlight = false;
   if (pendingMove) pump();
@@ -1341,6 +1385,7 @@ const slender = {
       updateMs: ups.map((u) => u.updateMs),
       renderMs: ups.map((u) => u.renderMs),
       allConverged: ups.every((u) => u.ok && u.converged),
+      transports: [...new Set(ups.map((u) => u.transport))],
     };
   },
   /** Screen point (CSS px, page coordinates) of rest arc length `s` on rod `rod`. */
