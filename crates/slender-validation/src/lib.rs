@@ -9,6 +9,7 @@
 
 pub mod bend_twist;
 pub mod cantilever;
+pub mod capstan;
 pub mod lateral_buckling;
 pub mod lateral_sweep;
 pub mod materials;

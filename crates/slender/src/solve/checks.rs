@@ -207,8 +207,58 @@ pub fn scene_checks() -> Result<Vec<Check>> {
             ));
         }
     }
+    checks.push(capstan_check()?);
     checks.extend(shell_example_checks()?);
     Ok(checks)
+}
+
+/// The capstan benchmark (`slender_validation::capstan`, its own scene): at the end of each of
+/// its two pulls, the ratio of the pulled leg's tension to the held leg's against e^{μπ} (the
+/// worse relative error; NaN unless every step converged and every contact slides on
+/// Coulomb's cone against the slide), target [`capstan::TOLERANCE`].
+fn capstan_check() -> Result<Check> {
+    use slender_validation::capstan;
+    let spec = parse_scene(capstan::SCENE, Syntax::Toml, "capstan")?;
+    let compiled = match spec.compile() {
+        Ok(c) => c,
+        Err(e) => bail!("capstan: {e}"),
+    };
+    let (mut solver, first) = SceneSolver::new(&spec, &compiled);
+    let mut steps = vec![first];
+    for k in 1..=solver.motion_steps() {
+        steps.push(solver.run_motion_step(k));
+    }
+    let ea = compiled.rods[0].properties.stiffness.ea;
+    let pulls =
+        capstan::measure_steps(&spec, ea, &steps).map_err(|e| anyhow::anyhow!("capstan: {e}"))?;
+    let all_slide = pulls
+        .iter()
+        .all(|(_, m)| m.contacts > 0 && m.sliding_against_the_slide == m.contacts);
+    let worst = pulls
+        .iter()
+        .map(|(_, m)| m.relative_error())
+        .fold(0.0, f64::max);
+    let converged = steps.iter().all(|s| s.converged);
+    let measured = if all_slide && converged {
+        worst
+    } else {
+        f64::NAN
+    };
+    let mu = pulls.first().map_or(f64::NAN, |(_, m)| m.mu);
+    let ratios: Vec<String> = pulls
+        .iter()
+        .map(|(_, m)| format!("{:.4}", m.ratio()))
+        .collect();
+    Ok(check(
+        format!(
+            "capstan: a cable sliding over a rough bar (μ = {mu}, θ = π), pulled one way then the other: legs' tension ratios {} vs e^(μπ) = {:.4}, worse relative error",
+            ratios.join(" and "),
+            capstan::capstan_ratio(mu, std::f64::consts::PI)
+        ),
+        measured,
+        &format!("≤ {:e}", capstan::TOLERANCE),
+        measured <= capstan::TOLERANCE,
+    ))
 }
 
 /// A time-stepped example (undamped, energy-conserving scheme): the largest change of the
@@ -402,8 +452,8 @@ mod tests {
     fn every_scene_check_passes() {
         let checks = scene_checks().unwrap();
         // One balance (or, time-stepped, energy) check per rod example, the benchmark check,
-        // three shell checks.
-        assert_eq!(checks.len(), EXAMPLES.len() - 1 + 4);
+        // the capstan check, three shell checks.
+        assert_eq!(checks.len(), EXAMPLES.len() - 1 + 5);
         for c in &checks {
             eprintln!("{:e}  {}", c.measured, c.description);
             assert!(
