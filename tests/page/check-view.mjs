@@ -23,6 +23,9 @@
 //     cable), set in its row (= slender
 //     solve with it in the file), removed by its ×, put back by Ctrl+Z; a force that does not
 //     exist is refused, the equilibrium kept.
+//  3c. moments and line loads (scenes/moment_line_load.toml): the point moment is a
+//     double-headed arrow from its vertex along its axis, the line load one arrow per loaded
+//     vertex with its tip on the cable, each along its load, labelled in N·m and N/m.
 //  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar, a ramp read
 //     from an OBJ file and a ring): each is a mesh of the three.js scene, tagged with its
 //     obstacle, at its pose (the ball's and the ring's bounds, the box's corners, the ramp's
@@ -495,6 +498,46 @@ try {
   await s3b.page.screenshot({ path: join(out, "view-point-forces.png") });
   for (const e of s3b.errors) fail(e);
   check(s3b.errors.length === 0, "no console errors (point-force page)");
+
+  // ---- 3c. point moments and line loads drawn ----
+  const s3c = await open(join(scenes, "moment_line_load.toml"));
+  sessions.push(s3c);
+  const loadsDrawn = await s3c.page.evaluate(() => {
+    const found = { moments: [], lineLoads: [] };
+    window.slender.scene.traverse((o) => {
+      if (!o.visible || !(o.userData?.moment !== undefined || o.userData?.lineLoad !== undefined)) return;
+      o.updateMatrixWorld(true);
+      const e = o.matrixWorld.elements;
+      const dir = [e[4], e[5], e[6]];
+      const n = Math.hypot(...dir);
+      const tail = [e[12], e[13], e[14]];
+      const len = o.cone.position.y;
+      const a = { tail, tip: tail.map((x, k) => x + (dir[k] / n) * len), dir: dir.map((x) => x / n), len };
+      (o.userData.moment !== undefined ? found.moments : found.lineLoads).push(a);
+    });
+    found.labels = [...document.querySelectorAll("#labels div")].filter((d) => d.style.display !== "none").map((d) => d.textContent);
+    found.state = window.slender.state();
+    return found;
+  });
+  const rod3c = loadsDrawn.state.rods[0];
+  const m3c = rod3c.moments[0];
+  const mDir = m3c.moment.map((x) => x / Math.hypot(...m3c.moment));
+  const near = (a, b, tol) => Math.hypot(...a.map((x, k) => x - b[k])) <= tol;
+  const momentOk = loadsDrawn.moments.length === 2 && loadsDrawn.moments.every((a) => a.dir.every((x, k) => Math.abs(x - mDir[k]) <= 1e-6))
+    && loadsDrawn.moments.some((a) => near(a.tail, m3c.position, 1e-6));
+  check(momentOk && m3c.vertex === 20, `moment: a double-headed arrow (${loadsDrawn.moments.length} heads) from vertex ${m3c.vertex} along [${m3c.moment}]`);
+  const loadedVertices = rod3c.line_load.map((q, v) => (Math.hypot(...q) > 0 ? v : -1)).filter((v) => v >= 0);
+  const lineOk = loadsDrawn.lineLoads.length === loadedVertices.length && loadedVertices.length === 21
+    && loadsDrawn.lineLoads.every((a) => a.dir[1] > 1 - 1e-9 && loadedVertices.some((v) => near(a.tip, rod3c.positions[v], 1e-6)));
+  check(lineOk, `line load: one arrow per loaded vertex (${loadsDrawn.lineLoads.length} for vertices ${loadedVertices[0]}…${loadedVertices.at(-1)}), tips on the cable, along +y`);
+  check(loadsDrawn.labels.some((t) => t === "0.00200 N·m") && loadsDrawn.labels.some((t) => t === "0.0500 N/m"),
+    `moment and line load labelled (${loadsDrawn.labels.filter((t) => /N·m|N\/m/.test(t)).join(", ")})`);
+  await s3c.page.screenshot({ path: join(out, "view-moment-line-load.png") });
+  for (const e of s3c.errors) fail(e);
+  check(s3c.errors.length === 0, "no console errors (moment and line load page)");
+  await s3c.page.close();
+  s3c.proc.kill();
+  sessions.splice(sessions.indexOf(s3c), 1);
 
   // ---- 4. obstacles drawn; a clamp dragged into the floor ----
   const s4 = await open(join(scenes, "obstacles.toml"));

@@ -99,6 +99,11 @@ pub struct RodView {
     pub supports: Vec<SupportView>,
     /// Point forces, in the order of the scene's `forces` (the index the `force` edit names).
     pub forces: Vec<ForceView>,
+    /// Point moments, in the order of the scene's `moments`.
+    pub moments: Vec<MomentView>,
+    /// The line loads' load per length (N/m) at each vertex, summed over the scene's
+    /// `line_loads` (empty without line loads).
+    pub line_load: Vec<[f64; 3]>,
     /// Radius (m) its centerline keeps from obstacles (its structure's contact radius: a
     /// contact's surface point is its vertex minus the normal times this radius plus the
     /// gap); `None` in a scene without contact.
@@ -139,6 +144,22 @@ pub struct ForceView {
     /// rod's rest frame at the vertex.
     pub force: [f64; 3],
     /// A follower load (turns with the rod): not editable, and not drawn in space.
+    pub follower: bool,
+}
+
+/// A point moment on a rod: a double-headed arrow at its vertex (the right-hand rule about it).
+#[derive(Clone, Debug, Serialize)]
+pub struct MomentView {
+    /// Loaded vertex.
+    pub vertex: usize,
+    /// Rest arc length of the vertex (m).
+    pub at: f64,
+    /// Where the vertex is now (m).
+    pub position: [f64; 3],
+    /// The moment as the scene gives it (N m): fixed in space, or, for a follower load, in the
+    /// rod's rest frame at the vertex.
+    pub moment: [f64; 3],
+    /// A follower load (turns with the rod): not drawn in space.
     pub follower: bool,
 }
 
@@ -276,6 +297,18 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                     follower: f.follower,
                 })
                 .collect();
+            let moments = session.spec().rods[r]
+                .moments
+                .iter()
+                .zip(&rod.moment_vertices)
+                .map(|(m, &v)| MomentView {
+                    vertex: v,
+                    at: rod.node_arclengths[v],
+                    position: res.positions[v],
+                    moment: m.moment,
+                    follower: m.follower,
+                })
+                .collect();
             let mut structures: Vec<usize> = rod.parts.iter().map(|p| p.structure).collect();
             structures.dedup();
             // The rod's own radius: each rod keeps it, in whatever structure.
@@ -314,6 +347,8 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 structures,
                 supports,
                 forces,
+                moments,
+                line_load: rod.line_load_per_length.clone(),
                 contact_radius,
             }
         })

@@ -68,7 +68,54 @@ pub(super) fn lump(
     nodes: &[f64],
 ) -> Result<Vec<(usize, Vec3)>, SceneError> {
     let length = nodes[nodes.len() - 1];
-    let load = match (&spec.force_per_length, &spec.table) {
+    let load = parse(path, spec, length)?;
+    let mut cuts: Vec<f64> = nodes.to_vec();
+    cuts.extend(load.breakpoints().into_iter().map(|s| s.clamp(0.0, length)));
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let mut f = vec![Vec3::zeros(); nodes.len()];
+    for w in cuts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if !(b > a) {
+            continue;
+        }
+        let m = 0.5 * (a + b);
+        let j = nodes
+            .partition_point(|&s| s <= m)
+            .saturating_sub(1)
+            .min(nodes.len() - 2);
+        let (s0, s1) = (nodes[j], nodes[j + 1]);
+        let hat1 = |s: f64| (s - s0) / (s1 - s0);
+        for (v, hat) in [
+            (j, 1.0 - hat1(a), 1.0 - hat1(m), 1.0 - hat1(b)),
+            (j + 1, hat1(a), hat1(m), hat1(b)),
+        ]
+        .map(|(v, ha, hm, hb)| (v, [ha, hm, hb]))
+        {
+            let q = [load.at(a, m), load.at(m, m), load.at(b, m)];
+            f[v] += (q[0] * hat[0] + q[1] * (4.0 * hat[1]) + q[2] * hat[2]) * ((b - a) / 6.0);
+        }
+    }
+    Ok(f.into_iter()
+        .enumerate()
+        .filter(|(_, x)| x.norm() > 0.0)
+        .collect())
+}
+
+/// The load per length q (N/m) of line load `spec` at each node of a rod with node arc lengths
+/// `nodes` (m), for drawing it (at a jump of a uniform load, its value inside).
+pub(super) fn sample(
+    path: &str,
+    spec: &LineLoadSpec,
+    nodes: &[f64],
+) -> Result<Vec<Vec3>, SceneError> {
+    let load = parse(path, spec, nodes[nodes.len() - 1])?;
+    Ok(nodes.iter().map(|&s| load.at(s, s)).collect())
+}
+
+/// The load of `spec` (at `path`) on a rod of rest length `length` (m), checked.
+fn parse(path: &str, spec: &LineLoadSpec, length: f64) -> Result<Load, SceneError> {
+    Ok(match (&spec.force_per_length, &spec.table) {
         (Some(q), None) => {
             let q = Vec3::from(*q);
             if q.iter().any(|c| !c.is_finite()) {
@@ -135,36 +182,5 @@ pub(super) fn lump(
                 "give exactly one of `force_per_length` (uniform) or `table` (varying)",
             ))
         }
-    };
-    let mut cuts: Vec<f64> = nodes.to_vec();
-    cuts.extend(load.breakpoints().into_iter().map(|s| s.clamp(0.0, length)));
-    cuts.sort_by(f64::total_cmp);
-    cuts.dedup();
-    let mut f = vec![Vec3::zeros(); nodes.len()];
-    for w in cuts.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        if !(b > a) {
-            continue;
-        }
-        let m = 0.5 * (a + b);
-        let j = nodes
-            .partition_point(|&s| s <= m)
-            .saturating_sub(1)
-            .min(nodes.len() - 2);
-        let (s0, s1) = (nodes[j], nodes[j + 1]);
-        let hat1 = |s: f64| (s - s0) / (s1 - s0);
-        for (v, hat) in [
-            (j, 1.0 - hat1(a), 1.0 - hat1(m), 1.0 - hat1(b)),
-            (j + 1, hat1(a), hat1(m), hat1(b)),
-        ]
-        .map(|(v, ha, hm, hb)| (v, [ha, hm, hb]))
-        {
-            let q = [load.at(a, m), load.at(m, m), load.at(b, m)];
-            f[v] += (q[0] * hat[0] + q[1] * (4.0 * hat[1]) + q[2] * hat[2]) * ((b - a) / 6.0);
-        }
-    }
-    Ok(f.into_iter()
-        .enumerate()
-        .filter(|(_, x)| x.norm() > 0.0)
-        .collect())
+    })
 }

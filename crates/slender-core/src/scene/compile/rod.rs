@@ -90,6 +90,11 @@ pub struct CompiledRod {
     pub min_bend_radius: Option<f64>,
     /// The whole-rod vertex of each of the file's point forces (`forces`, in order).
     pub force_vertices: Vec<usize>,
+    /// The whole-rod vertex of each of the file's point moments (`moments`, in order).
+    pub moment_vertices: Vec<usize>,
+    /// The line loads' load per length (N/m) at each whole-rod vertex, summed over the file's
+    /// `line_loads` (empty without line loads): what `slender view` draws.
+    pub line_load_per_length: Vec<[f64; 3]>,
     /// The whole-rod vertex of every vertex of the file's mesh (what a `vertex` index in the
     /// file names); supports given by arc length (`at`) may insert vertices between them.
     pub base_vertices: Vec<usize>,
@@ -357,11 +362,13 @@ pub(super) fn compile_rod(
         }
     }
     let mut moments = Vec::new();
+    let mut moment_vertices = Vec::with_capacity(spec.moments.len());
     for (k, m) in spec.moments.iter().enumerate() {
         let v = base_vertex(
             format!("{path}.moments[{k}].vertex"),
             m.vertex.index(n_base),
         )?;
+        moment_vertices.push(v);
         let moment = finite3(&format!("{path}.moments[{k}].moment"), m.moment)?;
         if m.follower {
             if held_by[v].is_some() {
@@ -375,7 +382,15 @@ pub(super) fn compile_rod(
             moments.push((v, moment));
         }
     }
+    let mut line_load_per_length = Vec::new();
     for (k, l) in spec.line_loads.iter().enumerate() {
+        let q = super::line_loads::sample(&format!("{path}.line_loads[{k}]"), l, &nodes)?;
+        line_load_per_length.resize(nodes.len(), [0.0; 3]);
+        for (total, q) in line_load_per_length.iter_mut().zip(q) {
+            for c in 0..3 {
+                total[c] += q[c];
+            }
+        }
         for (v, f) in super::line_loads::lump(&format!("{path}.line_loads[{k}]"), l, &nodes)? {
             forces.push((v, f));
         }
@@ -565,6 +580,8 @@ pub(super) fn compile_rod(
             closed: spec.closed,
             min_bend_radius: spec.min_bend_radius,
             force_vertices,
+            moment_vertices,
+            line_load_per_length,
             base_vertices: renumber.map,
         },
         members,

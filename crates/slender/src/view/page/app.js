@@ -522,6 +522,98 @@ function updateLoadArrows() {
   });
 }
 
+// ---------- point moments and line loads: drawn, edited in the scene file ----------
+
+const MOMENT_ARROW = 0x6a1b9a;
+const LINE_LOAD_ARROW = 0xffa726;
+let momentArrows = []; // per dead point moment: [arrow, its second head], userData { moment (N m) }
+let lineLoadArrows = []; // pooled ArrowHelpers, userData { lineLoad (N/m) }
+
+function fmtMoment(n) {
+  if (n === 0) return "0 N·m";
+  return Math.abs(n) >= 1e3 || Math.abs(n) < 1e-3 ? `${n.toExponential(2)} N·m` : `${n.toPrecision(3)} N·m`;
+}
+
+/** The dead point moments of the rods as double-headed arrows along their axes (the
+ *  right-hand rule), tails at the loaded vertices; lengths relative to the largest moment now.
+ *  Follower moments turn with the cable and are not drawn, like follower forces. */
+function updateMomentArrows() {
+  const dead = view.rods.flatMap((rod) => rod.moments.filter((m) => !m.follower));
+  while (momentArrows.length < dead.length) {
+    const pair = [0, 1].map(() => new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, MOMENT_ARROW));
+    for (const a of pair) world.add(a);
+    momentArrows.push(pair);
+  }
+  let mmax = 0;
+  for (const m of dead) mmax = Math.max(mmax, Math.hypot(...m.moment));
+  const scale = mmax > 0 ? (0.2 * sceneSize) / mmax : 0;
+  const show = $("load-arrows").checked;
+  momentArrows.forEach(([arrow, head], i) => {
+    const m = dead[i];
+    arrow.visible = head.visible = false;
+    if (!m) return;
+    const v = v3(m.moment);
+    const n = v.length();
+    arrow.userData = { moment: n };
+    head.userData = { moment: n };
+    if (!show || n === 0) return;
+    const len = Math.max(0.04 * sceneSize, n * scale);
+    const dir = v.multiplyScalar(1 / n);
+    const at = v3(m.position);
+    arrow.position.copy(at);
+    arrow.setDirection(dir);
+    arrow.setLength(len, 0.2 * len, 0.1 * len);
+    // A second head just behind the first: a moment's double arrow.
+    head.position.copy(at).addScaledVector(dir, 0.6 * len);
+    head.setDirection(dir);
+    head.setLength(0.2 * len, 0.2 * len, 0.1 * len);
+    arrow.visible = head.visible = true;
+    labelSpecs.push({ at: at.clone().addScaledVector(dir, len), text: fmtMoment(n), cls: "label load" });
+  });
+}
+
+/** The rods' line loads as arrows at the loaded vertices (at most 40 per rod, evenly picked),
+ *  their tips on the cable; lengths relative to the largest load per length now, the value
+ *  (N/m) labelled at the middle one of each rod. */
+function updateLineLoadArrows() {
+  const items = [];
+  let qmax = 0;
+  for (const rod of view.rods) {
+    const loaded = [];
+    rod.line_load.forEach((q, v) => {
+      const n = Math.hypot(...q);
+      if (n > 0) loaded.push(v);
+      qmax = Math.max(qmax, n);
+    });
+    const stride = Math.max(1, Math.ceil(loaded.length / 40));
+    const picked = loaded.filter((_, k) => k % stride === 0);
+    picked.forEach((v, k) => items.push({ position: rod.positions[v], q: rod.line_load[v], label: k === Math.floor(picked.length / 2) }));
+  }
+  while (lineLoadArrows.length < items.length) {
+    const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, LINE_LOAD_ARROW);
+    world.add(a);
+    lineLoadArrows.push(a);
+  }
+  const scale = qmax > 0 ? (0.08 * sceneSize) / qmax : 0;
+  const show = $("load-arrows").checked;
+  lineLoadArrows.forEach((a, i) => {
+    const it = items[i];
+    a.visible = false;
+    if (!it || !show) return;
+    const f = v3(it.q);
+    const n = f.length();
+    a.userData = { lineLoad: n };
+    const len = Math.max(0.02 * sceneSize, n * scale);
+    const dir = f.multiplyScalar(1 / n);
+    const tail = v3(it.position).addScaledVector(dir, -len);
+    a.position.copy(tail);
+    a.setDirection(dir);
+    a.setLength(len, 0.3 * len, 0.15 * len);
+    a.visible = true;
+    if (it.label) labelSpecs.push({ at: tail, text: `${fmtForce(n)}/m`, cls: "label load" });
+  });
+}
+
 /** The panel's force editors: rebuilt when the list of forces changes, values refreshed on
  *  every update except in the row being typed in. */
 function updateLoadsPanel() {
@@ -1001,6 +1093,8 @@ function applyView(reply) {
   if (supportKey() !== handlesKey) buildHandles(); else syncHandles();
   updateArrows();
   updateLoadArrows();
+  updateMomentArrows();
+  updateLineLoadArrows();
   updateContacts();
   updatePanel(reply);
   updatePoseEditor();
@@ -1250,8 +1344,8 @@ document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListe
     : el.value === "add-force" ? "Click a cable or a flat cable to add a point force at its nearest vertex; set its value in the panel." : "";
 }));
 $("colour").addEventListener("change", () => { if (view) { updateRods(); render(); } });
-$("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateContacts(); render(); } });
-$("load-arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateContacts(); render(); } });
+$("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateMomentArrows(); updateLineLoadArrows(); updateContacts(); render(); } });
+$("load-arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateMomentArrows(); updateLineLoadArrows(); updateContacts(); render(); } });
 $("show-obstacles").addEventListener("change", () => { obstacleGroup.visible = $("show-obstacles").checked; render(); });
 $("show-contacts").addEventListener("change", () => { if (view) { updateArrows(); updateContacts(); render(); } });
 $("snap").addEventListener("click", () => edit({ op: "follow_stable" }));
