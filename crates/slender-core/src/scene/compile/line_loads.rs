@@ -184,3 +184,46 @@ fn parse(path: &str, spec: &LineLoadSpec, length: f64) -> Result<Load, SceneErro
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn nodes() -> Vec<f64> {
+        (0..=8).map(|k| 0.125 * k as f64).collect()
+    }
+
+    #[test]
+    fn a_uniform_load_is_sampled_inside_its_interval_ends_included() {
+        let spec = LineLoadSpec {
+            force_per_length: Some([0.0, 2.0, 0.0]),
+            from: Some(0.25),
+            to: Some(0.75),
+            table: None,
+        };
+        let q = sample("l", &spec, &nodes()).unwrap();
+        let loaded: Vec<usize> = (0..q.len()).filter(|&v| q[v].norm() > 0.0).collect();
+        assert_eq!(loaded, [2, 3, 4, 5, 6]);
+        assert!(loaded.iter().all(|&v| q[v] == Vec3::new(0.0, 2.0, 0.0)));
+    }
+
+    #[test]
+    fn a_table_is_sampled_linearly_between_its_rows_and_zero_outside() {
+        let spec = LineLoadSpec {
+            force_per_length: None,
+            from: None,
+            to: None,
+            table: Some(vec![[0.125, 0.0, 0.0, 1.0], [0.625, 0.0, 0.0, 3.0]]),
+        };
+        let q = sample("l", &spec, &nodes()).unwrap();
+        let z: Vec<f64> = q.iter().map(|x| x.z).collect();
+        assert_eq!(z, [0.0, 1.0, 1.5, 2.0, 2.5, 3.0, 0.0, 0.0, 0.0]);
+        // The lumped nodal forces integrate to the load's resultant, ∫ q ds = 1.0 N.
+        let total: f64 = lump("l", &spec, &nodes())
+            .unwrap()
+            .iter()
+            .map(|(_, f)| f.z)
+            .sum();
+        assert!((total - 1.0).abs() < 1e-14, "{total}");
+    }
+}
