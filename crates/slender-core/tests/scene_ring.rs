@@ -244,7 +244,9 @@ fn a_barrier_far_too_soft_gives_up_within_its_iteration_budget() {
     assert!(!r.converged, "{r:?}");
     let reason = r.reason.unwrap_or_default();
     assert!(
-        reason.contains("max_total_iterations") && reason.contains(&budget.to_string()),
+        reason.contains("max_total_iterations")
+            && reason.contains(&budget.to_string())
+            && reason.contains("try a larger `[contact] stiffness` than the 1e0 used"),
         "{reason}"
     );
     // Within one load step's Newton solve of the budget (contact re-solves add none here:

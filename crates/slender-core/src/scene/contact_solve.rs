@@ -76,6 +76,16 @@ pub(crate) fn solve_with_contact<P: ContactSites>(
         iterations += report.iterations;
         load_steps += report.load_steps;
         if !report.converged() {
+            if report.iterations >= params.max_total_iterations {
+                if let SolveStatus::NotConverged { reason } = &mut report.status {
+                    // What the budget usually means in contact (the scene fuzz test's crawling
+                    // case, a barrier 10⁴ times too soft): say what to change.
+                    reason.push_str(&format!(
+                        "; in contact this usually means a barrier too soft for the loads (gaps squeezed far below the activation distance make every load step slow): try a larger `[contact] stiffness` than the {:e} used",
+                        problem.params().stiffness
+                    ));
+                }
+            }
             break;
         }
     }
