@@ -163,14 +163,19 @@ pub fn measure_steps(
     Ok(out)
 }
 
-/// Solves `scene` (the example, or a variant of it) step by step as `slender solve` does and
-/// measures the end of each pull.
+/// Solves `scene` (the benchmark's, or a variant of it) step by step as `slender solve` does
+/// and measures the end of each pull; an error if a step does not converge.
 pub fn run(scene: Scene) -> Result<Vec<(usize, PullMeasure)>, String> {
     let mut session = Session::new(scene.clone()).map_err(|e| e.to_string())?;
     let ea = session.compiled().rods[0].properties.stiffness.ea;
-    let steps: Vec<SceneStep> = (1..=session.motion_steps())
-        .map(|k| session.run_motion_step(k))
-        .collect();
+    let mut steps = Vec::with_capacity(session.motion_steps());
+    for k in 1..=session.motion_steps() {
+        let step = session.run_motion_step(k);
+        if !step.converged {
+            return Err(format!("motion step {k} did not converge"));
+        }
+        steps.push(step);
+    }
     measure_steps(&scene, ea, &steps)
 }
 

@@ -212,47 +212,35 @@ pub fn scene_checks() -> Result<Vec<Check>> {
     Ok(checks)
 }
 
-/// The capstan benchmark (`slender_validation::capstan`, its own scene): at the end of each of
-/// its two pulls, the ratio of the pulled leg's tension to the held leg's against e^{μπ} (the
-/// worse relative error; NaN unless every step converged and every contact slides on
-/// Coulomb's cone against the slide), target [`capstan::TOLERANCE`].
+/// The capstan benchmark (`slender_validation::capstan`, its own scene, solved by its `run`):
+/// at the end of each of its two pulls, the ratio of the pulled leg's tension to the held
+/// leg's against e^{μπ} (the worse relative error; NaN unless every step converged and every
+/// contact slides on Coulomb's cone against the slide), target [`capstan::TOLERANCE`].
 fn capstan_check() -> Result<Check> {
     use slender_validation::capstan;
     let spec = parse_scene(capstan::SCENE, Syntax::Toml, "capstan")?;
-    let compiled = match spec.compile() {
-        Ok(c) => c,
-        Err(e) => bail!("capstan: {e}"),
+    let (measured, ratios, mu) = match capstan::run(spec) {
+        Ok(pulls) => {
+            let all_slide = pulls
+                .iter()
+                .all(|(_, m)| m.contacts > 0 && m.sliding_against_the_slide == m.contacts);
+            let worst = pulls
+                .iter()
+                .map(|(_, m)| m.relative_error())
+                .fold(0.0, f64::max);
+            let ratios: Vec<String> = pulls
+                .iter()
+                .map(|(_, m)| format!("{:.4}", m.ratio()))
+                .collect();
+            let mu = pulls.first().map_or(f64::NAN, |(_, m)| m.mu);
+            let measured = if all_slide { worst } else { f64::NAN };
+            (measured, ratios.join(" and "), mu)
+        }
+        Err(e) => (f64::NAN, format!("none ({e})"), f64::NAN),
     };
-    let (mut solver, first) = SceneSolver::new(&spec, &compiled);
-    let mut steps = vec![first];
-    for k in 1..=solver.motion_steps() {
-        steps.push(solver.run_motion_step(k));
-    }
-    let ea = compiled.rods[0].properties.stiffness.ea;
-    let pulls =
-        capstan::measure_steps(&spec, ea, &steps).map_err(|e| anyhow::anyhow!("capstan: {e}"))?;
-    let all_slide = pulls
-        .iter()
-        .all(|(_, m)| m.contacts > 0 && m.sliding_against_the_slide == m.contacts);
-    let worst = pulls
-        .iter()
-        .map(|(_, m)| m.relative_error())
-        .fold(0.0, f64::max);
-    let converged = steps.iter().all(|s| s.converged);
-    let measured = if all_slide && converged {
-        worst
-    } else {
-        f64::NAN
-    };
-    let mu = pulls.first().map_or(f64::NAN, |(_, m)| m.mu);
-    let ratios: Vec<String> = pulls
-        .iter()
-        .map(|(_, m)| format!("{:.4}", m.ratio()))
-        .collect();
     Ok(check(
         format!(
-            "capstan: a cable sliding over a rough bar (μ = {mu}, θ = π), pulled one way then the other: legs' tension ratios {} vs e^(μπ) = {:.4}, worse relative error",
-            ratios.join(" and "),
+            "capstan: a cable sliding over a rough bar (μ = {mu}, θ = π), pulled one way then the other: legs' tension ratios {ratios} vs e^(μπ) = {:.4}, worse relative error",
             capstan::capstan_ratio(mu, std::f64::consts::PI)
         ),
         measured,
