@@ -26,6 +26,9 @@
 //  3c. moments and line loads (scenes/moment_line_load.toml): the point moment is a
 //     double-headed arrow from its vertex along its axis, the line load one arrow per loaded
 //     vertex with its tip on the cable, each along its load, labelled in N·m and N/m.
+//  3d. follower force (examples/follower_cantilever.toml): drawn at the tip along the force as
+//     it acts now, normal to the tip; set in the panel (as given at rest), the page reaches
+//     `slender solve`'s equilibrium with the new force in the file and the arrow turns with it.
 //  4. obstacles (scenes/obstacles.toml: a plane, a box, a ball, a round bar, a ramp read
 //     from an OBJ file and a ring): each is a mesh of the three.js scene, tagged with its
 //     obstacle, at its pose (the ball's and the ring's bounds, the box's corners, the ramp's
@@ -373,7 +376,7 @@ try {
     const a = arrows.find((x) => x.load[0] === "rod" && x.load[1] === 0 && x.load[2] === k);
     const n = Math.hypot(...f.force);
     return a && Math.hypot(...a.tip.map((x, i) => x - f.position[i])) <= 1e-6
-      && a.dir.every((x, i) => Math.abs(x - f.force[i] / n) <= 1e-6);
+      && a.dir.every((x, i) => Math.abs(x - f.now[i] / n) <= 1e-6);
   });
   const rows = await s3b.page.locator("#loads .force-apply").count();
   const boxShown = await s3b.page.evaluate(() => !document.getElementById("loads-box").hidden);
@@ -538,6 +541,48 @@ try {
   await s3c.page.close();
   s3c.proc.kill();
   sessions.splice(sessions.indexOf(s3c), 1);
+
+  // ---- 3d. a follower force: drawn as it acts now, edited as given at rest ----
+  const followerScene = join(here, "../../examples/follower_cantilever.toml");
+  const s3d = await open(followerScene);
+  sessions.push(s3d);
+  /** The follower's arrow against the state: tip at the vertex, along `now`, normal to the
+   *  last edge (the follower turns with it). */
+  const followerDrawn = async () => {
+    const st = await s3d.page.evaluate(() => window.slender.state());
+    const f = st.rods[0].forces[0];
+    const a = (await loadArrows(s3d.page)).find((x) => x.load[0] === "rod" && x.load[2] === 0);
+    const p = st.rods[0].positions;
+    const tip = p.at(-1).map((x, k) => x - p.at(-2)[k]);
+    const n = Math.hypot(...f.now);
+    const normal = Math.abs(f.now.reduce((m, x, k) => m + x * tip[k], 0)) / (n * Math.hypot(...tip));
+    const ok = !!a && Math.hypot(...a.tip.map((x, i) => x - f.position[i])) <= 1e-6
+      && a.dir.every((x, i) => Math.abs(x - f.now[i] / n) <= 1e-6) && normal <= 1e-9 && f.follower;
+    return { st, f, ok, normal };
+  };
+  const d0 = await followerDrawn();
+  check(d0.ok, `follower force: drawn at the tip along the force as it acts now [${d0.f.now.map((x) => x.toFixed(3))}] N, normal to the tip (cos ${d0.normal.toExponential(1)})`);
+  const followerForce = [0, 3, 0];
+  for (const [i, c] of ["x", "y", "z"].entries()) await s3d.page.fill(`#f-0-0-${c}`, String(followerForce[i]));
+  await s3d.page.click('#loads .force-apply[data-load="f-0-0"]');
+  await s3d.page.waitForFunction((f) => window.slender.state().rods[0].forces[0].force.every((x, i) => x === f[i]), followerForce, { timeout: 20000 });
+  const d1 = await followerDrawn();
+  const followerText = readFileSync(followerScene, "utf8").replace("force = [0.0, 2.0, 0.0], follower = true", "force = [0.0, 3.0, 0.0], follower = true");
+  const followerCold = solveScene("follower_edited_cold", followerText);
+  const followerGap = maxRelativeDistance(d1.st.rods.map((r) => r.positions), followerCold, 1.0);
+  // The follower is +y at rest: its angle from +y toward −x is the tip's turn.
+  const turnOf = (f) => Math.atan2(-f.now[0], f.now[1]);
+  const followerTurn = turnOf(d1.f);
+  console.log(`view test: follower force set to [${followerForce}] N (as at rest) in the panel: it acts along [${d1.f.now.map((x) => x.toFixed(4))}] N now (turned ${followerTurn.toFixed(3)} rad with the tip); every vertex within ${followerGap.toExponential(2)} of the length of slender solve with the new force in the file`);
+  check(followerText.includes("[0.0, 3.0, 0.0]") && d1.st.converged && followerGap <= 1e-9,
+    `follower force: the edited equilibrium = slender solve's with the force in the file, to 1e-9 of the length (${followerGap.toExponential(2)})`);
+  check(d1.ok && followerTurn > turnOf(d0.f) + 0.1, `follower force: the arrow follows the edit, normal to the tip, turned further (${turnOf(d0.f).toFixed(3)} → ${followerTurn.toFixed(3)} rad)`);
+  await s3d.page.screenshot({ path: join(out, "view-follower.png") });
+  for (const e of s3d.errors) fail(e);
+  check(s3d.errors.length === 0, "no console errors (follower page)");
+  await s3d.page.close();
+  s3d.proc.kill();
+  sessions.splice(sessions.indexOf(s3d), 1);
 
   // ---- 4. obstacles drawn; a clamp dragged into the floor ----
   const s4 = await open(join(scenes, "obstacles.toml"));

@@ -257,10 +257,20 @@ fn load_paths_are_checked() {
         motions: Vec::new(),
         gravity_from: None,
         force_change: None,
+        follower_change: None,
     };
     assert!(rod
         .set_load_path(bad)
         .unwrap_err()
         .to_string()
         .contains("loads[1]"));
+    let bad = slender_core::rod::RodLoadPath {
+        follower_change: Some((0, nalgebra::Vector3::new(0.0, 1.0, 0.0))),
+        ..Default::default()
+    };
+    assert!(rod
+        .set_load_path(bad)
+        .unwrap_err()
+        .to_string()
+        .contains("follower_change"));
 }

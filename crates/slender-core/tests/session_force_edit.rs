@@ -2,7 +2,8 @@
 //! equilibrium ends where a cold solve of the scene with the new force ends (a different path:
 //! loads ramped from rest), for every rod model, across an interior clamp, for a change large
 //! enough to need load steps; a small change of a weightless cantilever's tip force moves the
-//! tip by beam theory's ΔF L³/(3EI); bad input names its field and changes nothing.
+//! tip by beam theory's ΔF L³/(3EI); bad input names its field and changes nothing. A follower
+//! force's edit ends where a cold solve ends too, and the force stays normal to the tip.
 //! Adding a force at an arc length (snapped to the file's nearest vertex, across a vertex
 //! inserted for a clip) and removing one end where cold solves of the edited files end.
 
@@ -142,20 +143,138 @@ fn bad_force_edits_name_the_field_and_change_nothing() {
     }
     assert_eq!(positions(&s), before);
     assert_eq!(s.spec().rods[0].forces[0].force, [0.0, 0.0, -0.01]);
-    let mut f = Session::new(cantilever_with(
-        "der",
-        20,
-        [0.0, 0.0, -0.01],
-        -9.81,
-        "",
-        true,
-    ))
-    .expect("solves");
-    let e = f.set_force(0, 0, [0.0, 0.0, -0.02]).unwrap_err();
-    assert!(
-        e.to_string().starts_with("rods[0].forces[0].follower"),
-        "{e}"
+}
+
+/// The follower cantilever: `cantilever_with(…, follower = true)`.
+fn follower_cantilever(elements: usize, force: [f64; 3], g: f64) -> Scene {
+    cantilever_with("der", elements, force, g, "", true)
+}
+
+#[test]
+fn a_follower_force_edit_ends_where_a_cold_solve_with_that_force_ends() {
+    // From a small follower load to one that bends the cantilever far (F L²/EI ≈ 2.5) and
+    // sideways: the edit turns the old and new forces with the tip along its path; the cold
+    // solve ramps the new one from rest. Both end on the follower equilibrium.
+    let (from, to) = ([0.0, 0.0, -0.01], [0.0, 0.1, -0.12]);
+    let mut s = Session::new(follower_cantilever(20, from, -9.81)).expect("solves");
+    let r = s.set_force(0, 0, to).expect("a valid force");
+    assert!(r.converged && r.stable, "{r:?}");
+    assert_eq!(s.spec().rods[0].forces[0].force, to);
+    let cold = Session::new(follower_cantilever(20, to, -9.81)).expect("solves");
+    let d = max_distance(&positions(&s), &positions(&cold));
+    eprintln!(
+        "follower {from:?} → {to:?} N: {} iterations, {} load steps, {d:.1e} m from the cold solve",
+        r.iterations, r.load_steps
     );
+    assert!(d <= 1e-9, "{d:e} m from the cold solve");
+    // A dead force of the same value ends elsewhere: the edit did apply a follower.
+    let dead = Session::new(cantilever("der", 20, to, -9.81, "")).expect("solves");
+    let apart = max_distance(&positions(&s), &positions(&dead));
+    assert!(apart > 1e-2, "{apart:e} m from the dead-force equilibrium");
+    // And back: the saved scene solves to the same equilibrium.
+    let again = Session::new(s.saved()).expect("the saved scene solves");
+    assert!(max_distance(&positions(&s), &positions(&again)) <= 1e-9);
+    // Removed (ramped to zero first): the cantilever under its weight alone.
+    let r = s.remove_force(0, 0).expect("force 0 exists");
+    assert!(r.converged, "{r:?}");
+    let mut bare = follower_cantilever(20, to, -9.81);
+    bare.rods[0].forces.clear();
+    let d = max_distance(&positions(&s), &positions(&Session::new(bare).unwrap()));
+    assert!(d <= 1e-9, "removed: {d:e} m from the cold solve without it");
+}
+
+#[test]
+fn a_follower_force_beyond_a_clip_is_edited_on_the_part_that_carries_it() {
+    // A clip at vertex 10 splits the rod into two members of one structure; the follower tip
+    // force is on the second, at its own vertex numbering.
+    let scene = |force| {
+        cantilever_with(
+            "der",
+            20,
+            force,
+            -9.81,
+            r#", { kind = "clip", vertex = 10 }"#,
+            true,
+        )
+    };
+    let to = [0.0, 0.08, -0.05];
+    let mut s = Session::new(scene([0.0, 0.0, -0.01])).expect("solves");
+    let r = s.set_force(0, 0, to).expect("a valid force");
+    assert!(r.converged, "{r:?}");
+    let cold = Session::new(scene(to)).expect("solves");
+    let d = max_distance(&positions(&s), &positions(&cold));
+    eprintln!("follower beyond a clip: {d:.1e} m from the cold solve");
+    assert!(d <= 1e-9, "{d:e} m from the cold solve");
+}
+
+#[test]
+fn an_edited_follower_force_stays_normal_to_the_tip_of_a_weightless_cantilever() {
+    // Given at rest as +y on a cantilever along x, the follower stays normal to the tip's
+    // tangent; weightless, the clamp carries it all: its reaction is the force, turned. A
+    // dead +y force would leave a reaction along +y (its component along the bent tip's
+    // tangent is sin φ ≈ 0.8 of it here).
+    let ei = 1.0e9 * std::f64::consts::PI * 0.006_f64.powi(4) / 64.0;
+    let mut s = Session::new(follower_cantilever(40, [0.0, ei, 0.0], 0.0)).expect("solves");
+    let r = s
+        .set_force(0, 0, [0.0, 2.5 * ei, 0.0])
+        .expect("a valid force");
+    assert!(r.converged, "{r:?}");
+    let res = s.results(0, None, 1.0, 1);
+    let p = &res.rods[0].positions;
+    let n = p.len();
+    let tip: Vec<f64> = (0..3).map(|k| p[n - 1][k] - p[n - 2][k]).collect();
+    let norm = tip.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let reaction = res.rods[0].supports[0].force;
+    let along: f64 = (0..3).map(|k| reaction[k] * tip[k] / norm).sum();
+    let size = reaction.iter().map(|x| x * x).sum::<f64>().sqrt();
+    eprintln!(
+        "tip turned {:.3} rad; reaction {size:.6e} N (force {:.6e} N), along the tip {along:.2e} N",
+        (tip[1] / norm).asin(),
+        2.5 * ei
+    );
+    assert!((size - 2.5 * ei).abs() <= 1e-9 * size, "{size:e} N");
+    // The force in space now, as the page draws it: the reaction's opposite.
+    let now = s.force_now(0, 0).expect("force 0 exists");
+    let off = (0..3)
+        .map(|k| (now[k] + reaction[k]).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        off <= 1e-9 * size,
+        "force now {now:?} N, reaction {reaction:?} N"
+    );
+    assert_eq!(s.force_now(0, 1), None);
+    // The last edge's tangent stands for the tip's: the load turns with that edge's frame.
+    assert!(along.abs() <= 1e-9 * size, "{along:e} N along the tip");
+    assert!(tip[1] / norm > 0.5, "the tip has turned: {tip:?}");
+}
+
+#[test]
+fn a_follower_force_change_that_does_not_converge_keeps_the_equilibrium_and_the_force() {
+    let mut scene = follower_cantilever(20, [0.0, 0.0, -1e-7], 0.0);
+    scene.solver.max_iterations = 2;
+    scene.solver.min_load_step = 0.25;
+    let mut s = Session::new(scene.clone()).unwrap();
+    let before = s.results(0, None, 1.0, 1);
+    let r = s
+        .set_force(0, 0, [0.0, 0.0, -5.0])
+        .expect("a valid request");
+    assert!(!r.converged, "{r:?}");
+    assert_eq!(s.spec().rods[0].forces[0].force, [0.0, 0.0, -1e-7]);
+    let after = s.results(0, None, 1.0, 1);
+    assert_eq!(after.rods[0].positions, before.rods[0].positions);
+    // The follower's rest force and the state's frozen loads are back exactly: a small edit
+    // then ends where it ends in a session that never tried the large one.
+    let mut fresh = Session::new(scene).unwrap();
+    for t in [&mut s, &mut fresh] {
+        let r = t.set_force(0, 0, [0.0, 0.0, -2e-7]).unwrap();
+        assert!(r.converged, "{r:?}");
+    }
+    // To the round-off of their different warm starts, as for a dead force.
+    let (here, there) = (positions(&s), positions(&fresh));
+    let d = max_distance(&here, &there);
+    let sag = -there.last().unwrap()[2];
+    eprintln!("after a failed follower edit: {d:.1e} m from a fresh session, tip sag {sag:.3e} m");
+    assert!(d <= 1e-12 * sag, "{d:e} m, tip sag {sag:e} m");
 }
 
 #[test]

@@ -257,8 +257,8 @@ impl PySession {
         edit(py, out)
     }
 
-    /// Sets point force `force` of rod `rod` (its scene's `forces[force]`, a dead force) to
-    /// `value` (N) and re-solves warm.
+    /// Sets point force `force` of rod `rod` (its scene's `forces[force]`) to `value` (N; a
+    /// follower force's as it acts at rest) and re-solves warm.
     fn set_force(
         &mut self,
         py: Python<'_>,

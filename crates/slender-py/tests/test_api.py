@@ -348,6 +348,22 @@ def test_add_and_remove_a_force() -> None:
         s.remove_force(0, 3)
 
 
+def test_follower_force_edit_matches_a_cold_solve() -> None:
+    """The follower example's tip force (as at rest) edited in a session ends where a session
+    of the file with the new value starts; a dead force of that value ends elsewhere."""
+    s = slender.Session(EXAMPLES / "follower_cantilever.toml")
+    rep = s.set_force(0, 0, [0.0, 3.0, 0.0])
+    assert rep.converged and rep.structures == [0]
+    scene = slender.load_scene(EXAMPLES / "follower_cantilever.toml")
+    scene["rods"][0]["forces"][0]["force"] = [0.0, 3.0, 0.0]
+    cold = slender.Session(scene).results().rods[0].positions
+    here = s.results().rods[0].positions
+    assert np.abs(here - cold).max() <= 1e-9
+    scene["rods"][0]["forces"][0]["follower"] = False
+    dead = slender.Session(scene).results().rods[0].positions
+    assert np.abs(here - dead).max() > 1e-2
+
+
 def test_force_edit_matches_a_cold_solve() -> None:
     """A tip force edited in a session ends where a session of the scene with that force
     starts (loads ramped from rest), and the weightless tip moves by F L³/(3EI)."""

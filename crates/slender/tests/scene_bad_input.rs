@@ -450,6 +450,14 @@ fn a_solve_that_does_not_converge_says_so() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert!(String::from_utf8_lossy(&o.stderr).contains("did not converge"));
+    // The step table claims no stability for a shape that is no equilibrium.
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("(no equilibrium)")
+            && !stdout.contains("UNSTABLE")
+            && !stdout.contains(" stable"),
+        "{stdout}"
+    );
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(report["converged"], serde_json::Value::Bool(false));

@@ -332,6 +332,8 @@ impl FramedCore {
             }
         }
         path.check_changes(self.vertex_masses.len())?;
+        // Follower loads act on discrete elastic rods only.
+        path.check_follower_change(0)?;
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
                 return Err(ModelError::parameter(

@@ -13,6 +13,7 @@
 //! A moment M on edge j acts as the couple of forces ±(M × t)/|e| on the edge's vertices (the
 //! part that turns the tangent) plus the torque M·t on the edge angle.
 
+use crate::error::ModelError;
 use crate::geometry::Vec3;
 
 use super::model::Rod;
@@ -41,16 +42,39 @@ pub struct FollowerState {
     pub couple: Vec3,
     /// Torque on the edge angle (N m).
     pub torque: f64,
+    /// While the load path changes this follower force (an interactive edit, see
+    /// [`RodLoadPath::follower_change`](super::RodLoadPath::follower_change)): its force at
+    /// λ = 0 minus its force at λ = 1, turned like `force` (N); the vertex carries this times
+    /// (1 − λ) on top of `force`. Zero otherwise.
+    pub transition: Vec3,
 }
 
 impl Rod {
+    /// The force (N) on the vertex of follower load `i` in its frozen state `now`, at load
+    /// factor `load` (the path's factor on the loads) and path parameter `lambda`: the
+    /// transition counts only while the path changes this follower (a state keeps the last
+    /// one it was refreshed with until its next refresh).
+    pub(super) fn follower_force(
+        &self,
+        i: usize,
+        now: &FollowerState,
+        load: f64,
+        lambda: f64,
+    ) -> Vec3 {
+        match self.load_path.follower_change {
+            Some((k, _)) if k == i => now.force * load + now.transition * (1.0 - lambda),
+            _ => now.force * load,
+        }
+    }
+
     /// The dead loads equivalent to every follower load in `s`'s current material frames.
     pub(super) fn follower_loads<'a>(
         &'a self,
         s: &'a RodState,
     ) -> impl Iterator<Item = FollowerState> + 'a {
         let rest = &self.rest;
-        self.followers.iter().map(move |f| {
+        let change = self.load_path.follower_change;
+        self.followers.iter().enumerate().map(move |(i, f)| {
             let j = f.edge;
             let now = s.material_frame(j);
             let then = rest.material_frame(j);
@@ -60,6 +84,10 @@ impl Rod {
             };
             let force = turn(&f.force);
             let moment = turn(&f.moment);
+            let transition = match change {
+                Some((k, delta)) if k == i => turn(&delta),
+                _ => Vec3::zeros(),
+            };
             let e = s.positions[j + 1] - s.positions[j];
             let len = e.norm();
             let t = e / len;
@@ -67,6 +95,7 @@ impl Rod {
                 force,
                 couple: moment.cross(&t) / len,
                 torque: moment.dot(&t),
+                transition,
             }
         })
     }
@@ -77,11 +106,25 @@ impl Rod {
         let mut change: f64 = 0.0;
         let mut size: f64 = 0.0;
         let fresh: Vec<FollowerState> = self.follower_loads(s).collect();
-        for (old, new) in s.followers.iter_mut().zip(fresh) {
+        let change_of = self.load_path.follower_change.map(|(k, _)| k);
+        for (i, (old, new)) in s.followers.iter_mut().zip(fresh).enumerate() {
+            // A transition left from an earlier path is not applied (see `follower_force`):
+            // its clearing is no change of the loads.
+            let transition = if change_of == Some(i) {
+                (new.transition - old.transition).norm()
+            } else {
+                0.0
+            };
             let d = (new.force - old.force).norm()
+                + transition
                 + (new.couple - old.couple).norm()
                 + (new.torque - old.torque).abs() / self.length;
-            size = size.max(new.force.norm() + new.couple.norm() + new.torque.abs() / self.length);
+            size = size.max(
+                new.force.norm()
+                    + new.transition.norm()
+                    + new.couple.norm()
+                    + new.torque.abs() / self.length,
+            );
             change = change.max(d);
             *old = new;
         }
@@ -90,5 +133,62 @@ impl Rod {
         } else {
             0.0
         }
+    }
+}
+
+impl Rod {
+    /// Makes the load path the change of the follower force on vertex `v` from `old` to `new`
+    /// (N, given at rest like the scene's `force`), in place: that follower's rest force becomes
+    /// `new`, the path carries `old − new` times (1 − λ) turned with the rod, and the frozen
+    /// loads of `s` are refreshed so that at λ = 0 the vertex carries exactly the old load.
+    /// Returns the follower's index (for [`Self::undo_follower_force_change`]). Errors (nothing
+    /// changed) if no follower force `old` (without a moment) acts on `v`, or a value is not
+    /// finite.
+    pub fn set_follower_force_change(
+        &mut self,
+        s: &mut RodState,
+        v: usize,
+        old: Vec3,
+        new: Vec3,
+    ) -> Result<usize, ModelError> {
+        if old.iter().chain(new.iter()).any(|c| !c.is_finite()) {
+            return Err(ModelError::structure("follower_change", "must be finite"));
+        }
+        let Some(i) = self
+            .followers
+            .iter()
+            .position(|f| f.vertex == v && f.force == old && f.moment == Vec3::zeros())
+        else {
+            return Err(ModelError::structure(
+                "follower_change.vertex",
+                format!("no follower force {old:?} (N) acts on vertex {v}"),
+            ));
+        };
+        self.load_path.clear();
+        self.load_path.loads = [1.0, 1.0];
+        self.load_path.follower_change = Some((i, old - new));
+        self.followers[i].force = new;
+        // The frames are those of `s`: the refresh only re-splits the same load into the new
+        // force and the transition.
+        self.refresh_followers(s);
+        Ok(i)
+    }
+
+    /// The force (N) in space now of the follower force `force` (given at rest) on vertex `v`
+    /// in state `s`: turned with the material frame of its edge. `None` if there is no such
+    /// follower force.
+    pub fn follower_force_in(&self, s: &RodState, v: usize, force: Vec3) -> Option<Vec3> {
+        let i = self
+            .followers
+            .iter()
+            .position(|f| f.vertex == v && f.force == force && f.moment == Vec3::zeros())?;
+        self.follower_loads(s).nth(i).map(|f| f.force)
+    }
+
+    /// Undoes [`Self::set_follower_force_change`]: follower `i`'s rest force back to `old`
+    /// (N), the load path cleared. The state's frozen loads are the caller's to restore.
+    pub fn undo_follower_force_change(&mut self, i: usize, old: Vec3) {
+        self.followers[i].force = old;
+        self.clear_load_path();
     }
 }

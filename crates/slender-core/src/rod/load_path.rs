@@ -81,6 +81,11 @@ pub struct RodLoadPath {
     /// at λ = 0 minus its force at λ = 1 (N)). The vertex carries that difference times
     /// (1 − λ) on top of its loads at λ = 1. Default none.
     pub force_change: Option<(usize, Vec3)>,
+    /// A follower force changing along the path (an interactive edit): (index of the rod's
+    /// follower load, its force at λ = 0 minus its force at λ = 1, both given at rest (N)).
+    /// The vertex carries that difference, turned with the rod, times (1 − λ) on top of the
+    /// follower's force (see `follower.rs`). Default none.
+    pub follower_change: Option<(usize, Vec3)>,
 }
 
 impl Default for RodLoadPath {
@@ -90,6 +95,7 @@ impl Default for RodLoadPath {
             motions: Vec::new(),
             gravity_from: None,
             force_change: None,
+            follower_change: None,
         }
     }
 }
@@ -108,6 +114,7 @@ impl RodLoadPath {
         self.loads = [1.0, 1.0];
         self.gravity_from = None;
         self.force_change = None;
+        self.follower_change = None;
         self.motions.truncate(1);
         if self.motions.is_empty() {
             self.motions.push(SupportMotion {
@@ -131,6 +138,7 @@ impl RodLoadPath {
         self.loads = Self::default().loads;
         self.gravity_from = None;
         self.force_change = None;
+        self.follower_change = None;
         for m in self.motions.iter_mut() {
             m.vertices.clear();
             m.rotation = Vec3::zeros();
@@ -145,6 +153,7 @@ impl RodLoadPath {
             motions,
             gravity_from: None,
             force_change: None,
+            follower_change: None,
         }
     }
 
@@ -155,6 +164,7 @@ impl RodLoadPath {
             motions: Vec::new(),
             gravity_from: Some(from),
             force_change: None,
+            follower_change: None,
         }
     }
 
@@ -221,6 +231,23 @@ impl RodLoadPath {
             }
             if delta.iter().any(|c| !c.is_finite()) {
                 return Err(ModelError::structure("force_change", "must be finite"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Errors if the follower change names a follower beyond the model's `n_followers` (none
+    /// for the rod models without follower loads) or is not finite.
+    pub(crate) fn check_follower_change(&self, n_followers: usize) -> Result<(), ModelError> {
+        if let Some((i, delta)) = self.follower_change {
+            if i >= n_followers {
+                return Err(ModelError::structure(
+                    "follower_change",
+                    format!("follower load {i} does not exist (the rod has {n_followers})"),
+                ));
+            }
+            if delta.iter().any(|c| !c.is_finite()) {
+                return Err(ModelError::structure("follower_change", "must be finite"));
             }
         }
         Ok(())
@@ -297,6 +324,7 @@ impl Rod {
             m.check(self)?;
         }
         path.check_changes(self.vertex_masses.len())?;
+        path.check_follower_change(self.followers.len())?;
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
                 return Err(ModelError::parameter(

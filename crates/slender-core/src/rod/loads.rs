@@ -37,13 +37,13 @@ impl Rod {
         }
         // Follower loads, frozen in the state (see `follower.rs`): dead forces on the vertex,
         // a couple on the edge's vertices and a torque on its angle.
-        for (f, now) in self.followers.iter().zip(&s.followers) {
+        for (i, (f, now)) in self.followers.iter().zip(&s.followers).enumerate() {
             let (v, j) = (f.vertex, f.edge);
             let du = s.positions[v] - self.rest.positions[v];
             let de = (s.positions[j + 1] - s.positions[j])
                 - (self.rest.positions[j + 1] - self.rest.positions[j]);
             let dtheta = s.thetas[j] - self.rest.thetas[j];
-            let fv = now.force * load;
+            let fv = self.follower_force(i, now, load, lambda);
             let c = now.couple * load;
             let tau = now.torque * load;
             asm.load(

@@ -152,9 +152,9 @@ impl Rod {
             g[j + 1] += g6.fixed_rows::<3>(3);
             gt[j] -= load * m.axial;
         }
-        for (f, now) in self.followers.iter().zip(&s.followers) {
+        for (i, (f, now)) in self.followers.iter().zip(&s.followers).enumerate() {
             let j = f.edge;
-            g[f.vertex] -= now.force * load;
+            g[f.vertex] -= self.follower_force(i, now, load, lambda);
             g[j + 1] -= now.couple * load;
             g[j] += now.couple * load;
             gt[j] -= now.torque * load;
@@ -209,10 +209,11 @@ impl Rod {
             force += f;
             moment += s.positions[v].cross(&f);
         }
-        for (f, now) in self.followers.iter().zip(&s.followers) {
+        for (i, (f, now)) in self.followers.iter().zip(&s.followers).enumerate() {
             let j = f.edge;
-            force += now.force * load;
-            moment += s.positions[f.vertex].cross(&(now.force * load));
+            let fv = self.follower_force(i, now, load, lambda);
+            force += fv;
+            moment += s.positions[f.vertex].cross(&fv);
             let e = s.positions[j + 1] - s.positions[j];
             moment += e.cross(&(now.couple * load));
             moment += s.frames.edges[j].tangent * (now.torque * load);

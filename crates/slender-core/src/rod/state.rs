@@ -89,6 +89,7 @@ impl RodState {
                     force: rotation * f.force,
                     couple: rotation * f.couple,
                     torque: f.torque,
+                    transition: rotation * f.transition,
                 })
                 .collect(),
         }

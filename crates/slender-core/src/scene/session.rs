@@ -111,6 +111,13 @@ impl Run {
     }
 }
 
+/// What [`Session::set_force`] needs to undo a force change: the vertex's dead nodal force
+/// before it (N), or the index of the follower load changed.
+enum ForceBefore {
+    Dead(Vec3),
+    Follower(usize),
+}
+
 /// A report of a solve that did not start (`reason`).
 pub(crate) fn unsolved(reason: String) -> SolveReport {
     SolveReport {
@@ -810,12 +817,34 @@ impl Session {
         Ok(r)
     }
 
-    /// Sets point force `force` of rod `rod` (the file's `forces[force]`, a dead force) to
-    /// `value` (N) and re-solves its structure warm: the force changes along the load path
-    /// from its old value, so a change too large for one Newton solve is split by the
-    /// continuation. A change that does not converge leaves the force and the equilibrium
-    /// where they were and says so. Errors (nothing changed): an unknown rod or force, a
-    /// follower force, a non-finite or absurd value.
+    /// The force in space now (N) of point force `force` of rod `rod`: the file's value for a
+    /// dead force; for a follower force, that value turned with the rod's material frame at
+    /// its vertex in the current equilibrium. `None` for an unknown rod or force.
+    pub fn force_now(&self, rod: usize, force: usize) -> Option<[f64; 3]> {
+        let spec = self.spec.rods.get(rod)?.forces.get(force)?;
+        if !spec.follower {
+            return Some(spec.force);
+        }
+        let compiled = &self.scene.rods[rod];
+        let v = *compiled.force_vertices.get(force)?;
+        let part = compiled.load_part(v)?;
+        let member = &self.scene.structures[part.structure].members()[part.member];
+        let state = self.runs[part.structure].state.members[part.member].as_der()?;
+        let now = member.as_der()?.follower_force_in(
+            state,
+            v - part.first_vertex,
+            Vec3::from(spec.force),
+        )?;
+        Some(now.into())
+    }
+
+    /// Sets point force `force` of rod `rod` (the file's `forces[force]`) to `value` (N) and
+    /// re-solves its structure warm: the force changes along the load path from its old
+    /// value, so a change too large for one Newton solve is split by the continuation. A
+    /// follower force's value is given at rest, as in the file, and turns with the rod along
+    /// the path (its old and new values both do). A change that does not converge leaves the
+    /// force and the equilibrium where they were and says so. Errors (nothing changed): an
+    /// unknown rod or force, a non-finite or absurd value.
     pub fn set_force(
         &mut self,
         rod: usize,
@@ -824,12 +853,7 @@ impl Session {
     ) -> Result<EditReport, SceneError> {
         let path = || format!("rods[{rod}].forces[{force}]");
         let spec = self.rod_force(rod, force)?;
-        if spec.follower {
-            return Err(SceneError::new(
-                format!("{}.follower", path()),
-                "a follower force cannot be edited in a session (dead forces only)",
-            ));
-        }
+        let follower = spec.follower;
         check_force_value(&path, value)?;
         let (old, new) = (Vec3::from(spec.force), Vec3::from(value));
         let compiled = &self.scene.rods[rod];
@@ -838,12 +862,22 @@ impl Session {
             .load_part(v)
             .expect("every vertex of a rod is on a part");
         let (k, m, local) = (part.structure, part.member, v - part.first_vertex);
-        let before = self.scene.structures[k]
-            .member_mut(m)
-            .set_force_change(local, old, new)
-            .map_err(|e| SceneError::model(path(), e))?;
+        // Saved before a follower change refreshes the state's frozen loads.
+        self.runs[k].save();
+        let before = if follower {
+            let state = &mut self.runs[k].state.members[m];
+            self.scene.structures[k]
+                .member_mut(m)
+                .set_follower_force_change(state, local, old, new)
+                .map(ForceBefore::Follower)
+        } else {
+            self.scene.structures[k]
+                .member_mut(m)
+                .set_force_change(local, old, new)
+                .map(ForceBefore::Dead)
+        }
+        .map_err(|e| SceneError::model(path(), e))?;
         let run = &mut self.runs[k];
-        run.save();
         let report = solve_structure(&self.scene, k, run, 0.0, 1.0);
         let reason = (!report.converged()).then(|| {
             format!(
@@ -856,7 +890,12 @@ impl Session {
         structure.clear_paths();
         if reason.is_some() {
             // Back to the old force, bit for bit.
-            structure.member_mut(m).undo_force_change(local, before);
+            match before {
+                ForceBefore::Dead(f) => structure.member_mut(m).undo_force_change(local, f),
+                ForceBefore::Follower(i) => {
+                    structure.member_mut(m).undo_follower_force_change(i, old)
+                }
+            }
             let summary = self.summary(&[k], reason);
             self.runs[k].restore();
             return Ok(summary);
@@ -1079,16 +1118,15 @@ impl Session {
         Ok(report)
     }
 
-    /// Removes point force `force` of rod `rod`: a dead force is first brought to zero along
-    /// the load path, warm from the last equilibrium (as [`Self::set_force`] does), then taken
-    /// out of the scene; a follower load is taken out and the rod re-solved from its current
-    /// shape. A change that does not converge keeps the force and the equilibrium (the report
+    /// Removes point force `force` of rod `rod`: the force (dead or follower) is first brought
+    /// to zero along the load path, warm from the last equilibrium (as [`Self::set_force`]
+    /// does), then taken out of the scene. A change that does not converge keeps the force and the equilibrium (the report
     /// says so). Errors (nothing changed): an unknown rod or force.
     pub fn remove_force(&mut self, rod: usize, force: usize) -> Result<EditReport, SceneError> {
         let spec = self.rod_force(rod, force)?;
         // The session as it was, should the rebuild fail after the force went to zero.
         let before = self.clone();
-        if !spec.follower && spec.force != [0.0; 3] {
+        if spec.force != [0.0; 3] {
             let report = self.set_force(rod, force, [0.0; 3])?;
             if !report.converged {
                 return Ok(report);

@@ -407,6 +407,36 @@ impl Member {
         }
     }
 
+    /// Changes the follower force on vertex `v` from `old` to `new` (N, given at rest): from
+    /// now on, and along the load path of the next solve (λ = 0: `old`, turned with the rod).
+    /// `state` is this member's state, whose frozen follower loads are refreshed. Returns the
+    /// follower's index, for [`Self::undo_follower_force_change`]. Errors (nothing changed):
+    /// not a discrete elastic rod (the only model with follower loads), no follower force
+    /// `old` on `v`, a force not finite.
+    pub fn set_follower_force_change(
+        &mut self,
+        state: &mut MemberState,
+        v: usize,
+        old: crate::geometry::Vec3,
+        new: crate::geometry::Vec3,
+    ) -> Result<usize, crate::ModelError> {
+        match (self, state) {
+            (Self::Der(r), MemberState::Der(s)) => r.set_follower_force_change(s, v, old, new),
+            _ => Err(crate::ModelError::structure(
+                "follower_change",
+                "follower loads act on discrete elastic rods only",
+            )),
+        }
+    }
+
+    /// Undoes [`Self::set_follower_force_change`]: follower `i`'s force back to `old` (N),
+    /// the load path cleared (the state is the caller's to restore).
+    pub fn undo_follower_force_change(&mut self, i: usize, old: crate::geometry::Vec3) {
+        if let Self::Der(r) = self {
+            r.undo_follower_force_change(i, old);
+        }
+    }
+
     /// Undoes [`Self::set_force_change`] bit for bit: vertex `v`'s nodal force back to
     /// `before` (N), the load path cleared.
     pub fn undo_force_change(&mut self, v: usize, before: crate::geometry::Vec3) {

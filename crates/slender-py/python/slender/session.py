@@ -226,8 +226,9 @@ class Session:
         return self._checked(self._inner.set_gravity(_vec3(gravity, "gravity")), check, "changing gravity")
 
     def set_force(self, rod: int, force: int, value: Sequence[float], *, check: bool = True) -> EditReport:
-        """Sets point force ``force`` of rod ``rod`` (the scene's ``forces[force]``, a dead
-        force; not a follower) to ``value`` (N) and re-solves warm."""
+        """Sets point force ``force`` of rod ``rod`` (the scene's ``forces[force]``) to
+        ``value`` (N) and re-solves warm. A follower force's value is given as it acts at rest,
+        as in the scene file; it turns with the rod."""
         r, f = _index(rod, "rod"), _index(force, "force")
         report = self._inner.set_force(r, f, _vec3(value, "value"))
         return self._checked(report, check, f"changing rods[{r}].forces[{f}]")

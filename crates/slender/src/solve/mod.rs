@@ -593,10 +593,12 @@ pub fn print_summary(out: &Path) -> Result<()> {
     );
     for row in r.records() {
         let row = row?;
-        let stability = match (&row[10], &row[11], &row[12]) {
-            ("true", _, "true") => "stable (followed)".to_string(),
-            ("true", _, _) => "stable".to_string(),
-            (_, n, _) => format!("UNSTABLE ({n} modes)"),
+        // A step that did not converge is no equilibrium: its stability is not known.
+        let stability = match (&row[5], &row[10], &row[11], &row[12]) {
+            ("false", ..) => "— (no equilibrium)".to_string(),
+            (_, "true", _, "true") => "stable (followed)".to_string(),
+            (_, "true", _, _) => "stable".to_string(),
+            (_, _, n, _) => format!("UNSTABLE ({n} modes)"),
         };
         println!(
             "{:>4}  {:>9}  {:<20}  {:>8.3}  {:>6}  {:.1e} / {:.1e}",

@@ -364,6 +364,11 @@ forces = [{ vertex = 9, force = [0.0, 0.0, -0.01] }]"#,
     assert_eq!(shown["force"], json!([0.0, 0.02, -0.05]), "{v}");
     assert_eq!(shown["vertex"], json!(9));
     assert_eq!(shown["follower"], json!(false));
+    assert_eq!(
+        shown["now"],
+        json!([0.0, 0.02, -0.05]),
+        "a dead force does not turn"
+    );
     assert_eq!(shown["position"], v["view"]["rods"][0]["positions"][9]);
     for (message, field) in [
         (
@@ -382,6 +387,53 @@ forces = [{ vertex = 9, force = [0.0, 0.0, -0.01] }]"#,
     let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
     let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
     assert_eq!(saved.rods[0].forces[0].force, [0.0, 0.02, -0.05]);
+}
+
+#[test]
+fn a_follower_force_message_sets_the_force_at_rest_and_the_view_turns_it() {
+    // The follower cantilever example (EI = 1 N m², tip follower +y at rest): its force is
+    // edited like a dead one, and the view draws it as it acts now, normal to the tip.
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/follower_cantilever.toml"
+    ))
+    .expect("the example exists");
+    let scene: Scene = toml::from_str(&text).expect("the scene parses");
+    let mut s = Session::new(scene).expect("the scene compiles");
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "force", "rod": 0, "force": 0, "value": [0.0, 3.0, 0.0]}"#,
+    );
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    let rod = &v["view"]["rods"][0];
+    let shown = &rod["forces"][0];
+    assert_eq!(shown["force"], json!([0.0, 3.0, 0.0]), "{v}");
+    assert_eq!(shown["follower"], json!(true));
+    let vec = |x: &Value| -> Vec<f64> {
+        x.as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c.as_f64().unwrap())
+            .collect()
+    };
+    let now = vec(&shown["now"]);
+    let n = rod["positions"].as_array().unwrap().len();
+    let (a, b) = (vec(&rod["positions"][n - 2]), vec(&rod["positions"][n - 1]));
+    let tip: Vec<f64> = (0..3).map(|k| b[k] - a[k]).collect();
+    let dot: f64 = (0..3).map(|k| now[k] * tip[k]).sum();
+    let size = now.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let tip_len = tip.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!((size - 3.0).abs() <= 1e-12, "|now| = {size} N");
+    assert!(
+        dot.abs() <= 1e-9 * size * tip_len,
+        "now {now:?}, tip {tip:?}"
+    );
+    assert!(now[0] < -1.0, "turned with the tip: {now:?}");
+    let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
+    let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
+    assert_eq!(saved.rods[0].forces[0].force, [0.0, 3.0, 0.0]);
+    assert!(saved.rods[0].forces[0].follower);
 }
 
 /// Sends `message` through `history`; the reply as JSON.
@@ -914,6 +966,27 @@ fn fuzz_arbitrary_text() {
 #[test]
 fn fuzz_requests_with_hostile_values() {
     fuzz(request(), 300);
+}
+
+#[test]
+fn fuzz_follower_scene_requests() {
+    // The follower example: force edits (and removals) of a follower load go through its own
+    // load path; an edit refused or not converged keeps the equilibrium there too.
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/follower_cantilever.toml"
+    ))
+    .expect("the example exists");
+    let session = Session::new(toml::from_str(&text).expect("parses")).expect("compiles");
+    // Half of the messages edit the follower itself (rod 0, force 0) with random values.
+    let follower_edit =
+        vec3().prop_map(|v| format!(r#"{{"op": "force", "rod": 0, "force": 0, "value": {v}}}"#));
+    fuzz_session(
+        session,
+        prop_oneof![1 => request(), 1 => follower_edit],
+        64,
+        |_| Ok(()),
+    );
 }
 
 #[test]

@@ -141,9 +141,12 @@ pub struct ForceView {
     /// Where the vertex is now (m).
     pub position: [f64; 3],
     /// The force as the scene gives it (N): fixed in space, or, for a follower load, in the
-    /// rod's rest frame at the vertex.
+    /// rod's rest frame at the vertex (what the page edits).
     pub force: [f64; 3],
-    /// A follower load (turns with the rod): not editable, and not drawn in space.
+    /// The force in space now (N), as the page draws it: `force` for a dead load, `force`
+    /// turned with the rod's material frame at the vertex for a follower load.
+    pub now: [f64; 3],
+    /// A follower load (turns with the rod).
     pub follower: bool,
 }
 
@@ -289,11 +292,13 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 .forces
                 .iter()
                 .zip(&rod.force_vertices)
-                .map(|(f, &v)| ForceView {
+                .enumerate()
+                .map(|(k, (f, &v))| ForceView {
                     vertex: v,
                     at: rod.node_arclengths[v],
                     position: res.positions[v],
                     force: f.force,
+                    now: session.force_now(r, k).unwrap_or(f.force),
                     follower: f.follower,
                 })
                 .collect();

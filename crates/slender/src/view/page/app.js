@@ -470,7 +470,8 @@ function updateArrows() {
 // ---------- point loads: arrows and the panel ----------
 
 const LOAD_ARROW = 0xef6c00;
-let loadArrows = []; // one ArrowHelper per dead point force, userData { load: [owner, index, k], force (N) }
+const FOLLOWER_ARROW = 0x00897b; // a follower force: it turns with the cable
+let loadArrows = []; // one ArrowHelper per point force, userData { load: [owner, index, k], force (N), follower }
 let loadsKey = null;
 
 /** Every point force of the scene: rods' (`owner` "rod") and shell strips' ("shell"), with the
@@ -488,29 +489,33 @@ function pointLoads() {
   return out;
 }
 
-/** Arrows of the dead point forces, their tips at the loaded vertices; lengths relative to the
- *  largest force now (labels give the values). Follower loads turn with the cable and are not
- *  drawn. */
+/** Arrows of the point forces as they act now, their tips at the loaded vertices; lengths
+ *  relative to the largest force now (labels give the values). A follower force (a rod's,
+ *  turning with the cable) is drawn where it points in the current equilibrium, in its own
+ *  colour. */
 function updateLoadArrows() {
-  const dead = pointLoads().filter((l) => !l.f.follower);
-  while (loadArrows.length < dead.length) {
+  const loads = pointLoads();
+  while (loadArrows.length < loads.length) {
     const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, LOAD_ARROW);
     world.add(a);
     loadArrows.push(a);
   }
+  const now = (d) => d.f.now ?? d.f.force;
   let fmax = 0;
-  for (const d of dead) fmax = Math.max(fmax, Math.hypot(...d.f.force));
+  for (const d of loads) fmax = Math.max(fmax, Math.hypot(...now(d)));
   const scale = fmax > 0 ? (0.2 * sceneSize) / fmax : 0;
   const show = $("load-arrows").checked;
   loadArrows.forEach((a, i) => {
-    const d = dead[i];
+    const d = loads[i];
     a.visible = false;
     if (!d) return;
-    const f = v3(d.f.force);
+    const f = v3(now(d));
     const n = f.length();
-    a.userData = { load: [d.owner, d.index, d.k], force: n };
+    const follower = !!d.f.follower;
+    a.userData = { load: [d.owner, d.index, d.k], force: n, follower };
     if (!show || n === 0) return;
     a.visible = true;
+    a.setColor(follower ? FOLLOWER_ARROW : LOAD_ARROW);
     const len = Math.max(0.04 * sceneSize, n * scale);
     const dir = f.multiplyScalar(1 / n);
     // The tip at the vertex: the force pushes on the cable there.
@@ -518,7 +523,7 @@ function updateLoadArrows() {
     a.position.copy(tail);
     a.setDirection(dir);
     a.setLength(len, 0.25 * len, 0.12 * len);
-    labelSpecs.push({ at: tail, text: fmtForce(n), cls: "label load" });
+    labelSpecs.push({ at: tail, text: follower ? `${fmtForce(n)} follower` : fmtForce(n), cls: "label load" });
   });
 }
 
@@ -536,7 +541,7 @@ function fmtMoment(n) {
 
 /** The dead point moments of the rods as double-headed arrows along their axes (the
  *  right-hand rule), tails at the loaded vertices; lengths relative to the largest moment now.
- *  Follower moments turn with the cable and are not drawn, like follower forces. */
+ *  Follower moments turn with the cable and are not drawn. */
 function updateMomentArrows() {
   const dead = view.rods.flatMap((rod) => rod.moments.filter((m) => !m.follower));
   while (momentArrows.length < dead.length) {
@@ -623,11 +628,13 @@ function updateLoadsPanel() {
   if (key !== loadsKey) {
     loadsKey = key;
     $("loads").innerHTML = loads.map((l) => {
-      if (l.f.follower) return `<div class="load"><span>${l.where}: follower [${l.f.force.map((x) => x.toPrecision(3)).join(", ")}]</span></div>`;
+      // A follower force is given, and edited, as it acts on the cable at rest: it turns
+      // with the cable from there.
+      const where = l.f.follower ? `${l.where}, follower (as at rest)` : l.where;
       const inputs = ["x", "y", "z"].map((c) =>
         `<input id="${l.id}-${c}" type="number" step="any" aria-label="${l.where} ${c} (N)">`).join("");
       const remove = `<button class="force-remove" data-load="${l.id}" title="remove this force" aria-label="remove ${l.where}">×</button>`;
-      return `<div class="load"><span>${l.where}</span><div class="vec">${inputs}<button class="force-apply" data-load="${l.id}">Apply</button>${remove}</div></div>`;
+      return `<div class="load"><span>${where}</span><div class="vec">${inputs}<button class="force-apply" data-load="${l.id}">Apply</button>${remove}</div></div>`;
     }).join("");
     for (const b of document.querySelectorAll("#loads .force-apply")) {
       b.addEventListener("click", () => {
@@ -646,7 +653,7 @@ function updateLoadsPanel() {
   }
   const typing = document.activeElement?.tagName === "INPUT" ? document.activeElement.id.replace(/-[xyz]$/, "") : null;
   for (const l of loads) {
-    if (l.f.follower || typing === l.id) continue;
+    if (typing === l.id) continue;
     ["x", "y", "z"].forEach((c, i) => ($(`${l.id}-${c}`).value = l.f.force[i]));
   }
 }
