@@ -184,6 +184,35 @@ fn a_follower_force_edit_ends_where_a_cold_solve_with_that_force_ends() {
 }
 
 #[test]
+fn a_follower_force_edit_that_curls_the_cantilever_settles() {
+    // The follower example (EI = 1 N m², weightless) from F L²/EI = 2 to 6: the tip turns
+    // past a right angle. The plain lagged iteration diverges at this load; with the
+    // Anderson mixing of `solver::lagged_loads` the edit and the cold solve both settle, on
+    // the same equilibrium.
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/follower_cantilever.toml"
+    ))
+    .unwrap();
+    let scene = |f: f64| -> Scene {
+        toml::from_str(&text.replace("[0.0, 2.0, 0.0]", &format!("[0.0, {f:?}, 0.0]"))).unwrap()
+    };
+    let mut s = Session::new(scene(2.0)).expect("solves");
+    let r = s.set_force(0, 0, [0.0, 6.0, 0.0]).expect("a valid force");
+    assert!(r.converged, "{r:?}");
+    let cold = Session::new(scene(6.0)).expect("solves");
+    assert!(cold.report(0).converged(), "{:?}", cold.report(0));
+    let d = max_distance(&positions(&s), &positions(&cold));
+    let tip = *positions(&s).last().unwrap();
+    eprintln!(
+        "curling follower edit: {} iterations, {} load steps, tip {tip:?}, {d:.1e} m from the cold solve",
+        r.iterations, r.load_steps
+    );
+    assert!(d <= 1e-9, "{d:e} m from the cold solve");
+    assert!(tip[0] < 0.1 && tip[1] > 0.7, "curled: {tip:?}");
+}
+
+#[test]
 fn a_follower_force_beyond_a_clip_is_edited_on_the_part_that_carries_it() {
     // A clip at vertex 10 splits the rod into two members of one structure; the follower tip
     // force is on the second, at its own vertex numbering.

@@ -1192,6 +1192,18 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
         self.model.refresh_loads(state)
     }
 
+    fn has_lagged_loads(&self) -> bool {
+        self.model.has_lagged_loads()
+    }
+
+    fn lagged_loads(&self, state: &P::State, out: &mut Vec<f64>) {
+        self.model.lagged_loads(state, out);
+    }
+
+    fn set_lagged_loads(&self, state: &mut P::State, values: &[f64]) {
+        self.model.set_lagged_loads(state, values);
+    }
+
     fn max_step(&self, state: &P::State, dx: &[f64]) -> f64 {
         self.contact_step_limit(state, dx, self.model.max_step(state, dx))
     }

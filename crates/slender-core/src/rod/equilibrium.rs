@@ -90,6 +90,19 @@ impl EquilibriumProblem for Rod {
         self.refresh_followers(state)
     }
 
+    fn has_lagged_loads(&self) -> bool {
+        self.has_follower_loads()
+    }
+
+    fn lagged_loads(&self, state: &RodState, out: &mut Vec<f64>) {
+        out.clear();
+        self.append_lagged_loads(state, out);
+    }
+
+    fn set_lagged_loads(&self, state: &mut RodState, values: &[f64]) {
+        self.take_lagged_loads(state, values);
+    }
+
     fn merit_is_energy(&self) -> bool {
         // No `merit` override: the line search measures the energy itself.
         true

@@ -136,6 +136,45 @@ impl Rod {
     }
 }
 
+/// Numbers per follower load in [`Rod::append_lagged_loads`]: force (3), couple (3), torque
+/// (1), transition (3).
+const LAGGED_PER_FOLLOWER: usize = 10;
+
+impl Rod {
+    /// True if the rod carries follower loads.
+    pub fn has_follower_loads(&self) -> bool {
+        !self.followers.is_empty()
+    }
+
+    /// Appends the frozen follower loads of `s` to `out` ([`LAGGED_PER_FOLLOWER`] numbers
+    /// each: force and couple (N), torque (N m), transition (N)).
+    pub(crate) fn append_lagged_loads(&self, s: &RodState, out: &mut Vec<f64>) {
+        for f in &s.followers {
+            out.extend(f.force.iter().chain(f.couple.iter()));
+            out.push(f.torque);
+            out.extend(f.transition.iter());
+        }
+    }
+
+    /// Sets the frozen follower loads of `s` from the front of `values` (as
+    /// [`Self::append_lagged_loads`] lists them) and returns the rest.
+    pub(crate) fn take_lagged_loads<'a>(&self, s: &mut RodState, values: &'a [f64]) -> &'a [f64] {
+        let n = s.followers.len() * LAGGED_PER_FOLLOWER;
+        let (mine, rest) = values.split_at(n.min(values.len()));
+        for (f, v) in s
+            .followers
+            .iter_mut()
+            .zip(mine.chunks_exact(LAGGED_PER_FOLLOWER))
+        {
+            f.force = Vec3::new(v[0], v[1], v[2]);
+            f.couple = Vec3::new(v[3], v[4], v[5]);
+            f.torque = v[6];
+            f.transition = Vec3::new(v[7], v[8], v[9]);
+        }
+        rest
+    }
+}
+
 impl Rod {
     /// Makes the load path the change of the follower force on vertex `v` from `old` to `new`
     /// (N, given at rest like the scene's `force`), in place: that follower's rest force becomes

@@ -59,7 +59,9 @@ pub(crate) fn kick<P: EquilibriumProblem>(
 /// solve, with its lowest mode computed), follows the lowest mode to a stable equilibrium with
 /// minimizations of at most `max_iterations` Newton iterations, kicking by `amplitude` (m, the
 /// largest coordinate change). On success `state` is the new equilibrium; on failure it is left
-/// unchanged and `None` returned.
+/// unchanged and `None` returned. A model with lagged (follower) loads is left as it is
+/// (`None`): its Hessian's modes are the frozen loads' (see
+/// [`EquilibriumProblem::has_lagged_loads`]).
 pub fn follow_unstable_mode<P: EquilibriumProblem>(
     problem: &P,
     solver: &mut EquilibriumSolver<P::State, P::Hessian>,
@@ -68,6 +70,9 @@ pub fn follow_unstable_mode<P: EquilibriumProblem>(
     amplitude: f64,
     max_iterations: usize,
 ) -> Option<BranchSwitch> {
+    if problem.has_lagged_loads() {
+        return None;
+    }
     let e0 = problem.energy(state, load);
     let saved = solver.params;
     solver.params.max_iterations = saved.max_iterations.max(max_iterations);

@@ -10,6 +10,7 @@
 
 use crate::linalg::{SymmetricBandMatrix, SymmetricFactor, SymmetricMatrix};
 
+use super::lagged_loads::settle_loads;
 use super::newton::{newton, DeferredCheck, IterateMeasures, NewtonWorkspace};
 use super::params::SolverParams;
 use super::problem::EquilibriumProblem;
@@ -43,40 +44,6 @@ const SWITCH_AMPLITUDE: f64 = 1e-2;
 
 /// Relative accuracy of the reported smallest eigenvalue.
 const EIGEN_TOLERANCE: f64 = 1e-6;
-
-/// Relative change of lagged (follower) loads below which they are settled.
-const LOAD_SETTLED: f64 = 1e-11;
-/// Newton re-solves allowed for lagged loads to settle, per load step.
-const LOAD_REFRESHES: usize = 200;
-
-/// After a converged Newton solve, refreshes the model's lagged loads (follower loads) and
-/// re-solves until they stop changing; returns the outcome (iterations accumulated).
-fn settle_loads<P: EquilibriumProblem>(
-    problem: &P,
-    state: &mut P::State,
-    load: f64,
-    params: &SolverParams,
-    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
-    mut out: super::newton::NewtonOutcome,
-) -> super::newton::NewtonOutcome {
-    for _ in 0..LOAD_REFRESHES {
-        if !out.converged || problem.refresh_loads(state) <= LOAD_SETTLED {
-            return out;
-        }
-        let next = newton(problem, state, load, params, ws);
-        out = super::newton::NewtonOutcome {
-            iterations: out.iterations + next.iterations,
-            ..next
-        };
-    }
-    super::newton::NewtonOutcome {
-        converged: false,
-        failure: Some(format!(
-            "follower loads did not settle in {LOAD_REFRESHES} re-solves"
-        )),
-        ..out
-    }
-}
 
 /// An equilibrium solver with reusable buffers for one problem size: after the first solve,
 /// [`solve_in_place`](Self::solve_in_place) allocates nothing on the way to a converged,
@@ -270,7 +237,9 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                 );
                 iterations += out.iterations - before;
                 let mut out = out;
-                if params.follow_stable && out.converged {
+                // With lagged (follower) loads the Hessian is the frozen loads': no mode of it
+                // is followed (see `EquilibriumProblem::has_lagged_loads`).
+                if params.follow_stable && out.converged && !problem.has_lagged_loads() {
                     let unstable = out.last.inertia.is_some_and(|i| i.negative > 0)
                         && classify_modes(
                             problem,

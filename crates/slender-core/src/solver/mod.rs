@@ -2,6 +2,7 @@
 
 pub mod branch_switch;
 pub mod continuation;
+pub mod lagged_loads;
 pub mod line_search;
 pub mod newton;
 pub mod params;

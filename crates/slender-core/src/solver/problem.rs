@@ -149,6 +149,28 @@ pub trait EquilibriumProblem: MassMetric {
         0.0
     }
 
+    /// True if the model has lagged loads (follower loads): loads with no potential, frozen
+    /// during each Newton solve. Its Hessian is then that of the frozen loads, whose inertia
+    /// says nothing of the stability under the loads that turn (a dynamic question): the
+    /// solver reports it but follows none of its modes. Default false.
+    fn has_lagged_loads(&self) -> bool {
+        false
+    }
+
+    /// The lagged loads of `state` (those [`refresh_loads`](Self::refresh_loads) refreshes) as
+    /// numbers into `out` (cleared first), in the units of the loads (N, N m). The solver
+    /// accelerates their fixed-point iteration with them. Default: none (`out` left empty).
+    fn lagged_loads(&self, state: &Self::State, out: &mut Vec<f64>) {
+        let _ = state;
+        out.clear();
+    }
+
+    /// Sets the lagged loads of `state` to `values`, listed as
+    /// [`lagged_loads`](Self::lagged_loads) lists them. Default: nothing to set.
+    fn set_lagged_loads(&self, state: &mut Self::State, values: &[f64]) {
+        let _ = (state, values);
+    }
+
     /// The largest fraction α ∈ [0, 1] of a kick `dx` (a branch switch's push along a mode,
     /// taken whole rather than by Newton's capped steps) that keeps `state` admissible for
     /// constraints the model's own [`max_step`](Self::max_step) does not hold: a contact's

@@ -408,6 +408,30 @@ impl EquilibriumProblem for Structure {
         change
     }
 
+    fn has_lagged_loads(&self) -> bool {
+        self.members
+            .iter()
+            .any(|m| m.as_der().is_some_and(|r| r.has_follower_loads()))
+    }
+
+    fn lagged_loads(&self, state: &StructureState, out: &mut Vec<f64>) {
+        out.clear();
+        for (member, s) in self.members.iter().zip(&state.members) {
+            if let (Member::Der(r), MemberState::Der(s)) = (member, s) {
+                r.append_lagged_loads(s, out);
+            }
+        }
+    }
+
+    fn set_lagged_loads(&self, state: &mut StructureState, values: &[f64]) {
+        let mut rest = values;
+        for (member, s) in self.members.iter().zip(&mut state.members) {
+            if let (Member::Der(r), MemberState::Der(s)) = (member, s) {
+                rest = r.take_lagged_loads(s, rest);
+            }
+        }
+    }
+
     fn merit_is_energy(&self) -> bool {
         // No `merit` override: the line search measures the energy itself.
         true

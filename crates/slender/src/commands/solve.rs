@@ -29,7 +29,7 @@ pub fn run(a: &SolveArgs) -> Result<bool> {
         }
         Outcome::Unstable => {
             eprintln!(
-                "verdict: UNSTABLE — some equilibrium has negative Hessian eigenvalues and was kept (unstable = \"keep\"); see steps.csv and report.json"
+                "verdict: UNSTABLE — some equilibrium has negative Hessian eigenvalues and was kept (unstable = \"keep\", or follower loads: the Hessian is the frozen loads' and none of its modes is followed); see steps.csv and report.json"
             );
             Ok(false)
         }
