@@ -174,7 +174,7 @@ fn exercise(text: &str, syntax: Syntax) {
         let t = std::thread::current();
         std::fs::write(format!("{p}.{}", t.name().unwrap_or("main")), text).unwrap();
     }
-    let scene = match parse_scene(text, syntax, "fuzz") {
+    let mut scene = match parse_scene(text, syntax, "fuzz") {
         Ok(s) => s,
         Err(e) => {
             let msg = format!("{e:#}");
@@ -182,6 +182,15 @@ fn exercise(text: &str, syntax: Syntax) {
             return;
         }
     };
+    // The fuzz looks for panics, not for convergence: a mutated scene that crawls (a load far
+    // too large for its solver settings, over a dozen motion steps and their branch switches,
+    // each solve with the default budget of 20000 Newton iterations) could otherwise take many
+    // minutes. A smaller budget per solve bounds each case and still reaches every path.
+    scene.solver.max_total_iterations = scene
+        .solver
+        .max_total_iterations
+        .min(3000)
+        .max(scene.solver.max_iterations);
     REACHED[0].fetch_add(1, Ordering::Relaxed);
     let compiled = match scene.compile() {
         Ok(c) => c,
