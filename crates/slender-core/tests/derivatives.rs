@@ -213,3 +213,32 @@ fn rest_shapes_have_zero_gradient() {
         check_rest(rod, 1.0, &format!("rod {r}")).unwrap_or_else(|e| panic!("{e}"));
     }
 }
+
+#[test]
+fn a_newton_solve_with_a_nan_in_its_hessian_fails_at_once_and_says_why() {
+    // No shift regularizes a Hessian with a NaN: the iterate fails naming it, instead of
+    // doubling the shift up to its cap (about a thousand failed factorizations per iterate,
+    // which held a mutated flat-cable scene of the scene fuzz for minutes).
+    let rods = rods();
+    let rod = &rods[0];
+    let faulty = Faulty {
+        rod,
+        gradient_error: 1.0,
+        hessian_error: f64::NAN,
+    };
+    let mut state = rod.rest_state().clone();
+    let mut ws = slender_core::solver::NewtonWorkspace::new(&faulty, &state);
+    let out = slender_core::solver::newton(
+        &faulty,
+        &mut state,
+        1.0,
+        &slender_core::solver::SolverParams::default(),
+        &mut ws,
+    );
+    assert!(!out.converged);
+    let reason = out.failure.unwrap_or_default();
+    assert!(
+        reason.contains("non-finite Hessian entry in row 0"),
+        "{reason}"
+    );
+}

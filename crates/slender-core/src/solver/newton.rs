@@ -166,6 +166,8 @@ const ROUNDOFF_STEP: f64 = 16.0 * f64::EPSILON;
 const MIN_SHIFT: f64 = 1e-8;
 /// Largest shift before giving up, in the same relative units.
 const MAX_SHIFT: f64 = 1e12;
+/// Doublings of the indefinite shift tried per iterate before giving up (2¹⁰⁰ ≈ 1e30).
+const MAX_SHIFT_DOUBLINGS: usize = 100;
 /// A gradient whose cosine with the lowest mode (mass metric, see [`mass_metric_cosine`]) is
 /// above this is no symmetric saddle: the precise test asks for 1e-9, and
 /// the mode of the shift, converged to 1e-3 in λ, is off a symmetric mode by far less than
@@ -353,14 +355,27 @@ pub fn newton<P: EquilibriumProblem>(
             shift = (0.5 * shift)
                 .max(2.0 * lambda.min(0.0).abs())
                 .max(MIN_SHIFT * ws.hess.max_abs_diagonal() / max_entry(&ws.diag));
+            // No shift regularizes a Hessian with a NaN or infinite entry: say so at once
+            // rather than doubling the shift up to the cap (about a thousand failed
+            // factorizations per iterate: minutes for a large structure).
+            if let Some(row) = ws.hess.first_non_finite() {
+                return failed(
+                    iteration,
+                    &format!("non-finite Hessian entry in row {row}"),
+                    last,
+                );
+            }
+            let cap = MAX_SHIFT * ws.hess.max_abs_diagonal() / min_entry(&ws.diag);
+            let mut doublings = 0;
             loop {
                 if factor_shifted(ws, n, shift) {
                     break;
                 }
                 shift *= 2.0;
-                if !shift.is_finite()
-                    || shift > MAX_SHIFT * ws.hess.max_abs_diagonal() / min_entry(&ws.diag)
-                {
+                doublings += 1;
+                // The cap itself can sit a thousand doublings up (a tiny mass entry); no finite
+                // matrix needs more than MAX_SHIFT_DOUBLINGS (×1e30) over the starting shift.
+                if !shift.is_finite() || shift > cap || doublings > MAX_SHIFT_DOUBLINGS {
                     return failed(
                         iteration,
                         "could not regularize an indefinite Hessian",
