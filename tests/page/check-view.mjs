@@ -25,7 +25,9 @@
 //     exist is refused, the equilibrium kept.
 //  3c. moments and line loads (scenes/moment_line_load.toml): the point moment is a
 //     double-headed arrow from its vertex along its axis, the line load one arrow per loaded
-//     vertex with its tip on the cable, each along its load, labelled in N·m and N/m.
+//     vertex with its tip on the cable, each along its load, labelled in N·m and N/m. The
+//     moment set in its panel row (a new axis): the page reaches `slender solve`'s
+//     equilibrium with the new moment in the file (1e-9 of the length), the arrow turns.
 //  3d. follower force (examples/follower_cantilever.toml): drawn at the tip along the force as
 //     it acts now, normal to the tip; set in the panel (as given at rest), the page reaches
 //     `slender solve`'s equilibrium with the new force in the file and the arrow turns with it.
@@ -535,6 +537,34 @@ try {
   check(lineOk, `line load: one arrow per loaded vertex (${loadsDrawn.lineLoads.length} for vertices ${loadedVertices[0]}…${loadedVertices.at(-1)}), tips on the cable, along +y`);
   check(loadsDrawn.labels.some((t) => t === "0.00200 N·m") && loadsDrawn.labels.some((t) => t === "0.0500 N/m"),
     `moment and line load labelled (${loadsDrawn.labels.filter((t) => /N·m|N\/m/.test(t)).join(", ")})`);
+  // The moment set in its panel row: the page reaches slender solve's equilibrium with the
+  // new moment in the file, and its arrow turns to the new axis.
+  const newMoment = [0.001, -0.003, 0.002];
+  for (const [i, c] of ["x", "y", "z"].entries()) await s3c.page.fill(`#m-0-0-${c}`, String(newMoment[i]));
+  await s3c.page.click('#moments .moment-apply[data-moment="m-0-0"]');
+  await s3c.page.waitForFunction((m) => window.slender.state().rods[0].moments[0].moment.every((x, i) => x === m[i]), newMoment, { timeout: 20000 });
+  const momentEdited = await s3c.page.evaluate(() => window.slender.state());
+  const momentText = readFileSync(join(scenes, "moment_line_load.toml"), "utf8").replace("moment = [0.0, 0.002, 0.0]", `moment = [${newMoment.join(", ")}]`);
+  const momentCold = solveScene("moment_edited_cold", momentText);
+  const momentGap = maxRelativeDistance(momentEdited.rods.map((r) => r.positions), momentCold, 1.0);
+  const momentMoved = Math.max(...momentEdited.rods[0].positions.map((p, v) => Math.hypot(...p.map((x, k) => x - rod3c.positions[v][k]))));
+  console.log(`view test: moment set to [${newMoment}] N·m in the panel (the cable moved ${(momentMoved * 1000).toFixed(1)} mm): every vertex within ${momentGap.toExponential(2)} of the length of slender solve with the new moment in the file`);
+  check(momentText.includes(`[${newMoment.join(", ")}]`) && momentEdited.converged && momentMoved > 1e-3 && momentGap <= 1e-9,
+    `moment: the edited equilibrium = slender solve's with the moment in the file, to 1e-9 of the length (${momentGap.toExponential(2)})`);
+  const newDir = newMoment.map((x) => x / Math.hypot(...newMoment));
+  const turned = await s3c.page.evaluate(() => {
+    const dirs = [];
+    window.slender.scene.traverse((o) => {
+      if (!o.visible || o.userData?.moment === undefined) return;
+      o.updateMatrixWorld(true);
+      const e = o.matrixWorld.elements;
+      const n = Math.hypot(e[4], e[5], e[6]);
+      dirs.push([e[4] / n, e[5] / n, e[6] / n]);
+    });
+    return dirs;
+  });
+  check(turned.length === 2 && turned.every((d) => d.every((x, k) => Math.abs(x - newDir[k]) <= 1e-6)),
+    `moment: its arrow turned to the new axis [${newDir.map((x) => x.toFixed(3))}]`);
   await s3c.page.screenshot({ path: join(out, "view-moment-line-load.png") });
   for (const e of s3c.errors) fail(e);
   check(s3c.errors.length === 0, "no console errors (moment and line load page)");

@@ -258,6 +258,8 @@ fn load_paths_are_checked() {
         gravity_from: None,
         force_change: None,
         follower_change: None,
+        follower_moment_change: None,
+        moment_change: None,
     };
     assert!(rod
         .set_load_path(bad)

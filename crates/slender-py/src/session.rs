@@ -271,6 +271,21 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Sets point moment `moment` of rod `rod` (its scene's `moments[moment]`) to `value` (N m;
+    /// a follower moment's as it acts at rest) and re-solves warm, the old moment blended into
+    /// the new one.
+    fn set_moment(
+        &mut self,
+        py: Python<'_>,
+        rod: usize,
+        moment: usize,
+        value: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.set_moment(rod, moment, value)))?;
+        edit(py, out)
+    }
+
     /// Adds a dead point force to rod `rod` at the file's vertex nearest rest arc length `at`
     /// (m), set to `value` (N); it becomes the last of the rod's `forces`.
     fn add_force(

@@ -364,6 +364,24 @@ def test_follower_force_edit_matches_a_cold_solve() -> None:
     assert np.abs(here - dead).max() > 1e-2
 
 
+def test_moment_edit_matches_a_cold_solve() -> None:
+    """The clipped-cable example's twisting moment, edited to a new axis in a session, ends
+    where a session of the file with the new value starts; a bad index names the moment."""
+    s = slender.Session(EXAMPLES / "clipped_cable.toml")
+    before = s.results().rods[0].positions.copy()
+    rep = s.set_moment(0, 0, [0.02, 0.0, 0.005])
+    assert rep.converged and len(rep.structures) == 1
+    assert s.scene()["rods"][0]["moments"][0]["moment"] == [0.02, 0.0, 0.005]
+    scene = slender.load_scene(EXAMPLES / "clipped_cable.toml")
+    scene["rods"][0]["moments"][0]["moment"] = [0.02, 0.0, 0.005]
+    cold = slender.Session(scene).results().rods[0].positions
+    here = s.results().rods[0].positions
+    assert np.abs(here - cold).max() <= 1e-9
+    assert np.abs(here - before).max() > 1e-4
+    with pytest.raises(slender.SceneError, match=r"rods\[0\]\.moments\[2\]"):
+        s.set_moment(0, 2, [0.0, 0.0, 1.0])
+
+
 def test_force_edit_matches_a_cold_solve() -> None:
     """A tip force edited in a session ends where a session of the scene with that force
     starts (loads ramped from rest), and the weightless tip moves by F L³/(3EI)."""

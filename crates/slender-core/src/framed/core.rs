@@ -40,6 +40,8 @@ pub struct FramedCore {
     /// Dead nodal forces (N) on at every load factor (preload gravity).
     pub(crate) preload_forces: Vec<Vec3>,
     pub(crate) moments: Vec<FrameMoment>,
+    /// The frame slot a point moment on a vertex acts on (the layout's map), for edits.
+    pub(crate) moment_slot: fn(vertex: usize, n_elements: usize) -> usize,
     pub(crate) gravity: Vec3,
     pub(crate) rest: FramedState,
     pub(crate) load_path: RodLoadPath,
@@ -128,6 +130,7 @@ impl FramedCore {
             nodal_forces,
             preload_forces,
             moments,
+            moment_slot: layout.moment_slot,
             gravity: b.gravity,
             rest,
             load_path: RodLoadPath::default(),
@@ -334,6 +337,7 @@ impl FramedCore {
         path.check_changes(self.vertex_masses.len())?;
         // Follower loads act on discrete elastic rods only.
         path.check_follower_change(0)?;
+        path.check_moment_change()?;
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
                 return Err(ModelError::parameter(
@@ -343,6 +347,7 @@ impl FramedCore {
                 ));
             }
         }
+        self.end_moment_change();
         self.load_path = path;
         Ok(())
     }
@@ -384,6 +389,7 @@ impl FramedCore {
     /// Changes the dead point force on vertex `v` from `old` to `new` (N), as
     /// `Rod::set_force_change` does (returns the nodal force before the change).
     pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<Vec3, ModelError> {
+        self.end_moment_change();
         self.load_path
             .change_force(&mut self.nodal_forces, v, old, new)
     }
@@ -392,7 +398,7 @@ impl FramedCore {
     /// load path cleared.
     pub fn undo_force_change(&mut self, v: usize, before: Vec3) {
         self.nodal_forces[v] = before;
-        self.load_path.clear();
+        self.clear_load_path();
     }
 
     /// Inertia attached to free DOF `i`: the vertex mass for a coordinate, ρA r_g² ℓ for a

@@ -26,6 +26,7 @@ impl FramedCore {
         translation: Vec3,
     ) -> Result<(), ModelError> {
         // The last path's vectors are reused: an interactive drag sets a motion per edit.
+        self.end_moment_change();
         let mut path = std::mem::take(&mut self.load_path);
         path.set_single_motion(vertices, pivot, rotation, translation);
         // On an error `set_load_path` leaves the plain ramp (the path taken above).
@@ -35,6 +36,7 @@ impl FramedCore {
     /// Back to the plain load ramp (vectors kept for reuse: a motion that holds no vertex
     /// moves nothing).
     pub fn clear_load_path(&mut self) {
+        self.end_moment_change();
         self.load_path.clear();
     }
 

@@ -38,10 +38,13 @@ impl FramedCore {
         }
         let mut g = Vector3::zeros();
         let mut h = Matrix3::zeros();
-        for (m, &angles) in self.moments.iter().zip(&s.moment_angles) {
+        let n_moments = self.moments.len();
+        for (i, (m, &angles)) in self.moments.iter().zip(&s.moment_angles).enumerate() {
+            // The moment's own factor: λ and 1 − λ on the new and old values of an edit.
+            let w = self.load_path.moment_factor(i, n_moments, factor, load);
             let j = m.frame;
-            let v = m.potential(&s.frames[j], angles, factor, &mut g, &mut h);
-            let size = factor * (m.magnitudes[0].abs() + m.magnitudes[1].abs()) / self.length;
+            let v = m.potential(&s.frames[j], angles, w, &mut g, &mut h);
+            let size = w * (m.magnitudes[0].abs() + m.magnitudes[1].abs()) / self.length;
             asm.load(-v, size);
             let slots = if full {
                 FramedDofs::full_frame_slots(j)

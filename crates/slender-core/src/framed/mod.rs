@@ -18,6 +18,7 @@ pub mod layout;
 pub mod load_path;
 pub mod loads;
 pub mod moment;
+pub mod moment_change;
 pub mod reactions;
 pub mod retraction;
 pub mod section;

@@ -51,7 +51,7 @@ impl FrameMoment {
     }
 
     /// The rotation of `frame` from rest, in space: q = p ⊗ p̄_rest.
-    fn relative(&self, frame: &UnitQuaternion<f64>) -> Quat {
+    pub(crate) fn relative(&self, frame: &UnitQuaternion<f64>) -> Quat {
         mul(&from_unit(frame), &conj(&from_unit(&self.rest)))
     }
 

@@ -56,8 +56,10 @@ impl FramedCore {
         }
         let mut g = Vec3::zeros();
         let mut h = nalgebra::Matrix3::zeros();
-        for (m, &angles) in self.moments.iter().zip(&s.moment_angles) {
-            m.potential(&s.frames[m.frame], angles, factor, &mut g, &mut h);
+        let n_moments = self.moments.len();
+        for (i, (m, &angles)) in self.moments.iter().zip(&s.moment_angles).enumerate() {
+            let w = self.load_path.moment_factor(i, n_moments, factor, load);
+            m.potential(&s.frames[m.frame], angles, w, &mut g, &mut h);
             moment -= g;
         }
         LoadResultant { force, moment }

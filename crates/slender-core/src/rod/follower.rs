@@ -47,6 +47,12 @@ pub struct FollowerState {
     /// λ = 0 minus its force at λ = 1, turned like `force` (N); the vertex carries this times
     /// (1 − λ) on top of `force`. Zero otherwise.
     pub transition: Vec3,
+    /// As `transition`, for a follower moment changed along the path
+    /// ([`RodLoadPath::follower_moment_change`](super::RodLoadPath::follower_moment_change)):
+    /// the couple of the moment at λ = 0 minus at λ = 1 (N). Zero otherwise.
+    pub transition_couple: Vec3,
+    /// The same change's torque on the edge angle (N m). Zero otherwise.
+    pub transition_torque: f64,
 }
 
 impl Rod {
@@ -67,6 +73,25 @@ impl Rod {
         }
     }
 
+    /// The couple (N) and torque (N m) of follower load `i` in its frozen state `now`, at load
+    /// factor `load` and path parameter `lambda` (the moment's transition counts only while
+    /// the path changes this follower's moment, as for the force).
+    pub(super) fn follower_couple(
+        &self,
+        i: usize,
+        now: &FollowerState,
+        load: f64,
+        lambda: f64,
+    ) -> (Vec3, f64) {
+        match self.load_path.follower_moment_change {
+            Some((k, _)) if k == i => (
+                now.couple * load + now.transition_couple * (1.0 - lambda),
+                now.torque * load + now.transition_torque * (1.0 - lambda),
+            ),
+            _ => (now.couple * load, now.torque * load),
+        }
+    }
+
     /// The dead loads equivalent to every follower load in `s`'s current material frames.
     pub(super) fn follower_loads<'a>(
         &'a self,
@@ -74,6 +99,7 @@ impl Rod {
     ) -> impl Iterator<Item = FollowerState> + 'a {
         let rest = &self.rest;
         let change = self.load_path.follower_change;
+        let moment_change = self.load_path.follower_moment_change;
         self.followers.iter().enumerate().map(move |(i, f)| {
             let j = f.edge;
             let now = s.material_frame(j);
@@ -88,6 +114,10 @@ impl Rod {
                 Some((k, delta)) if k == i => turn(&delta),
                 _ => Vec3::zeros(),
             };
+            let moment_transition = match moment_change {
+                Some((k, delta)) if k == i => turn(&delta),
+                _ => Vec3::zeros(),
+            };
             let e = s.positions[j + 1] - s.positions[j];
             let len = e.norm();
             let t = e / len;
@@ -96,6 +126,8 @@ impl Rod {
                 couple: moment.cross(&t) / len,
                 torque: moment.dot(&t),
                 transition,
+                transition_couple: moment_transition.cross(&t) / len,
+                transition_torque: moment_transition.dot(&t),
             }
         })
     }
@@ -107,6 +139,7 @@ impl Rod {
         let mut size: f64 = 0.0;
         let fresh: Vec<FollowerState> = self.follower_loads(s).collect();
         let change_of = self.load_path.follower_change.map(|(k, _)| k);
+        let moment_change_of = self.load_path.follower_moment_change.map(|(k, _)| k);
         for (i, (old, new)) in s.followers.iter_mut().zip(fresh).enumerate() {
             // A transition left from an earlier path is not applied (see `follower_force`):
             // its clearing is no change of the loads.
@@ -115,13 +148,22 @@ impl Rod {
             } else {
                 0.0
             };
+            let moment_transition = if moment_change_of == Some(i) {
+                (new.transition_couple - old.transition_couple).norm()
+                    + (new.transition_torque - old.transition_torque).abs() / self.length
+            } else {
+                0.0
+            };
             let d = (new.force - old.force).norm()
                 + transition
+                + moment_transition
                 + (new.couple - old.couple).norm()
                 + (new.torque - old.torque).abs() / self.length;
             size = size.max(
                 new.force.norm()
                     + new.transition.norm()
+                    + new.transition_couple.norm()
+                    + new.transition_torque.abs() / self.length
                     + new.couple.norm()
                     + new.torque.abs() / self.length,
             );
@@ -137,8 +179,8 @@ impl Rod {
 }
 
 /// Numbers per follower load in [`Rod::append_lagged_loads`]: force (3), couple (3), torque
-/// (1), transition (3).
-const LAGGED_PER_FOLLOWER: usize = 10;
+/// (1), the transitions of force (3), couple (3) and torque (1).
+const LAGGED_PER_FOLLOWER: usize = 14;
 
 impl Rod {
     /// True if the rod carries follower loads.
@@ -147,12 +189,14 @@ impl Rod {
     }
 
     /// Appends the frozen follower loads of `s` to `out` ([`LAGGED_PER_FOLLOWER`] numbers
-    /// each: force and couple (N), torque (N m), transition (N)).
+    /// each: force and couple (N), torque (N m), the transitions of force and couple (N) and
+    /// of torque (N m)).
     pub(crate) fn append_lagged_loads(&self, s: &RodState, out: &mut Vec<f64>) {
         for f in &s.followers {
             out.extend(f.force.iter().chain(f.couple.iter()));
             out.push(f.torque);
-            out.extend(f.transition.iter());
+            out.extend(f.transition.iter().chain(f.transition_couple.iter()));
+            out.push(f.transition_torque);
         }
     }
 
@@ -170,6 +214,8 @@ impl Rod {
             f.couple = Vec3::new(v[3], v[4], v[5]);
             f.torque = v[6];
             f.transition = Vec3::new(v[7], v[8], v[9]);
+            f.transition_couple = Vec3::new(v[10], v[11], v[12]);
+            f.transition_torque = v[13];
         }
         rest
     }
@@ -203,6 +249,7 @@ impl Rod {
                 format!("no follower force {old:?} (N) acts on vertex {v}"),
             ));
         };
+        self.end_moment_change();
         self.load_path.clear();
         self.load_path.loads = [1.0, 1.0];
         self.load_path.follower_change = Some((i, old - new));
@@ -228,6 +275,51 @@ impl Rod {
     /// (N), the load path cleared. The state's frozen loads are the caller's to restore.
     pub fn undo_follower_force_change(&mut self, i: usize, old: Vec3) {
         self.followers[i].force = old;
+        self.clear_load_path();
+    }
+
+    /// As [`Self::set_follower_force_change`], for the follower moment on vertex `v`: from
+    /// `old` to `new` (N m, given at rest like the scene's `moment`). The path carries
+    /// `old − new` times (1 − λ), turned with the rod, as a couple on the edge's vertices and a
+    /// torque on its angle. Returns the follower's index (for
+    /// [`Self::undo_follower_moment_change`]). Errors (nothing changed) if no follower moment
+    /// `old` (without a force) acts on `v`, or a value is not finite.
+    pub fn set_follower_moment_change(
+        &mut self,
+        s: &mut RodState,
+        v: usize,
+        old: Vec3,
+        new: Vec3,
+    ) -> Result<usize, ModelError> {
+        if old.iter().chain(new.iter()).any(|c| !c.is_finite()) {
+            return Err(ModelError::structure(
+                "follower_moment_change",
+                "must be finite",
+            ));
+        }
+        let Some(i) = self
+            .followers
+            .iter()
+            .position(|f| f.vertex == v && f.moment == old && f.force == Vec3::zeros())
+        else {
+            return Err(ModelError::structure(
+                "follower_moment_change.vertex",
+                format!("no follower moment {old:?} (N m) acts on vertex {v}"),
+            ));
+        };
+        self.end_moment_change();
+        self.load_path.clear();
+        self.load_path.loads = [1.0, 1.0];
+        self.load_path.follower_moment_change = Some((i, old - new));
+        self.followers[i].moment = new;
+        self.refresh_followers(s);
+        Ok(i)
+    }
+
+    /// Undoes [`Self::set_follower_moment_change`]: follower `i`'s rest moment back to `old`
+    /// (N m), the load path cleared. The state's frozen loads are the caller's to restore.
+    pub fn undo_follower_moment_change(&mut self, i: usize, old: Vec3) {
+        self.followers[i].moment = old;
         self.clear_load_path();
     }
 }

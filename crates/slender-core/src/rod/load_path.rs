@@ -86,6 +86,16 @@ pub struct RodLoadPath {
     /// The vertex carries that difference, turned with the rod, times (1 − λ) on top of the
     /// follower's force (see `follower.rs`). Default none.
     pub follower_change: Option<(usize, Vec3)>,
+    /// A follower moment changing along the path (an interactive edit): (index of the rod's
+    /// follower load, its moment at λ = 0 minus at λ = 1, both given at rest (N m)). The edge
+    /// carries that difference, turned with the rod, times (1 − λ) on top of the follower's
+    /// moment. Default none.
+    pub follower_moment_change: Option<(usize, Vec3)>,
+    /// A dead point moment changing along the path (an interactive edit): the index of the
+    /// changed moment in the model's moment list, which then holds the new moment at that
+    /// index, weighted λ, and the old one appended last, weighted 1 − λ (see
+    /// `moment_change.rs`). Default none.
+    pub moment_change: Option<usize>,
 }
 
 impl Default for RodLoadPath {
@@ -96,6 +106,8 @@ impl Default for RodLoadPath {
             gravity_from: None,
             force_change: None,
             follower_change: None,
+            follower_moment_change: None,
+            moment_change: None,
         }
     }
 }
@@ -115,6 +127,8 @@ impl RodLoadPath {
         self.gravity_from = None;
         self.force_change = None;
         self.follower_change = None;
+        self.follower_moment_change = None;
+        self.moment_change = None;
         self.motions.truncate(1);
         if self.motions.is_empty() {
             self.motions.push(SupportMotion {
@@ -139,6 +153,8 @@ impl RodLoadPath {
         self.gravity_from = None;
         self.force_change = None;
         self.follower_change = None;
+        self.follower_moment_change = None;
+        self.moment_change = None;
         for m in self.motions.iter_mut() {
             m.vertices.clear();
             m.rotation = Vec3::zeros();
@@ -154,6 +170,8 @@ impl RodLoadPath {
             gravity_from: None,
             force_change: None,
             follower_change: None,
+            follower_moment_change: None,
+            moment_change: None,
         }
     }
 
@@ -165,6 +183,8 @@ impl RodLoadPath {
             gravity_from: Some(from),
             force_change: None,
             follower_change: None,
+            follower_moment_change: None,
+            moment_change: None,
         }
     }
 
@@ -239,18 +259,48 @@ impl RodLoadPath {
     /// Errors if the follower change names a follower beyond the model's `n_followers` (none
     /// for the rod models without follower loads) or is not finite.
     pub(crate) fn check_follower_change(&self, n_followers: usize) -> Result<(), ModelError> {
-        if let Some((i, delta)) = self.follower_change {
-            if i >= n_followers {
-                return Err(ModelError::structure(
-                    "follower_change",
-                    format!("follower load {i} does not exist (the rod has {n_followers})"),
-                ));
-            }
-            if delta.iter().any(|c| !c.is_finite()) {
-                return Err(ModelError::structure("follower_change", "must be finite"));
+        for (field, change) in [
+            ("follower_change", self.follower_change),
+            ("follower_moment_change", self.follower_moment_change),
+        ] {
+            if let Some((i, delta)) = change {
+                if i >= n_followers {
+                    return Err(ModelError::structure(
+                        field,
+                        format!("follower load {i} does not exist (the rod has {n_followers})"),
+                    ));
+                }
+                if delta.iter().any(|c| !c.is_finite()) {
+                    return Err(ModelError::structure(field, "must be finite"));
+                }
             }
         }
         Ok(())
+    }
+
+    /// Errors if the path carries a moment change: only the model's `set_moment_change`
+    /// makes one, since it also appends the old moment the path weights.
+    pub(crate) fn check_moment_change(&self) -> Result<(), ModelError> {
+        if let Some(i) = self.moment_change {
+            return Err(ModelError::structure(
+                "moment_change",
+                format!(
+                    "moment {i}: a moment change is made by set_moment_change, not set in a path"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The factor on moment `i` of `n_moments` at path parameter `lambda`, given the factor
+    /// `load` on all loads: while moment `k` changes, `load·λ` on it (the new value) and
+    /// `load·(1 − λ)` on the last moment (the old value); `load` otherwise.
+    pub(crate) fn moment_factor(&self, i: usize, n_moments: usize, load: f64, lambda: f64) -> f64 {
+        match self.moment_change {
+            Some(k) if k == i => load * lambda,
+            Some(_) if i + 1 == n_moments => load * (1.0 - lambda),
+            _ => load,
+        }
     }
 
     /// Factor on the loads at load factor `load`.
@@ -325,6 +375,7 @@ impl Rod {
         }
         path.check_changes(self.vertex_masses.len())?;
         path.check_follower_change(self.followers.len())?;
+        path.check_moment_change()?;
         for (k, f) in path.loads.iter().enumerate() {
             if !f.is_finite() {
                 return Err(ModelError::parameter(
@@ -334,6 +385,7 @@ impl Rod {
                 ));
             }
         }
+        self.end_moment_change();
         self.load_path = path;
         Ok(())
     }
@@ -347,6 +399,7 @@ impl Rod {
         rotation: Vec3,
         translation: Vec3,
     ) -> Result<(), ModelError> {
+        self.end_moment_change();
         let mut path = std::mem::take(&mut self.load_path);
         path.set_single_motion(vertices, pivot, rotation, translation);
         let checked = path.motions[0].check(self);
@@ -363,6 +416,7 @@ impl Rod {
     /// nodal force before the change (for [`Self::undo_force_change`]). Errors (nothing
     /// changed) if `v` is not a vertex or a force is not finite.
     pub fn set_force_change(&mut self, v: usize, old: Vec3, new: Vec3) -> Result<Vec3, ModelError> {
+        self.end_moment_change();
         self.load_path
             .change_force(&mut self.nodal_forces, v, old, new)
     }
@@ -374,8 +428,10 @@ impl Rod {
         self.clear_load_path();
     }
 
-    /// Back to the plain load ramp (vectors kept for reuse).
+    /// Back to the plain load ramp (vectors kept for reuse). A moment change still on the
+    /// path ends with the new moment (see [`Self::finish_moment_change`]).
     pub fn clear_load_path(&mut self) {
+        self.end_moment_change();
         self.load_path.clear();
     }
 

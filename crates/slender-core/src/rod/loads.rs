@@ -44,8 +44,7 @@ impl Rod {
                 - (self.rest.positions[j + 1] - self.rest.positions[j]);
             let dtheta = s.thetas[j] - self.rest.thetas[j];
             let fv = self.follower_force(i, now, load, lambda);
-            let c = now.couple * load;
-            let tau = now.torque * load;
+            let (c, tau) = self.follower_couple(i, now, load, lambda);
             asm.load(
                 fv.dot(&du) + c.dot(&de) + tau * dtheta,
                 fv.amax().max(c.amax()).max(tau.abs() / self.length),
@@ -59,17 +58,20 @@ impl Rod {
         }
         let mut g6 = SVector::<f64, 6>::zeros();
         let mut h6 = SMatrix::<f64, 6, 6>::zeros();
-        for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
+        let n_moments = self.moments.len();
+        for (i, (m, &alpha)) in self.moments.iter().zip(&s.load_angles).enumerate() {
+            // The moment's own factor: λ and 1 − λ on the new and old values of an edit.
+            let w = self.load_path.moment_factor(i, n_moments, load, lambda);
             let j = m.edge;
             let e = s.positions[j + 1] - s.positions[j];
-            let v = m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
+            let v = m.bending_potential(&e, alpha, w, &mut g6, &mut h6);
             let dtheta = s.thetas[j] - self.rest.thetas[j];
             asm.load(
-                -v + load * m.axial * dtheta,
-                load * (m.bending + m.axial.abs()) / self.length,
+                -v + w * m.axial * dtheta,
+                w * (m.bending + m.axial.abs()) / self.length,
             );
             asm.local(&self.edge_dofs(j), 0.0, 0.0, &g6, &h6);
-            asm.generalized_force(self.dofs.theta(j), load * m.axial);
+            asm.generalized_force(self.dofs.theta(j), w * m.axial);
         }
     }
 }

@@ -17,6 +17,7 @@ pub mod loads;
 pub mod mesh;
 pub mod model;
 pub mod moment;
+pub mod moment_change;
 pub mod point_loads;
 pub mod reactions;
 pub mod rest_curve;

@@ -144,20 +144,23 @@ impl Rod {
             g[v] -= f * load + f0 + self.load_transition(v, lambda);
         }
         let mut h6 = SMatrix::<f64, 6, 6>::zeros();
-        for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
+        let n_moments = self.moments.len();
+        for (i, (m, &alpha)) in self.moments.iter().zip(&s.load_angles).enumerate() {
+            let w = self.load_path.moment_factor(i, n_moments, load, lambda);
             let j = m.edge;
             let e = s.positions[j + 1] - s.positions[j];
-            m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
+            m.bending_potential(&e, alpha, w, &mut g6, &mut h6);
             g[j] += g6.fixed_rows::<3>(0);
             g[j + 1] += g6.fixed_rows::<3>(3);
-            gt[j] -= load * m.axial;
+            gt[j] -= w * m.axial;
         }
         for (i, (f, now)) in self.followers.iter().zip(&s.followers).enumerate() {
             let j = f.edge;
             g[f.vertex] -= self.follower_force(i, now, load, lambda);
-            g[j + 1] -= now.couple * load;
-            g[j] += now.couple * load;
-            gt[j] -= now.torque * load;
+            let (c, tau) = self.follower_couple(i, now, load, lambda);
+            g[j + 1] -= c;
+            g[j] += c;
+            gt[j] -= tau;
         }
         FullGradient {
             vertices: g,
@@ -215,19 +218,22 @@ impl Rod {
             force += fv;
             moment += s.positions[f.vertex].cross(&fv);
             let e = s.positions[j + 1] - s.positions[j];
-            moment += e.cross(&(now.couple * load));
-            moment += s.frames.edges[j].tangent * (now.torque * load);
+            let (c, tau) = self.follower_couple(i, now, load, lambda);
+            moment += e.cross(&c);
+            moment += s.frames.edges[j].tangent * tau;
         }
         let mut g6 = SVector::<f64, 6>::zeros();
         let mut h6 = SMatrix::<f64, 6, 6>::zeros();
-        for (m, &alpha) in self.moments.iter().zip(&s.load_angles) {
+        let n_moments = self.moments.len();
+        for (i, (m, &alpha)) in self.moments.iter().zip(&s.load_angles).enumerate() {
+            let w = self.load_path.moment_factor(i, n_moments, load, lambda);
             let j = m.edge;
             let e = s.positions[j + 1] - s.positions[j];
-            m.bending_potential(&e, alpha, load, &mut g6, &mut h6);
+            m.bending_potential(&e, alpha, w, &mut g6, &mut h6);
             // Forces −∂V/∂x on the two vertices: equal and opposite, a pure couple.
             let f1: Vec3 = -g6.fixed_rows::<3>(3).into_owned();
             moment += e.cross(&f1);
-            moment += s.frames.edges[j].tangent * (load * m.axial);
+            moment += s.frames.edges[j].tangent * (w * m.axial);
         }
         LoadResultant { force, moment }
     }

@@ -90,6 +90,8 @@ impl RodState {
                     couple: rotation * f.couple,
                     torque: f.torque,
                     transition: rotation * f.transition,
+                    transition_couple: rotation * f.transition_couple,
+                    transition_torque: f.transition_torque,
                 })
                 .collect(),
         }

@@ -907,6 +907,96 @@ impl Session {
         Ok(r)
     }
 
+    /// Sets point moment `moment` of rod `rod` (the file's `moments[moment]`) to `value` (N m)
+    /// and re-solves its structure warm. A dead moment's old value is blended into the new one
+    /// along the load path (see `rod/moment_change.rs`); a follower moment's value is given at
+    /// rest, as in the file, and its change turns with the rod like a follower force's. A
+    /// change too large for one Newton solve is split by the continuation; one that does not
+    /// converge leaves the moment and the equilibrium where they were and says so. Errors
+    /// (nothing changed): an unknown rod or moment, a non-finite or absurd value.
+    pub fn set_moment(
+        &mut self,
+        rod: usize,
+        moment: usize,
+        value: [f64; 3],
+    ) -> Result<EditReport, SceneError> {
+        let path = || format!("rods[{rod}].moments[{moment}]");
+        let Some(spec) = self.spec.rods.get(rod).and_then(|r| r.moments.get(moment)) else {
+            return Err(SceneError::new(
+                path(),
+                format!(
+                    "no such moment (rods: {}, point moments of this rod: {})",
+                    self.spec.rods.len(),
+                    self.spec.rods.get(rod).map_or(0, |r| r.moments.len())
+                ),
+            ));
+        };
+        if value
+            .iter()
+            .any(|c| !c.is_finite() || c.abs() > super::magnitudes::MAGNITUDE_LIMIT)
+        {
+            return Err(SceneError::new(
+                format!("{}.moment", path()),
+                format!("{value:?}: must be finite and of sensible magnitude"),
+            ));
+        }
+        let follower = spec.follower;
+        let (old, new) = (Vec3::from(spec.moment), Vec3::from(value));
+        let compiled = &self.scene.rods[rod];
+        let v = compiled.moment_vertices[moment];
+        let part = compiled
+            .load_part(v)
+            .expect("every vertex of a rod is on a part");
+        let (k, m, local) = (part.structure, part.member, v - part.first_vertex);
+        // Saved before the change gives the state the new moment's angle or refreshes its
+        // frozen follower loads.
+        self.runs[k].save();
+        let index = {
+            let state = &mut self.runs[k].state.members[m];
+            let member = self.scene.structures[k].member_mut(m);
+            if follower {
+                member.set_follower_moment_change(state, local, old, new)
+            } else {
+                member.set_moment_change(state, local, old, new)
+            }
+            .map_err(|e| SceneError::model(path(), e))?
+        };
+        let run = &mut self.runs[k];
+        let report = solve_structure(&self.scene, k, run, 0.0, 1.0);
+        let converged = report.converged();
+        run.report = report;
+        let structure = &mut self.scene.structures[k];
+        if !converged {
+            // Back to the old moment, bit for bit, and to the state before the change.
+            if follower {
+                structure
+                    .member_mut(m)
+                    .undo_follower_moment_change(index, old);
+            } else {
+                structure.member_mut(m).undo_moment_change(index);
+            }
+            structure.clear_paths();
+            let reason = format!(
+                "the moment change did not converge ({:?}); the last equilibrium is kept",
+                self.runs[k].report.status
+            );
+            let summary = self.summary(&[k], Some(reason));
+            self.runs[k].restore();
+            return Ok(summary);
+        }
+        if !follower {
+            structure
+                .member_mut(m)
+                .finish_moment_change(&mut self.runs[k].state.members[m]);
+        }
+        structure.clear_paths();
+        self.spec.rods[rod].moments[moment].moment = value;
+        let followed = self.stabilize(k);
+        let mut r = self.summary(&[k], None);
+        r.followed_unstable_mode = followed;
+        Ok(r)
+    }
+
     /// Sets point force `force` of shell strip `shell` (the file's `shells[shell].forces[force]`,
     /// a dead force) to `value` (N) and re-solves the strip warm from its last equilibrium (one
     /// Newton solve, as for gravity: a strip's loads are at full scale). A change that does not

@@ -429,11 +429,83 @@ impl Member {
         }
     }
 
+    /// As [`Self::set_follower_force_change`], for a follower moment on vertex `v`: from `old`
+    /// to `new` (N m, given at rest). Returns the follower's index, for
+    /// [`Self::undo_follower_moment_change`].
+    pub fn set_follower_moment_change(
+        &mut self,
+        state: &mut MemberState,
+        v: usize,
+        old: crate::geometry::Vec3,
+        new: crate::geometry::Vec3,
+    ) -> Result<usize, crate::ModelError> {
+        match (self, state) {
+            (Self::Der(r), MemberState::Der(s)) => r.set_follower_moment_change(s, v, old, new),
+            _ => Err(crate::ModelError::structure(
+                "follower_moment_change",
+                "follower loads act on discrete elastic rods only",
+            )),
+        }
+    }
+
+    /// Undoes [`Self::set_follower_moment_change`]: follower `i`'s moment back to `old` (N m),
+    /// the load path cleared (the state is the caller's to restore).
+    pub fn undo_follower_moment_change(&mut self, i: usize, old: crate::geometry::Vec3) {
+        if let Self::Der(r) = self {
+            r.undo_follower_moment_change(i, old);
+        }
+    }
+
     /// Undoes [`Self::set_follower_force_change`]: follower `i`'s force back to `old` (N),
     /// the load path cleared (the state is the caller's to restore).
     pub fn undo_follower_force_change(&mut self, i: usize, old: crate::geometry::Vec3) {
         if let Self::Der(r) = self {
             r.undo_follower_force_change(i, old);
+        }
+    }
+
+    /// Changes the dead point moment on vertex `v` from `old` to `new` (N m): along the load
+    /// path of the next solve (λ = 0: `old`, λ = 1: `new`; see `rod/moment_change.rs`).
+    /// `state` is this member's state, which gets the new moment's angle. After a converged
+    /// solve call [`Self::finish_moment_change`]; after one that failed,
+    /// [`Self::undo_moment_change`] with the returned index (and restore the state). Errors
+    /// (nothing changed): no dead moment `old` on `v`, a value not finite.
+    pub fn set_moment_change(
+        &mut self,
+        state: &mut MemberState,
+        v: usize,
+        old: crate::geometry::Vec3,
+        new: crate::geometry::Vec3,
+    ) -> Result<usize, crate::ModelError> {
+        match (self, state) {
+            (Self::Der(r), MemberState::Der(s)) => r.set_moment_change(s, v, old, new),
+            (Self::Cosserat(r), MemberState::Framed(s)) => r.core.set_moment_change(s, v, old, new),
+            (Self::Se3(r), MemberState::Framed(s)) => r.core.set_moment_change(s, v, old, new),
+            _ => Err(crate::ModelError::structure(
+                "moment_change",
+                "the state does not belong to this member",
+            )),
+        }
+    }
+
+    /// Ends a converged [`Self::set_moment_change`]: the old moment and its angle in `state`
+    /// dropped, the load path cleared.
+    pub fn finish_moment_change(&mut self, state: &mut MemberState) {
+        match (self, state) {
+            (Self::Der(r), MemberState::Der(s)) => r.finish_moment_change(s),
+            (Self::Cosserat(r), MemberState::Framed(s)) => r.core.finish_moment_change(s),
+            (Self::Se3(r), MemberState::Framed(s)) => r.core.finish_moment_change(s),
+            (m, _) => m.clear_load_path(),
+        }
+    }
+
+    /// Undoes [`Self::set_moment_change`] of moment `i`: its old value back, the load path
+    /// cleared (the state is the caller's to restore).
+    pub fn undo_moment_change(&mut self, i: usize) {
+        match self {
+            Self::Der(r) => r.undo_moment_change(i),
+            Self::Cosserat(r) => r.core.undo_moment_change(i),
+            Self::Se3(r) => r.core.undo_moment_change(i),
         }
     }
 

@@ -233,6 +233,15 @@ class Session:
         report = self._inner.set_force(r, f, _vec3(value, "value"))
         return self._checked(report, check, f"changing rods[{r}].forces[{f}]")
 
+    def set_moment(self, rod: int, moment: int, value: Sequence[float], *, check: bool = True) -> EditReport:
+        """Sets point moment ``moment`` of rod ``rod`` (the scene's ``moments[moment]``) to
+        ``value`` (N m) and re-solves warm: the old moment is blended into the new one along the
+        load path. A follower moment's value is given as it acts at rest, as in the scene file;
+        it turns with the rod."""
+        r, m = _index(rod, "rod"), _index(moment, "moment")
+        report = self._inner.set_moment(r, m, _vec3(value, "value"))
+        return self._checked(report, check, f"changing rods[{r}].moments[{m}]")
+
     def add_force(self, rod: int, at: float, value: Sequence[float] = (0.0, 0.0, 0.0), *, check: bool = True) -> EditReport:
         """Adds a dead point force to rod ``rod`` at the file's vertex nearest rest arc length
         ``at`` (m), set to ``value`` (N) warm from the last equilibrium; it becomes the last of

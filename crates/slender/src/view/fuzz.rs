@@ -389,6 +389,68 @@ forces = [{ vertex = 9, force = [0.0, 0.0, -0.01] }]"#,
     assert_eq!(saved.rods[0].forces[0].force, [0.0, 0.02, -0.05]);
 }
 
+/// The clipped-cable example (a 100-element cable, three clips, a dead twisting moment of
+/// 0.01 N m about x on vertex 35).
+fn clipped_cable() -> Session {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/clipped_cable.toml"
+    ))
+    .expect("the example exists");
+    Session::new(toml::from_str(&text).expect("parses")).expect("compiles")
+}
+
+#[test]
+fn a_moment_message_sets_the_moment_and_a_bad_one_keeps_the_equilibrium() {
+    let mut s = clipped_cable();
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "moment", "rod": 0, "moment": 0, "value": [0.02, 0.0, 0.005]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    assert_eq!(s.spec().rods[0].moments[0].moment, [0.02, 0.0, 0.005]);
+    let shown = &v["view"]["rods"][0]["moments"][0];
+    assert_eq!(shown["moment"], json!([0.02, 0.0, 0.005]), "{v}");
+    assert_eq!(shown["follower"], json!(false));
+    for (message, field) in [
+        (
+            r#"{"op": "moment", "rod": 0, "moment": 0, "value": [0, 1e300, 0]}"#,
+            "rods[0].moments[0].moment",
+        ),
+        (
+            r#"{"op": "moment", "rod": 0, "moment": 1, "value": [0, 0, 1]}"#,
+            "rods[0].moments[1]",
+        ),
+        (
+            r#"{"op": "moment", "rod": 4, "moment": 0, "value": [0, 0, 1]}"#,
+            "rods[4].moments[0]",
+        ),
+        (
+            r#"{"op": "moment", "rod": 0, "moment": 0, "value": [0, "x", 1]}"#,
+            "request",
+        ),
+    ] {
+        let (v, kept) = exchange(&mut s, message);
+        assert_eq!(error_of(&v).0, field, "{v}");
+        assert!(kept, "{message}");
+    }
+    // The saved scene carries the new moment, and its solve gives the session's equilibrium.
+    let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
+    let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
+    assert_eq!(saved.rods[0].moments[0].moment, [0.02, 0.0, 0.005]);
+    let again = Session::new(saved).expect("the saved scene solves");
+    let (a, b) = (equilibrium(&s).0, equilibrium(&again).0);
+    let d = a
+        .iter()
+        .flatten()
+        .zip(b.iter().flatten())
+        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    assert!(d <= 1e-9, "{d:e} m between the session and its saved scene");
+}
+
 #[test]
 fn a_follower_force_message_sets_the_force_at_rest_and_the_view_turns_it() {
     // The follower cantilever example (EI = 1 N m², tip follower +y at rest): its force is
@@ -898,6 +960,9 @@ fn request() -> impl Strategy<Value = String> {
         (index(), index(), vec3()).prop_map(|(r, f, v)| format!(
             r#"{{"op": "force", "shell": {r}, "force": {f}, "value": {v}}}"#
         )),
+        (index(), index(), vec3()).prop_map(|(r, m, v)| format!(
+            r#"{{"op": "moment", "rod": {r}, "moment": {m}, "value": {v}}}"#
+        )),
         (index(), hostile_number(), vec3()).prop_map(|(r, a, v)| format!(
             r#"{{"op": "add_force", "rod": {r}, "at": {a}, "value": {v}}}"#
         )),
@@ -985,6 +1050,23 @@ fn fuzz_follower_scene_requests() {
         session,
         prop_oneof![1 => request(), 1 => follower_edit],
         64,
+        |_| Ok(()),
+    );
+}
+
+#[test]
+fn fuzz_moment_edits_of_the_clipped_cable() {
+    // Half of the messages edit the example's dead moment (each a warm solve of the
+    // 100-element cable along the moment's load path): mostly to values within ±0.05 N m in
+    // any direction, else to random, often hostile ones.
+    let plausible = [-0.05f64..0.05, -0.05f64..0.05, -0.05f64..0.05]
+        .prop_map(|[a, b, c]| format!("[{a}, {b}, {c}]"));
+    let moment_edit = prop_oneof![2 => plausible, 1 => vec3()]
+        .prop_map(|v| format!(r#"{{"op": "moment", "rod": 0, "moment": 0, "value": {v}}}"#));
+    fuzz_session(
+        clipped_cable(),
+        prop_oneof![1 => request(), 1 => moment_edit],
+        32,
         |_| Ok(()),
     );
 }

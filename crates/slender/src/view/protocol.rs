@@ -123,6 +123,16 @@ pub enum Request {
         /// Force (N).
         value: [f64; 3],
     },
+    /// Set a point moment of a rod (the scene's `rods[rod].moments[moment]`) to `value` (N m;
+    /// a follower moment's as it acts at rest).
+    Moment {
+        /// Rod index.
+        rod: usize,
+        /// Index in the rod's `moments`.
+        moment: usize,
+        /// Moment (N m).
+        value: [f64; 3],
+    },
     /// Add a dead point force, set to `value` (N; default zero), as the last of the rod's or
     /// strip's `forces`: on a rod at the file's vertex nearest rest arc length `at` (m), on a
     /// shell strip at grid vertex (`station`, `column`).
@@ -280,6 +290,7 @@ fn op_name(r: &Request) -> &'static str {
         Request::RemoveSupport { .. } => "remove_support",
         Request::Gravity { .. } => "gravity",
         Request::Force { .. } => "force",
+        Request::Moment { .. } => "moment",
         Request::AddForce { .. } => "add_force",
         Request::RemoveForce { .. } => "remove_force",
         Request::FollowStable {} => "follow_stable",
@@ -459,6 +470,10 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
                 Target::Rod(rod) => Some(session.set_force(rod, *force, *value)?),
                 Target::Shell(shell) => Some(session.set_shell_force(shell, *force, *value)?),
             }
+        }
+        Request::Moment { rod, moment, value } => {
+            finite("value", value)?;
+            Some(session.set_moment(*rod, *moment, *value)?)
         }
         Request::AddForce {
             rod,

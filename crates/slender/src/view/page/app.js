@@ -527,7 +527,7 @@ function updateLoadArrows() {
   });
 }
 
-// ---------- point moments and line loads: drawn, edited in the scene file ----------
+// ---------- point moments and line loads: drawn (moments are edited in the panel) ----------
 
 const MOMENT_ARROW = 0x6a1b9a;
 const LINE_LOAD_ARROW = 0xffa726;
@@ -655,6 +655,47 @@ function updateLoadsPanel() {
   for (const l of loads) {
     if (typing === l.id) continue;
     ["x", "y", "z"].forEach((c, i) => ($(`${l.id}-${c}`).value = l.f.force[i]));
+  }
+}
+
+/** The rods' point moments, as the panel edits them (a follower moment as given at rest). */
+function pointMoments() {
+  const out = [];
+  view.rods.forEach((rod, r) => rod.moments.forEach((m, k) => out.push({
+    index: r, k, m, id: `m-${r}-${k}`, field: `rods[${r}].moments[${k}].moment`,
+    where: `${rod.name}, moment ${k} at v ${m.vertex} (${fmtLength(m.at)})${m.follower ? ", follower (as at rest)" : ""}`,
+  })));
+  return out;
+}
+
+let momentsKey = null;
+
+/** The panel's moment editors, as the force editors: rebuilt when the list changes, values
+ *  refreshed on every update except in the row being typed in. */
+function updateMomentsPanel() {
+  const moments = pointMoments();
+  $("moments-box").hidden = moments.length === 0;
+  const key = moments.map((m) => m.id).join(",");
+  if (key !== momentsKey) {
+    momentsKey = key;
+    $("moments").innerHTML = moments.map((m) => {
+      const inputs = ["x", "y", "z"].map((c) =>
+        `<input id="${m.id}-${c}" type="number" step="any" aria-label="${m.where} ${c} (N m)">`).join("");
+      return `<div class="load"><span>${m.where}</span><div class="vec">${inputs}<button class="moment-apply" data-moment="${m.id}">Apply</button></div></div>`;
+    }).join("");
+    for (const b of document.querySelectorAll("#moments .moment-apply")) {
+      b.addEventListener("click", () => {
+        const m = pointMoments().find((x) => x.id === b.dataset.moment);
+        if (!m) return;
+        const value = readVector(["x", "y", "z"].map((c) => `${m.id}-${c}`), m.field);
+        if (value) edit({ op: "moment", rod: m.index, moment: m.k, value });
+      });
+    }
+  }
+  const typing = document.activeElement?.tagName === "INPUT" ? document.activeElement.id.replace(/-[xyz]$/, "") : null;
+  for (const m of moments) {
+    if (typing === m.id) continue;
+    ["x", "y", "z"].forEach((c, i) => ($(`${m.id}-${c}`).value = m.m.moment[i]));
   }
 }
 
@@ -1106,6 +1147,7 @@ function applyView(reply) {
   updatePanel(reply);
   updatePoseEditor();
   updateLoadsPanel();
+  updateMomentsPanel();
   updateContactPanel();
 }
 

@@ -1,0 +1,115 @@
+//! Changing a dead point moment along the load path: the interactive edit of a moment.
+//!
+//! A dead moment's potential is −M_b α − T θ (see `moment.rs`), with α the unwrapped angle of
+//! its edge about the moment's own axis n̂. A new value generally has another axis, so the old
+//! and new potentials cannot be blended in one term. During the edit the rod carries both: the
+//! new moment in the old one's place, weighted λ, and the old one appended last, weighted
+//! 1 − λ, each with its own angle in the state. At λ = 0 the loads are exactly the old ones
+//! (the old angle keeps its whole turns), so the last equilibrium is still an equilibrium;
+//! at λ = 1 they are the new ones. [`Rod::finish_moment_change`] then drops the old moment,
+//! whose weight is zero.
+//!
+//! The new moment's angle starts from the rest edge: the old angle when the axis is the same
+//! (±), else the edge's angle about the new axis in (−π, π]. Whole turns about a new axis are
+//! not known; they shift the potential by a constant and change neither forces nor Hessian.
+
+use crate::error::ModelError;
+use crate::geometry::Vec3;
+
+use super::model::Rod;
+use super::moment::MomentLoad;
+use super::state::RodState;
+
+impl Rod {
+    /// Makes the load path the change of the dead point moment on vertex `v` from `old` to
+    /// `new` (N m), in place: the moment becomes `new` (weighted λ) and `old` is appended last
+    /// (weighted 1 − λ), with their angles in `s`. Returns the moment's index (for
+    /// [`Self::undo_moment_change`]). Errors (nothing changed): no dead moment `old` on `v`,
+    /// a value not finite.
+    pub fn set_moment_change(
+        &mut self,
+        s: &mut RodState,
+        v: usize,
+        old: Vec3,
+        new: Vec3,
+    ) -> Result<usize, ModelError> {
+        if old.iter().chain(new.iter()).any(|c| !c.is_finite()) {
+            return Err(ModelError::structure("moment_change", "must be finite"));
+        }
+        self.end_moment_change();
+        let n = self.n_edges();
+        if v > n {
+            return Err(ModelError::structure(
+                "moment_change.vertex",
+                format!("vertex {v} is beyond the rod's {} vertices", n + 1),
+            ));
+        }
+        // The moment acts on the edge starting at the vertex (the last edge at the end), split
+        // against its rest tangent as the builder splits it: the same bits.
+        let edge = v.min(n - 1);
+        let rest = &self.rest.positions;
+        let tangent = (rest[edge + 1] - rest[edge]).normalize();
+        let before = MomentLoad::new(edge, old, &tangent);
+        let Some(i) = self.moments.iter().position(|m| *m == before) else {
+            return Err(ModelError::structure(
+                "moment_change.vertex",
+                format!("no dead moment {old:?} (N m) acts on vertex {v}"),
+            ));
+        };
+        if s.load_angles.len() != self.moments.len() {
+            return Err(ModelError::structure(
+                "moment_change",
+                "the state does not belong to this rod (its moment angles)",
+            ));
+        }
+        let after = MomentLoad::new(edge, new, &tangent);
+        let alpha_old = s.load_angles[i];
+        let same_axis = after.axis.cross(&before.axis).norm() <= 16.0 * f64::EPSILON;
+        let alpha_new = if same_axis {
+            alpha_old * after.axis.dot(&before.axis).signum()
+        } else {
+            let e_rest = rest[edge + 1] - rest[edge];
+            let e_now = s.positions[edge + 1] - s.positions[edge];
+            after.updated_angle(&e_rest, &e_now, 0.0)
+        };
+        self.load_path.clear();
+        self.load_path.loads = [1.0, 1.0];
+        self.load_path.moment_change = Some(i);
+        self.moments[i] = after;
+        self.moments.push(before);
+        s.load_angles[i] = alpha_new;
+        s.load_angles.push(alpha_old);
+        Ok(i)
+    }
+
+    /// Ends a converged moment change in `s` (at λ = 1): the old moment, weighted zero there,
+    /// and its angle are dropped and the load path cleared. Does nothing without a change.
+    pub fn finish_moment_change(&mut self, s: &mut RodState) {
+        if self.load_path.moment_change.take().is_some() {
+            self.moments.pop();
+            s.load_angles.truncate(self.moments.len());
+        }
+        self.clear_load_path();
+    }
+
+    /// Undoes [`Self::set_moment_change`] of moment `i`: its old value back in place, the load
+    /// path cleared. The state is the caller's to restore (it holds one angle too many).
+    pub fn undo_moment_change(&mut self, i: usize) {
+        if self.load_path.moment_change.take().is_some() {
+            if let Some(old) = self.moments.pop() {
+                self.moments[i] = old;
+            }
+        }
+        self.clear_load_path();
+    }
+
+    /// Ends a moment change still on the load path with the new moment (the old one dropped
+    /// from the model; a state's extra angle is then ignored and dropped by its next update).
+    /// Every change of the load path calls it first, so the model never keeps a stale old
+    /// moment at full weight.
+    pub(crate) fn end_moment_change(&mut self) {
+        if self.load_path.moment_change.take().is_some() {
+            self.moments.pop();
+        }
+    }
+}
