@@ -150,13 +150,18 @@ fn finite_vector(path: &str, v: [f64; 3], limit: f64) -> Result<Vec3, SceneError
     }
 }
 
+/// A positive physical parameter within the bounds a rod's are held to
+/// ([`MAGNITUDE_FLOOR`](super::magnitudes::MAGNITUDE_FLOOR) to
+/// [`MAGNITUDE_LIMIT`](super::magnitudes::MAGNITUDE_LIMIT)): a strip 1e-300 m wide passed a
+/// plain `> 0` and gave the solver an infinite Hessian entry.
 fn positive(path: String, v: f64) -> Result<(), SceneError> {
-    if v.is_finite() && v > 0.0 {
+    use super::magnitudes::{MAGNITUDE_FLOOR, MAGNITUDE_LIMIT};
+    if v.is_finite() && (MAGNITUDE_FLOOR..=MAGNITUDE_LIMIT).contains(&v) {
         Ok(())
     } else {
         Err(SceneError::new(
             path,
-            format!("{v}: must be finite and > 0"),
+            format!("{v}: must be finite and in [{MAGNITUDE_FLOOR:e}, {MAGNITUDE_LIMIT:e}]"),
         ))
     }
 }
