@@ -27,7 +27,9 @@
 //     double-headed arrow from its vertex along its axis, the line load one arrow per loaded
 //     vertex with its tip on the cable, each along its load, labelled in N·m and N/m. The
 //     moment set in its panel row (a new axis): the page reaches `slender solve`'s
-//     equilibrium with the new moment in the file (1e-9 of the length), the arrow turns.
+//     equilibrium with the new moment in the file (1e-9 of the length), the arrow turns; a
+//     click in "add a point moment" mode adds one, set in its row (= slender solve with it in
+//     the file), removed by its ×, put back by Ctrl+Z.
 //  3d. follower force (examples/follower_cantilever.toml): drawn at the tip along the force as
 //     it acts now, normal to the tip; set in the panel (as given at rest), the page reaches
 //     `slender solve`'s equilibrium with the new force in the file and the arrow turns with it.
@@ -565,6 +567,38 @@ try {
   });
   check(turned.length === 2 && turned.every((d) => d.every((x, k) => Math.abs(x - newDir[k]) <= 1e-6)),
     `moment: its arrow turned to the new axis [${newDir.map((x) => x.toFixed(3))}]`);
+  // A moment added by a click in "add a point moment" mode (at 0.8 m: vertex 32), set in its
+  // new row (= slender solve with it in the file), removed by its ×, put back by Ctrl+Z.
+  await s3c.page.evaluate(() => window.slender.setTool("add-moment"));
+  const momentClick = await s3c.page.evaluate(() => window.slender.screenPoint(0, 0.8));
+  await s3c.page.mouse.click(momentClick.x, momentClick.y);
+  await s3c.page.waitForFunction(() => window.slender.state().rods[0].moments.length === 2, null, { timeout: 20000 });
+  const addedMoment = await s3c.page.evaluate(() => window.slender.state().rods[0].moments[1]);
+  check(Math.abs(addedMoment.at - 0.8) <= 0.025 && addedMoment.moment.every((x) => x === 0),
+    `moment: a click added one at vertex ${addedMoment.vertex} (${addedMoment.at.toFixed(3)} m; aimed at 0.8 m), starting at zero`);
+  const addedValue = [0.0, 0.0, 0.002];
+  for (const [i, c] of ["x", "y", "z"].entries()) await s3c.page.fill(`#m-0-1-${c}`, String(addedValue[i]));
+  await s3c.page.click('#moments .moment-apply[data-moment="m-0-1"]');
+  await s3c.page.waitForFunction((m) => window.slender.state().rods[0].moments[1].moment.every((x, i) => x === m[i]), addedValue, { timeout: 20000 });
+  const withMoment = await s3c.page.evaluate(() => window.slender.state());
+  const withMomentText = momentText.replace(`moment = [${newMoment.join(", ")}] }]`,
+    `moment = [${newMoment.join(", ")}] }, { vertex = ${addedMoment.vertex}, moment = [${addedValue.map((x) => x.toFixed(3)).join(", ")}] }]`);
+  const withMomentCold = solveScene("moment_added_cold", withMomentText);
+  const addedMomentGap = maxRelativeDistance(withMoment.rods.map((r) => r.positions), withMomentCold, 1.0);
+  check(withMomentText !== momentText && addedMomentGap <= 1e-9,
+    `moment: with the added moment set, the page = slender solve with it in the file (${addedMomentGap.toExponential(2)} of the length)`);
+  await s3c.page.click('#moments .moment-remove[data-moment="m-0-1"]');
+  await s3c.page.waitForFunction(() => window.slender.state().rods[0].moments.length === 1, null, { timeout: 20000 });
+  const momentRemoved = await s3c.page.evaluate(() => window.slender.state());
+  const momentRemovedGap = maxRelativeDistance(momentRemoved.rods.map((r) => r.positions), momentEdited.rods.map((r) => r.positions), 1.0);
+  check(momentRemovedGap <= 1e-9, `moment: × removed it, back to the equilibrium before (${momentRemovedGap.toExponential(2)} of the length)`);
+  await s3c.page.evaluate(() => document.activeElement?.blur());
+  await s3c.page.keyboard.press("Control+Z");
+  await s3c.page.waitForFunction(() => window.slender.state().rods[0].moments.length === 2, null, { timeout: 20000 });
+  const momentUndone = await s3c.page.evaluate(() => window.slender.state());
+  check(JSON.stringify(momentUndone.rods[0].positions) === JSON.stringify(withMoment.rods[0].positions),
+    "moment: Ctrl+Z puts the removed moment back with its equilibrium, bit for bit");
+  await s3c.page.evaluate(() => window.slender.setTool("drag"));
   await s3c.page.screenshot({ path: join(out, "view-moment-line-load.png") });
   for (const e of s3c.errors) fail(e);
   check(s3c.errors.length === 0, "no console errors (moment and line load page)");

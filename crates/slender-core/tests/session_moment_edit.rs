@@ -83,12 +83,7 @@ fn a_moment_edit_ends_where_a_cold_solve_with_that_moment_ends() {
         let (d, _) = edit_against_cold(model, [0.0, 0.0, 0.3 * ei], [0.0, 0.0, 1.2 * ei], -1.0);
         assert!(d <= 1e-9, "{model}, magnitude: {d:e} m from the cold solve");
         // Another axis: from bending in the horizontal plane to bending upward, with a twist.
-        let (d, tip) = edit_against_cold(
-            model,
-            [0.0, 0.0, 0.5 * ei],
-            [0.1 * ei, -ei, 0.0],
-            -1.0,
-        );
+        let (d, tip) = edit_against_cold(model, [0.0, 0.0, 0.5 * ei], [0.1 * ei, -ei, 0.0], -1.0);
         assert!(d <= 1e-9, "{model}, axis: {d:e} m from the cold solve");
         assert!(tip[2] > 0.3, "{model}: the tip should curl up, {tip:?}");
     }
@@ -391,4 +386,61 @@ fn the_follower_moment_path_starts_at_the_old_load_and_ends_at_the_new() {
     assert!(rod
         .set_follower_moment_change(&mut state, 9, new, old)
         .is_err());
+}
+
+#[test]
+fn an_added_moment_ends_where_a_cold_solve_with_it_in_the_file_ends_and_removing_it_goes_back() {
+    // A moment added at 0.52 m (the file's nearest vertex: 10 of 20) and set to bend the
+    // cantilever sideways, on every rod model; removed again, the equilibrium is the one
+    // before, to the solver's tolerance.
+    let ei = bending_stiffness();
+    for model in ["der", "cosserat", "se3"] {
+        let mut s = Session::new(cantilever(model, 20, [0.0, 0.0, 0.2 * ei], -1.0)).unwrap();
+        let before = positions(&s);
+        let value = [0.0, 0.3 * ei, -0.4 * ei];
+        let r = s.add_moment(0, 0.52, value).expect("valid");
+        assert!(r.converged, "{model}: {r:?}");
+        let added = &s.spec().rods[0].moments[1];
+        assert_eq!(added.moment, value);
+        assert_eq!(
+            added.vertex,
+            slender_core::scene::spec::VertexRef::Index(10)
+        );
+        let mut file = cantilever(model, 20, [0.0, 0.0, 0.2 * ei], -1.0);
+        file.rods[0].moments.push(added.clone());
+        let cold = Session::new(file).unwrap();
+        let d = max_distance(&positions(&s), &positions(&cold));
+        let moved = max_distance(&positions(&s), &before);
+        let r = s.remove_moment(0, 1).expect("valid");
+        assert!(r.converged, "{model}: {r:?}");
+        assert_eq!(s.spec().rods[0].moments.len(), 1);
+        let back = max_distance(&positions(&s), &before);
+        eprintln!("{model}: added moment moved the rod {moved:.3e} m, {d:.1e} m from the cold solve; removed: {back:.1e} m from before");
+        assert!(
+            moved > 1e-2 && d <= 1e-9 && back <= 1e-9,
+            "{model}: {moved:e} {d:e} {back:e}"
+        );
+    }
+    // Bad additions and removals name the field and change nothing.
+    let mut s = Session::new(cantilever("der", 10, [0.0, 0.0, 0.01], 0.0)).unwrap();
+    let before = positions(&s);
+    for (result, field) in [
+        (s.clone().add_moment(0, 1.5, [0.0; 3]), "rods[0].moments.at"),
+        (
+            s.clone().add_moment(0, f64::NAN, [0.0; 3]),
+            "rods[0].moments.at",
+        ),
+        (s.clone().add_moment(2, 0.5, [0.0; 3]), "rods[2]"),
+        (
+            s.clone().add_moment(0, 0.5, [0.0, f64::INFINITY, 0.0]),
+            "rods[0].moments[1].moment",
+        ),
+        (s.clone().remove_moment(0, 1), "rods[0].moments[1]"),
+    ] {
+        let err = result.unwrap_err().to_string();
+        assert!(err.contains(field), "{field}: {err}");
+    }
+    assert!(s.remove_moment(1, 0).is_err());
+    assert_eq!(positions(&s), before);
+    assert_eq!(s.spec().rods[0].moments.len(), 1);
 }

@@ -286,6 +286,32 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Adds a dead point moment to rod `rod` at the file's vertex nearest rest arc length `at`
+    /// (m), set to `value` (N m); it becomes the last of the rod's `moments`.
+    fn add_moment(
+        &mut self,
+        py: Python<'_>,
+        rod: usize,
+        at: f64,
+        value: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.add_moment(rod, at, value)))?;
+        edit(py, out)
+    }
+
+    /// Removes point moment `moment` of rod `rod` (brought to zero warm first).
+    fn remove_moment(
+        &mut self,
+        py: Python<'_>,
+        rod: usize,
+        moment: usize,
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.remove_moment(rod, moment)))?;
+        edit(py, out)
+    }
+
     /// Adds a dead point force to rod `rod` at the file's vertex nearest rest arc length `at`
     /// (m), set to `value` (N); it becomes the last of the rod's `forces`.
     fn add_force(

@@ -380,6 +380,17 @@ def test_moment_edit_matches_a_cold_solve() -> None:
     assert np.abs(here - before).max() > 1e-4
     with pytest.raises(slender.SceneError, match=r"rods\[0\]\.moments\[2\]"):
         s.set_moment(0, 2, [0.0, 0.0, 1.0])
+    # A second moment added at 0.6 m (the file's nearest vertex), then removed: the session
+    # is back where it was.
+    rep = s.add_moment(0, 0.6, [0.0, 0.01, 0.0])
+    assert rep.converged and len(s.scene()["rods"][0]["moments"]) == 2
+    added = s.scene()["rods"][0]["moments"][1]
+    scene["rods"][0]["moments"].append(added)
+    cold = slender.Session(scene).results().rods[0].positions
+    assert np.abs(s.results().rods[0].positions - cold).max() <= 1e-9
+    rep = s.remove_moment(0, 1)
+    assert rep.converged and len(s.scene()["rods"][0]["moments"]) == 1
+    assert np.abs(s.results().rods[0].positions - here).max() <= 1e-9
 
 
 def test_force_edit_matches_a_cold_solve() -> None:

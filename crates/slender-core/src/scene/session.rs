@@ -31,8 +31,8 @@ use super::shell_contact_run::StripContact;
 use super::shell_run::{move_steps, pose_change, ShellRun, StripLoad, MAX_MOVE_STEPS};
 use super::shells::{CompiledShell, ShellResult};
 use super::spec::{
-    MotionStage, PointForceSpec, RodEnd, Scene, ShellClampSpec, ShellForceSpec, SupportKind,
-    SupportSpec, UnstablePolicy, VertexRef,
+    MotionStage, PointForceSpec, PointMomentSpec, RodEnd, Scene, ShellClampSpec, ShellForceSpec,
+    SupportKind, SupportSpec, UnstablePolicy, VertexRef,
 };
 use crate::bspline_shell::StripEnd;
 
@@ -922,24 +922,9 @@ impl Session {
     ) -> Result<EditReport, SceneError> {
         let path = || format!("rods[{rod}].moments[{moment}]");
         let Some(spec) = self.spec.rods.get(rod).and_then(|r| r.moments.get(moment)) else {
-            return Err(SceneError::new(
-                path(),
-                format!(
-                    "no such moment (rods: {}, point moments of this rod: {})",
-                    self.spec.rods.len(),
-                    self.spec.rods.get(rod).map_or(0, |r| r.moments.len())
-                ),
-            ));
+            return Err(no_moment(&self.spec, rod, moment));
         };
-        if value
-            .iter()
-            .any(|c| !c.is_finite() || c.abs() > super::magnitudes::MAGNITUDE_LIMIT)
-        {
-            return Err(SceneError::new(
-                format!("{}.moment", path()),
-                format!("{value:?}: must be finite and of sensible magnitude"),
-            ));
-        }
+        check_moment_value(&path, value)?;
         let follower = spec.follower;
         let (old, new) = (Vec3::from(spec.moment), Vec3::from(value));
         let compiled = &self.scene.rods[rod];
@@ -1156,31 +1141,9 @@ impl Session {
         at: f64,
         value: [f64; 3],
     ) -> Result<EditReport, SceneError> {
-        let Some(compiled) = self.scene.rods.get(rod) else {
-            return Err(SceneError::new(
-                format!("rods[{rod}]"),
-                format!("no such rod (the scene has {})", self.scene.rods.len()),
-            ));
-        };
-        let arc = &compiled.node_arclengths;
-        let length = arc.last().copied().unwrap_or(0.0);
-        if !(at.is_finite() && (0.0..=length).contains(&at)) {
-            return Err(SceneError::new(
-                format!("rods[{rod}].forces.at"),
-                format!(
-                    "{at} m: off the rod (its rest length is {length} m; valid: 0 ≤ at ≤ {length})"
-                ),
-            ));
-        }
+        let base = self.file_vertex_at(rod, at, "forces")?;
         let k = self.spec.rods[rod].forces.len();
         check_force_value(&|| format!("rods[{rod}].forces[{k}]"), value)?;
-        // The file's vertex nearest to `at` (forces name vertices of the file's mesh).
-        let base = (0..compiled.base_vertices.len())
-            .min_by(|&a, &b| {
-                let d = |v: usize| (arc[compiled.base_vertices[v]] - at).abs();
-                d(a).total_cmp(&d(b))
-            })
-            .expect("a rod has vertices");
         let mut spec = self.spec.clone();
         spec.rods[rod].forces.push(PointForceSpec {
             vertex: VertexRef::Index(base),
@@ -1206,6 +1169,96 @@ impl Session {
             *self = before;
         }
         Ok(report)
+    }
+
+    /// The vertex of the file's mesh of rod `rod` nearest rest arc length `at` (m), where a
+    /// new load of the rod's `list` (`forces`, `moments`) goes (loads name vertices of the
+    /// file's mesh). Errors: an unknown rod, `at` off the rod.
+    fn file_vertex_at(&self, rod: usize, at: f64, list: &str) -> Result<usize, SceneError> {
+        let Some(compiled) = self.scene.rods.get(rod) else {
+            return Err(SceneError::new(
+                format!("rods[{rod}]"),
+                format!("no such rod (the scene has {})", self.scene.rods.len()),
+            ));
+        };
+        let arc = &compiled.node_arclengths;
+        let length = arc.last().copied().unwrap_or(0.0);
+        if !(at.is_finite() && (0.0..=length).contains(&at)) {
+            return Err(SceneError::new(
+                format!("rods[{rod}].{list}.at"),
+                format!(
+                    "{at} m: off the rod (its rest length is {length} m; valid: 0 ≤ at ≤ {length})"
+                ),
+            ));
+        }
+        Ok((0..compiled.base_vertices.len())
+            .min_by(|&a, &b| {
+                let d = |v: usize| (arc[compiled.base_vertices[v]] - at).abs();
+                d(a).total_cmp(&d(b))
+            })
+            .expect("a rod has vertices"))
+    }
+
+    /// Adds a dead point moment to rod `rod` at the vertex of the file's mesh nearest to rest
+    /// arc length `at` (m) and sets it to `value` (N m), as [`Self::add_force`] adds a force:
+    /// at zero first (the equilibrium stays where it is), then changed along the moment's load
+    /// path as [`Self::set_moment`] does. The new moment is the last of the rod's `moments`. If
+    /// the change does not converge the moment is taken away again and the equilibrium kept
+    /// (the report says so). Errors (nothing changed): an unknown rod, `at` off the rod, a
+    /// non-finite or absurd value.
+    pub fn add_moment(
+        &mut self,
+        rod: usize,
+        at: f64,
+        value: [f64; 3],
+    ) -> Result<EditReport, SceneError> {
+        let base = self.file_vertex_at(rod, at, "moments")?;
+        let k = self.spec.rods[rod].moments.len();
+        check_moment_value(&|| format!("rods[{rod}].moments[{k}]"), value)?;
+        let mut spec = self.spec.clone();
+        spec.rods[rod].moments.push(PointMomentSpec {
+            vertex: VertexRef::Index(base),
+            moment: [0.0; 3],
+            follower: false,
+        });
+        // The whole session as it was, to go back to exactly (see `add_force`).
+        let before = self.clone();
+        let added = self.rebuild(spec)?;
+        if value == [0.0; 3] {
+            return Ok(added);
+        }
+        let report = match self.set_moment(rod, k, value) {
+            Ok(r) => r,
+            Err(e) => {
+                *self = before;
+                return Err(e);
+            }
+        };
+        if !report.converged {
+            *self = before;
+        }
+        Ok(report)
+    }
+
+    /// Removes point moment `moment` of rod `rod`: the moment (dead or follower) is first
+    /// brought to zero along its load path, warm from the last equilibrium (as
+    /// [`Self::set_moment`] does), then taken out of the scene. A change that does not converge
+    /// keeps the moment and the equilibrium (the report says so). Errors (nothing changed): an
+    /// unknown rod or moment.
+    pub fn remove_moment(&mut self, rod: usize, moment: usize) -> Result<EditReport, SceneError> {
+        let Some(spec) = self.spec.rods.get(rod).and_then(|r| r.moments.get(moment)) else {
+            return Err(no_moment(&self.spec, rod, moment));
+        };
+        let before = self.clone();
+        if spec.moment != [0.0; 3] {
+            let report = self.set_moment(rod, moment, [0.0; 3])?;
+            if !report.converged {
+                return Ok(report);
+            }
+        }
+        let mut spec = self.spec.clone();
+        spec.rods[rod].moments.remove(moment);
+        self.rebuild(spec).inspect_err(|_| *self = before)
     }
 
     /// Removes point force `force` of rod `rod`: the force (dead or follower) is first brought
@@ -1740,6 +1793,32 @@ fn check_force_value(path: &impl Fn() -> String, value: [f64; 3]) -> Result<(), 
         ));
     }
     Ok(())
+}
+
+/// Errors for a moment value that is not finite or absurdly large, naming `path()`.moment.
+fn check_moment_value(path: &impl Fn() -> String, value: [f64; 3]) -> Result<(), SceneError> {
+    if value
+        .iter()
+        .any(|c| !c.is_finite() || c.abs() > super::magnitudes::MAGNITUDE_LIMIT)
+    {
+        return Err(SceneError::new(
+            format!("{}.moment", path()),
+            format!("{value:?}: must be finite and of sensible magnitude"),
+        ));
+    }
+    Ok(())
+}
+
+/// The error for a point moment `moment` of rod `rod` that `spec` does not have.
+fn no_moment(spec: &Scene, rod: usize, moment: usize) -> SceneError {
+    SceneError::new(
+        format!("rods[{rod}].moments[{moment}]"),
+        format!(
+            "no such moment (rods: {}, point moments of this rod: {})",
+            spec.rods.len(),
+            spec.rods.get(rod).map_or(0, |r| r.moments.len())
+        ),
+    )
 }
 
 /// The rotation vector (rad) of `r`, through its quaternion: `Rotation3::scaled_axis` can

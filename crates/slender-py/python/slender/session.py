@@ -242,6 +242,20 @@ class Session:
         report = self._inner.set_moment(r, m, _vec3(value, "value"))
         return self._checked(report, check, f"changing rods[{r}].moments[{m}]")
 
+    def add_moment(self, rod: int, at: float, value: Sequence[float] = (0.0, 0.0, 0.0), *, check: bool = True) -> EditReport:
+        """Adds a dead point moment to rod ``rod`` at the file's vertex nearest rest arc length
+        ``at`` (m), set to ``value`` (N m) warm from the last equilibrium; it becomes the last
+        of the rod's ``moments``."""
+        r = _index(rod, "rod")
+        report = self._inner.add_moment(r, float(at), _vec3(value, "value"))
+        return self._checked(report, check, f"adding a moment to rods[{r}]")
+
+    def remove_moment(self, rod: int, moment: int, *, check: bool = True) -> EditReport:
+        """Removes point moment ``moment`` of rod ``rod`` (brought to zero warm first); the
+        later moments move down by one."""
+        r, m = _index(rod, "rod"), _index(moment, "moment")
+        return self._checked(self._inner.remove_moment(r, m), check, f"removing rods[{r}].moments[{m}]")
+
     def add_force(self, rod: int, at: float, value: Sequence[float] = (0.0, 0.0, 0.0), *, check: bool = True) -> EditReport:
         """Adds a dead point force to rod ``rod`` at the file's vertex nearest rest arc length
         ``at`` (m), set to ``value`` (N) warm from the last equilibrium; it becomes the last of

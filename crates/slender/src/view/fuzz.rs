@@ -436,6 +436,35 @@ fn a_moment_message_sets_the_moment_and_a_bad_one_keeps_the_equilibrium() {
         assert_eq!(error_of(&v).0, field, "{v}");
         assert!(kept, "{message}");
     }
+    // A moment added by arc length (at the file's nearest vertex), then removed.
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "add_moment", "rod": 0, "at": 0.25, "value": [0.0, 0.0, 0.01]}"#,
+    );
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert!(!kept);
+    assert_eq!(
+        v["view"]["rods"][0]["moments"][1]["moment"],
+        json!([0.0, 0.0, 0.01]),
+        "{v}"
+    );
+    for (message, field) in [
+        (
+            r#"{"op": "add_moment", "rod": 0, "at": 7.0}"#,
+            "rods[0].moments.at",
+        ),
+        (
+            r#"{"op": "remove_moment", "rod": 0, "moment": 2}"#,
+            "rods[0].moments[2]",
+        ),
+    ] {
+        let (v, kept) = exchange(&mut s, message);
+        assert_eq!(error_of(&v).0, field, "{v}");
+        assert!(kept, "{message}");
+    }
+    let (v, _) = exchange(&mut s, r#"{"op": "remove_moment", "rod": 0, "moment": 1}"#);
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    assert_eq!(s.spec().rods[0].moments.len(), 1);
     // The saved scene carries the new moment, and its solve gives the session's equilibrium.
     let (v, _) = exchange(&mut s, r#"{"op": "save"}"#);
     let saved: Scene = toml::from_str(v["toml"].as_str().unwrap()).unwrap();
@@ -964,6 +993,12 @@ fn request() -> impl Strategy<Value = String> {
             r#"{{"op": "moment", "rod": {r}, "moment": {m}, "value": {v}}}"#
         )),
         (index(), hostile_number(), vec3()).prop_map(|(r, a, v)| format!(
+            r#"{{"op": "add_moment", "rod": {r}, "at": {a}, "value": {v}}}"#
+        )),
+        (index(), index()).prop_map(|(r, m)| format!(
+            r#"{{"op": "remove_moment", "rod": {r}, "moment": {m}}}"#
+        )),
+        (index(), hostile_number(), vec3()).prop_map(|(r, a, v)| format!(
             r#"{{"op": "add_force", "rod": {r}, "at": {a}, "value": {v}}}"#
         )),
         (index(), index()).prop_map(|(r, f)| format!(
@@ -1051,6 +1086,36 @@ fn fuzz_follower_scene_requests() {
         prop_oneof![1 => request(), 1 => follower_edit],
         64,
         |_| Ok(()),
+    );
+}
+
+#[test]
+fn moment_edits_are_undone_one_by_one() {
+    // Set, add and remove are each one step of undo, and each undo gives back the equilibrium
+    // before it bit for bit.
+    let (mut s, mut h) = (clipped_cable(), History::default());
+    let e0 = equilibrium(&s);
+    for message in [
+        r#"{"op": "moment", "rod": 0, "moment": 0, "value": [0.0, 0.01, 0.0]}"#,
+        r#"{"op": "add_moment", "rod": 0, "at": 0.5, "value": [0.005, 0.0, 0.0]}"#,
+        r#"{"op": "remove_moment", "rod": 0, "moment": 0}"#,
+    ] {
+        let v = through(&mut h, &mut s, message);
+        assert_eq!(v["edit"]["converged"], json!(true), "{message}: {v}");
+    }
+    assert_eq!(s.spec().rods[0].moments.len(), 1);
+    assert_eq!(s.spec().rods[0].moments[0].moment, [0.005, 0.0, 0.0]);
+    for moments in [2, 1] {
+        let v = through(&mut h, &mut s, r#"{"op": "undo"}"#);
+        assert_eq!(v["ok"], json!(true), "{v}");
+        assert_eq!(s.spec().rods[0].moments.len(), moments);
+    }
+    through(&mut h, &mut s, r#"{"op": "undo"}"#);
+    assert_eq!(s.spec().rods[0].moments[0].moment, [0.01, 0.0, 0.0]);
+    assert_eq!(
+        equilibrium(&s),
+        e0,
+        "three undos: the example's equilibrium, bit for bit"
     );
 }
 

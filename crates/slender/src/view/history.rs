@@ -31,7 +31,7 @@ struct Op {
 }
 
 /// Operations that change the session in one step and are undone one by one.
-const DISCRETE: [&str; 9] = [
+const DISCRETE: [&str; 12] = [
     "place",
     "move_by",
     "add_support",
@@ -40,6 +40,9 @@ const DISCRETE: [&str; 9] = [
     "force",
     "add_force",
     "remove_force",
+    "moment",
+    "add_moment",
+    "remove_moment",
     "follow_stable",
 ];
 

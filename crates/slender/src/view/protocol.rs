@@ -133,6 +133,24 @@ pub enum Request {
         /// Moment (N m).
         value: [f64; 3],
     },
+    /// Add a dead point moment, set to `value` (N m; default zero), as the last of the rod's
+    /// `moments`, at the file's vertex nearest rest arc length `at` (m).
+    AddMoment {
+        /// Rod index.
+        rod: usize,
+        /// Rest arc length from vertex 0 (m).
+        at: f64,
+        /// Moment (N m).
+        #[serde(default)]
+        value: [f64; 3],
+    },
+    /// Remove point moment `moment` of a rod (first brought to zero warm).
+    RemoveMoment {
+        /// Rod index.
+        rod: usize,
+        /// Index in the rod's `moments`.
+        moment: usize,
+    },
     /// Add a dead point force, set to `value` (N; default zero), as the last of the rod's or
     /// strip's `forces`: on a rod at the file's vertex nearest rest arc length `at` (m), on a
     /// shell strip at grid vertex (`station`, `column`).
@@ -291,6 +309,8 @@ fn op_name(r: &Request) -> &'static str {
         Request::Gravity { .. } => "gravity",
         Request::Force { .. } => "force",
         Request::Moment { .. } => "moment",
+        Request::AddMoment { .. } => "add_moment",
+        Request::RemoveMoment { .. } => "remove_moment",
         Request::AddForce { .. } => "add_force",
         Request::RemoveForce { .. } => "remove_force",
         Request::FollowStable {} => "follow_stable",
@@ -475,6 +495,12 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             finite("value", value)?;
             Some(session.set_moment(*rod, *moment, *value)?)
         }
+        Request::AddMoment { rod, at, value } => {
+            finite("value", value)?;
+            finite("at", &[*at])?;
+            Some(session.add_moment(*rod, *at, *value)?)
+        }
+        Request::RemoveMoment { rod, moment } => Some(session.remove_moment(*rod, *moment)?),
         Request::AddForce {
             rod,
             shell,

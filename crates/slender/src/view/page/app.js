@@ -681,8 +681,15 @@ function updateMomentsPanel() {
     $("moments").innerHTML = moments.map((m) => {
       const inputs = ["x", "y", "z"].map((c) =>
         `<input id="${m.id}-${c}" type="number" step="any" aria-label="${m.where} ${c} (N m)">`).join("");
-      return `<div class="load"><span>${m.where}</span><div class="vec">${inputs}<button class="moment-apply" data-moment="${m.id}">Apply</button></div></div>`;
+      const remove = `<button class="moment-remove" data-moment="${m.id}" title="remove this moment" aria-label="remove ${m.where}">×</button>`;
+      return `<div class="load"><span>${m.where}</span><div class="vec">${inputs}<button class="moment-apply" data-moment="${m.id}">Apply</button>${remove}</div></div>`;
     }).join("");
+    for (const b of document.querySelectorAll("#moments .moment-remove")) {
+      b.addEventListener("click", () => {
+        const m = pointMoments().find((x) => x.id === b.dataset.moment);
+        if (m) edit({ op: "remove_moment", rod: m.index, moment: m.k });
+      });
+    }
     for (const b of document.querySelectorAll("#moments .moment-apply")) {
       b.addEventListener("click", () => {
         const m = pointMoments().find((x) => x.id === b.dataset.moment);
@@ -1286,7 +1293,7 @@ canvas.addEventListener("pointerup", async (ev) => {
   if (!down || Math.hypot(ev.clientX - down.x, ev.clientY - down.y) > 4 || gizmo.dragging) { down = null; return; }
   down = null;
   const tool = document.querySelector('input[name="tool"]:checked').value;
-  if (tool === "add-clip" || tool === "add-force") {
+  if (tool === "add-clip" || tool === "add-force" || tool === "add-moment") {
     const targets = rods.map((r) => r.mesh).concat(tool === "add-force" ? shells : []);
     // Meshes only: a strip's wireframe child is a line, which the ray "hits" within a metre.
     const hit = pick(ev, targets).find((h) => h.object.isMesh
@@ -1303,6 +1310,12 @@ canvas.addEventListener("pointerup", async (ev) => {
     const ri = hit.object.userData.rod;
     const at = arcLengthAt(ri, hit.point);
     if (tool === "add-clip") { await edit({ op: "add_support", rod: ri, kind: "clip", at }); return; }
+    if (tool === "add-moment") {
+      // A new moment starts at zero too: its row takes the value.
+      const reply = await edit({ op: "add_moment", rod: ri, at });
+      if (reply.ok) $(`m-${ri}-${view.rods[ri].moments.length - 1}-z`)?.focus();
+      return;
+    }
     // A new force starts at zero: its row in the panel takes the value.
     const reply = await edit({ op: "add_force", rod: ri, at });
     if (reply.ok) $(`f-${ri}-${view.rods[ri].forces.length - 1}-z`)?.focus();
@@ -1390,7 +1403,8 @@ function frameCamera() {
 document.querySelectorAll('input[name="gizmo"]').forEach((el) => el.addEventListener("change", () => setGizmoMode(el.value)));
 document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListener("change", () => {
   $("hint").textContent = !el.checked ? "" : el.value === "add-clip" ? "Click a cable to add a clip there."
-    : el.value === "add-force" ? "Click a cable or a flat cable to add a point force at its nearest vertex; set its value in the panel." : "";
+    : el.value === "add-force" ? "Click a cable or a flat cable to add a point force at its nearest vertex; set its value in the panel."
+    : el.value === "add-moment" ? "Click a cable to add a point moment at its nearest vertex; set its value in the panel." : "";
 }));
 $("colour").addEventListener("change", () => { if (view) { updateRods(); render(); } });
 $("arrows").addEventListener("change", () => { if (view) { updateArrows(); updateLoadArrows(); updateMomentArrows(); updateLineLoadArrows(); updateContacts(); render(); } });
