@@ -271,6 +271,22 @@ impl Rod {
         self.follower_loads(s).nth(i).map(|f| f.force)
     }
 
+    /// The moment (N m) in space now of the follower moment `moment` (given at rest) on vertex
+    /// `v` in state `s`: turned with the material frame of its edge. `None` if there is no
+    /// such follower moment.
+    pub fn follower_moment_in(&self, s: &RodState, v: usize, moment: Vec3) -> Option<Vec3> {
+        let f = self
+            .followers
+            .iter()
+            .find(|f| f.vertex == v && f.moment == moment && f.force == Vec3::zeros())?;
+        let (now, then) = (s.material_frame(f.edge), self.rest.material_frame(f.edge));
+        Some(
+            now[0] * then[0].dot(&moment)
+                + now[1] * then[1].dot(&moment)
+                + now[2] * then[2].dot(&moment),
+        )
+    }
+
     /// Undoes [`Self::set_follower_force_change`]: follower `i`'s rest force back to `old`
     /// (N), the load path cleared. The state's frozen loads are the caller's to restore.
     pub fn undo_follower_force_change(&mut self, i: usize, old: Vec3) {

@@ -838,6 +838,27 @@ impl Session {
         Some(now.into())
     }
 
+    /// The moment in space now (N m) of point moment `moment` of rod `rod`: the file's value
+    /// for a dead moment; for a follower moment, that value turned with the rod's material
+    /// frame at its vertex in the current equilibrium. `None` for an unknown rod or moment.
+    pub fn moment_now(&self, rod: usize, moment: usize) -> Option<[f64; 3]> {
+        let spec = self.spec.rods.get(rod)?.moments.get(moment)?;
+        if !spec.follower {
+            return Some(spec.moment);
+        }
+        let compiled = &self.scene.rods[rod];
+        let v = *compiled.moment_vertices.get(moment)?;
+        let part = compiled.load_part(v)?;
+        let member = &self.scene.structures[part.structure].members()[part.member];
+        let state = self.runs[part.structure].state.members[part.member].as_der()?;
+        let now = member.as_der()?.follower_moment_in(
+            state,
+            v - part.first_vertex,
+            Vec3::from(spec.moment),
+        )?;
+        Some(now.into())
+    }
+
     /// Sets point force `force` of rod `rod` (the file's `forces[force]`) to `value` (N) and
     /// re-solves its structure warm: the force changes along the load path from its old
     /// value, so a change too large for one Newton solve is split by the continuation. A

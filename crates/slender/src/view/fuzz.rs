@@ -1090,6 +1090,52 @@ fn fuzz_follower_scene_requests() {
 }
 
 #[test]
+fn a_follower_moment_is_shown_as_it_acts_now() {
+    // A twisting follower moment (about the cable's axis at rest) at the tip of a cantilever
+    // bent down by its weight: as it acts now it lies along the tip's tangent, with its size.
+    let text = r#"
+gravity = [0.0, 0.0, -9.81]
+[[rods]]
+name = "cantilever"
+elements = 30
+centerline = { kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 1.0 }
+section = { shape = "circle", diameter = 0.006 }
+material = { young = 1.0e9, poisson = 0.4, density = 1400.0 }
+supports = [{ kind = "clamp", vertex = "start" }]
+moments = [{ vertex = 29, moment = [0.004, 0.0, 0.0], follower = true }]
+"#;
+    let mut s = Session::new(toml::from_str(text).expect("parses")).expect("compiles");
+    let (v, _) = exchange(
+        &mut s,
+        r#"{"op": "moment", "rod": 0, "moment": 0, "value": [0.008, 0.0, 0.0]}"#,
+    );
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    let rod = &v["view"]["rods"][0];
+    let shown = &rod["moments"][0];
+    assert_eq!(shown["moment"], json!([0.008, 0.0, 0.0]));
+    assert_eq!(shown["follower"], json!(true));
+    let vec = |x: &Value| -> [f64; 3] { serde_json::from_value(x.clone()).unwrap() };
+    let now = vec(&shown["now"]);
+    let (a, b) = (vec(&rod["positions"][29]), vec(&rod["positions"][30]));
+    let e = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let (ne, nm) = (
+        e.iter().map(|x| x * x).sum::<f64>().sqrt(),
+        now.iter().map(|x| x * x).sum::<f64>().sqrt(),
+    );
+    let cross = [
+        now[1] * e[2] - now[2] * e[1],
+        now[2] * e[0] - now[0] * e[2],
+        now[0] * e[1] - now[1] * e[0],
+    ];
+    let sine = cross.iter().map(|x| x * x).sum::<f64>().sqrt() / (nm * ne);
+    assert!(e[2] / ne < -0.3, "the tip hangs down: {e:?}");
+    assert!(
+        (nm - 0.008).abs() <= 1e-15 && sine <= 1e-9,
+        "now {now:?}, tip tangent {e:?}"
+    );
+}
+
+#[test]
 fn moment_edits_are_undone_one_by_one() {
     // Set, add and remove are each one step of undo, and each undo gives back the equilibrium
     // before it bit for bit.

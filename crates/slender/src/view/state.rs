@@ -162,7 +162,10 @@ pub struct MomentView {
     /// The moment as the scene gives it (N m): fixed in space, or, for a follower load, in the
     /// rod's rest frame at the vertex.
     pub moment: [f64; 3],
-    /// A follower load (turns with the rod): not drawn in space.
+    /// The moment in space now (N m), as the page draws it: `moment` for a dead load, turned
+    /// with the rod's material frame at the vertex for a follower one.
+    pub now: [f64; 3],
+    /// A follower load (turns with the rod).
     pub follower: bool,
 }
 
@@ -306,11 +309,13 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
                 .moments
                 .iter()
                 .zip(&rod.moment_vertices)
-                .map(|(m, &v)| MomentView {
+                .enumerate()
+                .map(|(k, (m, &v))| MomentView {
                     vertex: v,
                     at: rod.node_arclengths[v],
                     position: res.positions[v],
                     moment: m.moment,
+                    now: session.moment_now(r, k).unwrap_or(m.moment),
                     follower: m.follower,
                 })
                 .collect();

@@ -539,28 +539,31 @@ function fmtMoment(n) {
   return Math.abs(n) >= 1e3 || Math.abs(n) < 1e-3 ? `${n.toExponential(2)} N·m` : `${n.toPrecision(3)} N·m`;
 }
 
-/** The dead point moments of the rods as double-headed arrows along their axes (the
- *  right-hand rule), tails at the loaded vertices; lengths relative to the largest moment now.
- *  Follower moments turn with the cable and are not drawn. */
+/** The point moments of the rods as double-headed arrows along their axes as they act now
+ *  (the right-hand rule), tails at the loaded vertices; lengths relative to the largest moment
+ *  now. A follower moment, turned with the cable, is drawn in the follower colour. */
 function updateMomentArrows() {
-  const dead = view.rods.flatMap((rod) => rod.moments.filter((m) => !m.follower));
+  const dead = view.rods.flatMap((rod) => rod.moments);
   while (momentArrows.length < dead.length) {
     const pair = [0, 1].map(() => new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, MOMENT_ARROW));
     for (const a of pair) world.add(a);
     momentArrows.push(pair);
   }
   let mmax = 0;
-  for (const m of dead) mmax = Math.max(mmax, Math.hypot(...m.moment));
+  for (const m of dead) mmax = Math.max(mmax, Math.hypot(...m.now));
   const scale = mmax > 0 ? (0.2 * sceneSize) / mmax : 0;
   const show = $("load-arrows").checked;
   momentArrows.forEach(([arrow, head], i) => {
     const m = dead[i];
     arrow.visible = head.visible = false;
     if (!m) return;
-    const v = v3(m.moment);
+    const v = v3(m.now);
     const n = v.length();
-    arrow.userData = { moment: n };
-    head.userData = { moment: n };
+    arrow.userData = { moment: n, follower: m.follower };
+    head.userData = { moment: n, follower: m.follower };
+    const colour = m.follower ? FOLLOWER_ARROW : MOMENT_ARROW;
+    arrow.setColor(colour);
+    head.setColor(colour);
     if (!show || n === 0) return;
     const len = Math.max(0.04 * sceneSize, n * scale);
     const dir = v.multiplyScalar(1 / n);
@@ -573,7 +576,7 @@ function updateMomentArrows() {
     head.setDirection(dir);
     head.setLength(0.2 * len, 0.2 * len, 0.1 * len);
     arrow.visible = head.visible = true;
-    labelSpecs.push({ at: at.clone().addScaledVector(dir, len), text: fmtMoment(n), cls: "label load" });
+    labelSpecs.push({ at: at.clone().addScaledVector(dir, len), text: m.follower ? `${fmtMoment(n)} follower` : fmtMoment(n), cls: "label load" });
   });
 }
 
