@@ -133,33 +133,39 @@ fn gradient(rod: &slender_core::rod::Rod, s: &RodState, lambda: f64) -> Vec<f64>
         .collect()
 }
 
+/// A 1 m cantilever of 10 elements (the section of a 6 mm cable) under gravity, clamped at
+/// its start, for the loads to be added.
+fn cantilever_builder() -> RodBuilder {
+    RodBuilder::new(
+        RestCurve::Straight {
+            start: [0.0; 3],
+            direction: [1.0, 0.0, 0.0],
+            length: 1.0,
+        },
+        RodProperties {
+            stiffness: SectionStiffness {
+                ea: 2.8e4,
+                ei1: 0.064,
+                ei2: 0.064,
+                gj: 0.046,
+            },
+            linear_density: 0.04,
+        },
+    )
+    .elements(10)
+    .clamp_start()
+    .gravity(Vec3::new(0.0, 0.0, -9.81))
+}
+
 #[test]
 fn the_moment_path_starts_at_the_old_loads_and_ends_at_the_new() {
     let (old, new) = (Vec3::new(0.0, 0.02, 0.03), Vec3::new(0.05, -0.01, 0.0));
     let build = |m: Vec3| {
-        RodBuilder::new(
-            RestCurve::Straight {
-                start: [0.0; 3],
-                direction: [1.0, 0.0, 0.0],
-                length: 1.0,
-            },
-            RodProperties {
-                stiffness: SectionStiffness {
-                    ea: 2.8e4,
-                    ei1: 0.064,
-                    ei2: 0.064,
-                    gj: 0.046,
-                },
-                linear_density: 0.04,
-            },
-        )
-        .elements(10)
-        .clamp_start()
-        .gravity(Vec3::new(0.0, 0.0, -9.81))
-        .point_moment(10, m)
-        .point_moment(5, Vec3::new(0.0, 0.01, 0.0))
-        .build()
-        .unwrap()
+        cantilever_builder()
+            .point_moment(10, m)
+            .point_moment(5, Vec3::new(0.0, 0.01, 0.0))
+            .build()
+            .unwrap()
     };
     let (rod_old, rod_new) = (build(old), build(new));
     // A bent state, reached by solving under the old moment.
@@ -330,28 +336,10 @@ fn the_follower_moment_path_starts_at_the_old_load_and_ends_at_the_new() {
     use slender_core::solver::EquilibriumProblem;
     let (old, new) = (Vec3::new(0.0, 0.0, 0.05), Vec3::new(0.02, -0.03, 0.01));
     let build = |m: Vec3| {
-        RodBuilder::new(
-            RestCurve::Straight {
-                start: [0.0; 3],
-                direction: [1.0, 0.0, 0.0],
-                length: 1.0,
-            },
-            RodProperties {
-                stiffness: SectionStiffness {
-                    ea: 2.8e4,
-                    ei1: 0.064,
-                    ei2: 0.064,
-                    gj: 0.046,
-                },
-                linear_density: 0.04,
-            },
-        )
-        .elements(10)
-        .clamp_start()
-        .gravity(Vec3::new(0.0, 0.0, -9.81))
-        .follower_load(10, Vec3::zeros(), m)
-        .build()
-        .unwrap()
+        cantilever_builder()
+            .follower_load(10, Vec3::zeros(), m)
+            .build()
+            .unwrap()
     };
     let mut rod = build(old);
     let start = rod.rest_state();

@@ -62,44 +62,33 @@ impl FramedCore {
         } else {
             twist_angle(&after.relative(&s.frames[frame]), &a_new).value
         };
-        self.load_path.clear();
-        self.load_path.loads = [1.0, 1.0];
-        self.load_path.moment_change = Some(i);
-        self.moments[i] = after;
-        self.moments.push(before);
-        s.moment_angles[i] = [bending, angles_old[1]];
-        s.moment_angles.push(angles_old);
+        self.load_path.begin_moment_change(
+            &mut self.moments,
+            &mut s.moment_angles,
+            i,
+            after,
+            [bending, angles_old[1]],
+        );
         Ok(i)
     }
 
     /// Ends a converged moment change in `s` (at λ = 1): the old moment, weighted zero there,
     /// and its angles are dropped and the load path cleared.
     pub fn finish_moment_change(&mut self, s: &mut FramedState) {
-        if self.load_path.moment_change.take().is_some() {
-            self.moments.pop();
-            s.moment_angles.truncate(self.moments.len());
-        }
+        self.load_path.end_moment_change(&mut self.moments);
+        s.moment_angles.truncate(self.moments.len());
         self.clear_load_path();
     }
 
     /// Undoes [`Self::set_moment_change`] of moment `i`: its old value back in place, the load
     /// path cleared. The state is the caller's to restore.
     pub fn undo_moment_change(&mut self, i: usize) {
-        if self.load_path.moment_change.take().is_some() {
-            if let Some(old) = self.moments.pop() {
-                self.moments[i] = old;
-            }
-        }
+        self.load_path.undo_moment_change(&mut self.moments, i);
         self.clear_load_path();
     }
 
-    /// Ends a moment change still on the load path with the new moment (the old one dropped
-    /// from the model; a state's extra angle is then ignored and dropped by its next update).
-    /// Every change of the load path calls it first, so the model never keeps a stale old
-    /// moment at full weight.
+    /// See `RodLoadPath::end_moment_change`.
     pub(crate) fn end_moment_change(&mut self) {
-        if self.load_path.moment_change.take().is_some() {
-            self.moments.pop();
-        }
+        self.load_path.end_moment_change(&mut self.moments);
     }
 }

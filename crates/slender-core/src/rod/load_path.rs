@@ -292,6 +292,48 @@ impl RodLoadPath {
         Ok(())
     }
 
+    /// Makes this path the change of moment `i` of `moments` (any model's moment loads) to
+    /// `after`, in place: full loads, `after` at `i` (weighted λ), the old value appended last
+    /// (weighted 1 − λ), and `angles` (the state's per-moment angles) likewise: `after_angle`
+    /// at `i`, the old angle appended. A change still pending is ended first.
+    pub(crate) fn begin_moment_change<T, A: Copy>(
+        &mut self,
+        moments: &mut Vec<T>,
+        angles: &mut Vec<A>,
+        i: usize,
+        after: T,
+        after_angle: A,
+    ) {
+        self.end_moment_change(moments);
+        self.clear();
+        self.loads = [1.0, 1.0];
+        self.moment_change = Some(i);
+        let before = std::mem::replace(&mut moments[i], after);
+        moments.push(before);
+        let before_angle = std::mem::replace(&mut angles[i], after_angle);
+        angles.push(before_angle);
+    }
+
+    /// Ends a moment change with the new moment: the old one, appended last, dropped from
+    /// `moments` (a state's extra angle is then ignored and dropped by its next update). Every
+    /// change of a model's load path calls it first, so a model never keeps a stale old moment
+    /// at full weight. Does nothing without a change.
+    pub(crate) fn end_moment_change<T>(&mut self, moments: &mut Vec<T>) {
+        if self.moment_change.take().is_some() {
+            moments.pop();
+        }
+    }
+
+    /// Undoes a moment change of moment `i`: the old value, appended last, back in its place.
+    /// Does nothing without a change.
+    pub(crate) fn undo_moment_change<T>(&mut self, moments: &mut Vec<T>, i: usize) {
+        if self.moment_change.take().is_some() {
+            if let Some(old) = moments.pop() {
+                moments[i] = old;
+            }
+        }
+    }
+
     /// The factor on moment `i` of `n_moments` at path parameter `lambda`, given the factor
     /// `load` on all loads: while moment `k` changes, `load·λ` on it (the new value) and
     /// `load·(1 − λ)` on the last moment (the old value); `load` otherwise.

@@ -72,44 +72,33 @@ impl Rod {
             let e_now = s.positions[edge + 1] - s.positions[edge];
             after.updated_angle(&e_rest, &e_now, 0.0)
         };
-        self.load_path.clear();
-        self.load_path.loads = [1.0, 1.0];
-        self.load_path.moment_change = Some(i);
-        self.moments[i] = after;
-        self.moments.push(before);
-        s.load_angles[i] = alpha_new;
-        s.load_angles.push(alpha_old);
+        self.load_path.begin_moment_change(
+            &mut self.moments,
+            &mut s.load_angles,
+            i,
+            after,
+            alpha_new,
+        );
         Ok(i)
     }
 
     /// Ends a converged moment change in `s` (at λ = 1): the old moment, weighted zero there,
     /// and its angle are dropped and the load path cleared. Does nothing without a change.
     pub fn finish_moment_change(&mut self, s: &mut RodState) {
-        if self.load_path.moment_change.take().is_some() {
-            self.moments.pop();
-            s.load_angles.truncate(self.moments.len());
-        }
+        self.load_path.end_moment_change(&mut self.moments);
+        s.load_angles.truncate(self.moments.len());
         self.clear_load_path();
     }
 
     /// Undoes [`Self::set_moment_change`] of moment `i`: its old value back in place, the load
     /// path cleared. The state is the caller's to restore (it holds one angle too many).
     pub fn undo_moment_change(&mut self, i: usize) {
-        if self.load_path.moment_change.take().is_some() {
-            if let Some(old) = self.moments.pop() {
-                self.moments[i] = old;
-            }
-        }
+        self.load_path.undo_moment_change(&mut self.moments, i);
         self.clear_load_path();
     }
 
-    /// Ends a moment change still on the load path with the new moment (the old one dropped
-    /// from the model; a state's extra angle is then ignored and dropped by its next update).
-    /// Every change of the load path calls it first, so the model never keeps a stale old
-    /// moment at full weight.
+    /// See [`RodLoadPath::end_moment_change`](super::RodLoadPath::end_moment_change).
     pub(crate) fn end_moment_change(&mut self) {
-        if self.load_path.moment_change.take().is_some() {
-            self.moments.pop();
-        }
+        self.load_path.end_moment_change(&mut self.moments);
     }
 }
