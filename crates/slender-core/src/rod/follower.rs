@@ -178,6 +178,13 @@ impl Rod {
     }
 }
 
+/// Which part of a follower load an edit changes.
+#[derive(Clone, Copy)]
+enum FollowerPart {
+    Force,
+    Moment,
+}
+
 /// Numbers per follower load in [`Rod::append_lagged_loads`]: force (3), couple (3), torque
 /// (1), the transitions of force (3), couple (3) and torque (1).
 const LAGGED_PER_FOLLOWER: usize = 14;
@@ -236,28 +243,7 @@ impl Rod {
         old: Vec3,
         new: Vec3,
     ) -> Result<usize, ModelError> {
-        if old.iter().chain(new.iter()).any(|c| !c.is_finite()) {
-            return Err(ModelError::structure("follower_change", "must be finite"));
-        }
-        let Some(i) = self
-            .followers
-            .iter()
-            .position(|f| f.vertex == v && f.force == old && f.moment == Vec3::zeros())
-        else {
-            return Err(ModelError::structure(
-                "follower_change.vertex",
-                format!("no follower force {old:?} (N) acts on vertex {v}"),
-            ));
-        };
-        self.end_moment_change();
-        self.load_path.clear();
-        self.load_path.loads = [1.0, 1.0];
-        self.load_path.follower_change = Some((i, old - new));
-        self.followers[i].force = new;
-        // The frames are those of `s`: the refresh only re-splits the same load into the new
-        // force and the transition.
-        self.refresh_followers(s);
-        Ok(i)
+        self.change_follower(s, v, old, new, FollowerPart::Force)
     }
 
     /// The force (N) in space now of the follower force `force` (given at rest) on vertex `v`
@@ -307,27 +293,55 @@ impl Rod {
         old: Vec3,
         new: Vec3,
     ) -> Result<usize, ModelError> {
+        self.change_follower(s, v, old, new, FollowerPart::Moment)
+    }
+
+    /// The change of `part` of the follower on vertex `v` (the other part zero) from `old` to
+    /// `new`, given at rest, as [`Self::set_follower_force_change`] and
+    /// [`Self::set_follower_moment_change`] describe it.
+    fn change_follower(
+        &mut self,
+        s: &mut RodState,
+        v: usize,
+        old: Vec3,
+        new: Vec3,
+        part: FollowerPart,
+    ) -> Result<usize, ModelError> {
+        let (field, what, unit) = match part {
+            FollowerPart::Force => ("follower_change", "force", "N"),
+            FollowerPart::Moment => ("follower_moment_change", "moment", "N m"),
+        };
         if old.iter().chain(new.iter()).any(|c| !c.is_finite()) {
-            return Err(ModelError::structure(
-                "follower_moment_change",
-                "must be finite",
-            ));
+            return Err(ModelError::structure(field, "must be finite"));
         }
-        let Some(i) = self
-            .followers
-            .iter()
-            .position(|f| f.vertex == v && f.moment == old && f.force == Vec3::zeros())
-        else {
+        let Some(i) = self.followers.iter().position(|f| {
+            let (this, other) = match part {
+                FollowerPart::Force => (f.force, f.moment),
+                FollowerPart::Moment => (f.moment, f.force),
+            };
+            f.vertex == v && this == old && other == Vec3::zeros()
+        }) else {
             return Err(ModelError::structure(
-                "follower_moment_change.vertex",
-                format!("no follower moment {old:?} (N m) acts on vertex {v}"),
+                format!("{field}.vertex"),
+                format!("no follower {what} {old:?} ({unit}) acts on vertex {v}"),
             ));
         };
         self.end_moment_change();
         self.load_path.clear();
         self.load_path.loads = [1.0, 1.0];
-        self.load_path.follower_moment_change = Some((i, old - new));
-        self.followers[i].moment = new;
+        let change = Some((i, old - new));
+        match part {
+            FollowerPart::Force => {
+                self.load_path.follower_change = change;
+                self.followers[i].force = new;
+            }
+            FollowerPart::Moment => {
+                self.load_path.follower_moment_change = change;
+                self.followers[i].moment = new;
+            }
+        }
+        // The frames are those of `s`: the refresh only re-splits the same load into the new
+        // value and the transition.
         self.refresh_followers(s);
         Ok(i)
     }
