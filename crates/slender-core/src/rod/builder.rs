@@ -307,14 +307,15 @@ impl RodBuilder {
             let t = updated_ref_twist(&frames.edge(l), &frames.edge(r), 0.0);
             frames.ref_twist.push(t);
         }
-        let moments = moment_loads(&self.point_moments, &tangents);
-        let rest = RodState {
+        let mut rest = RodState {
             positions: positions.clone(),
             thetas: rest_thetas,
             frames,
-            load_angles: vec![0.0; moments.len()],
+            load_angles: Vec::new(),
             followers: Vec::new(),
         };
+        let moments = moment_loads(&self.point_moments, &rest);
+        rest.load_angles = vec![[0.0; 2]; moments.len()];
 
         let polygon_arclengths: Vec<f64> = std::iter::once(0.0)
             .chain(rest_lengths.iter().scan(0.0, |s, l| {

@@ -545,16 +545,13 @@ impl Rod {
                 0.0
             }
         };
-        // Moment loads' unwrapped angles follow their edges (old and new edge from the same
-        // map, before the positions are overwritten).
-        for (m, alpha) in self.moments.iter().zip(state.load_angles.iter_mut()) {
-            let j = m.edge;
-            let (a, b) = (state.positions[j], state.positions[j + 1]);
-            let e_old = b - a;
-            let e_new =
-                motion.carry(&b, from, to, weight(j + 1)) - motion.carry(&a, from, to, weight(j));
-            *alpha = m.updated_angle(&e_old, &e_new, *alpha);
-        }
+        // Moment loads' unwrapped angles follow their edges' material frames: the frames
+        // before the move are kept (inline for up to four moments) to continue from.
+        let before: smallvec::SmallVec<[[Vec3; 3]; 4]> = self
+            .moments
+            .iter()
+            .map(|m| state.material_frame(m.edge))
+            .collect();
         for v in 0..=n {
             let w = weight(v);
             if w != 0.0 {
@@ -568,5 +565,9 @@ impl Rod {
         state
             .frames
             .transport_in_place(&state.positions, &self.hinge_edges);
+        for (k, m) in self.moments.iter().enumerate() {
+            let now = state.material_frame(m.edge);
+            state.load_angles[k] = m.updated_angles(&before[k], &now, state.load_angles[k]);
+        }
     }
 }

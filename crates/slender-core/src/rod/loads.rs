@@ -8,6 +8,7 @@ use crate::assembly::Assembler;
 use crate::linalg::SymmetricMatrix;
 
 use super::model::Rod;
+use super::moment::MOMENT_DOFS;
 use super::state::RodState;
 
 impl Rod {
@@ -56,22 +57,18 @@ impl Rod {
             }
             asm.generalized_force(self.dofs.theta(j), tau);
         }
-        let mut g6 = SVector::<f64, 6>::zeros();
-        let mut h6 = SMatrix::<f64, 6, 6>::zeros();
+        let mut g7 = SVector::<f64, MOMENT_DOFS>::zeros();
+        let mut h7 = SMatrix::<f64, MOMENT_DOFS, MOMENT_DOFS>::zeros();
         let n_moments = self.moments.len();
-        for (i, (m, &alpha)) in self.moments.iter().zip(&s.load_angles).enumerate() {
+        for (i, (m, &angles)) in self.moments.iter().zip(&s.load_angles).enumerate() {
             // The moment's own factor: λ and 1 − λ on the new and old values of an edit.
             let w = self.load_path.moment_factor(i, n_moments, load, lambda);
             let j = m.edge;
-            let e = s.positions[j + 1] - s.positions[j];
-            let v = m.bending_potential(&e, alpha, w, &mut g6, &mut h6);
-            let dtheta = s.thetas[j] - self.rest.thetas[j];
-            asm.load(
-                -v + w * m.axial * dtheta,
-                w * (m.bending + m.axial.abs()) / self.length,
-            );
-            asm.local(&self.edge_dofs(j), 0.0, 0.0, &g6, &h6);
-            asm.generalized_force(self.dofs.theta(j), w * m.axial);
+            let length = s.frames.lengths[j].length;
+            let (v, _) = m.potential(&s.material_frame(j), length, angles, w, &mut g7, &mut h7);
+            let [mb, mt] = m.magnitudes();
+            asm.load(-v, w * (mb + mt.abs()) / self.length);
+            asm.local(&self.moment_dofs(j), 0.0, 0.0, &g7, &h7);
         }
     }
 }

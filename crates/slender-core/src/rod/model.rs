@@ -107,10 +107,7 @@ impl Rod {
             f(&h.dofs);
         }
         for m in &self.moments {
-            let mut d = [FIXED; 7];
-            d[..6].copy_from_slice(&self.edge_dofs(m.edge));
-            d[6] = self.dofs.theta(m.edge);
-            f(&d);
+            f(&self.moment_dofs(m.edge));
         }
     }
 
@@ -155,6 +152,14 @@ impl Rod {
             map[3 + k] = self.dofs.vertex(j + 1, k);
         }
         map
+    }
+
+    /// The stencil of a moment on edge `j`: `[x_j, x_{j+1}, θ_j]` (see `moment.rs`).
+    pub(super) fn moment_dofs(&self, j: usize) -> [usize; super::moment::MOMENT_DOFS] {
+        let mut d = [FIXED; super::moment::MOMENT_DOFS];
+        d[..6].copy_from_slice(&self.edge_dofs(j));
+        d[6] = self.dofs.theta(j);
+        d
     }
 
     pub(super) fn hinge_dofs(&self, vertex: usize, l: EdgeId, r: EdgeId) -> [usize; HINGE_DOFS] {

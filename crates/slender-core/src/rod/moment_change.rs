@@ -1,17 +1,18 @@
 //! Changing a dead point moment along the load path: the interactive edit of a moment.
 //!
-//! A dead moment's potential is −M_b α − T θ (see `moment.rs`), with α the unwrapped angle of
-//! its edge about the moment's own axis n̂. A new value generally has another axis, so the old
-//! and new potentials cannot be blended in one term. During the edit the rod carries both: the
+//! A dead moment's potential is −M_b τ_n̂ − T τ_t̄ (see `moment.rs`), with τ_a the unwrapped
+//! twist angle of its edge's material frame about the fixed axis a. A new value generally
+//! has another axis n̂, so the old and new potentials cannot be blended in one term. During the edit the rod carries both: the
 //! new moment in the old one's place, weighted λ, and the old one appended last, weighted
 //! 1 − λ, each with its own angle in the state. At λ = 0 the loads are exactly the old ones
 //! (the old angle keeps its whole turns), so the last equilibrium is still an equilibrium;
 //! at λ = 1 they are the new ones. [`Rod::finish_moment_change`] then drops the old moment,
 //! whose weight is zero.
 //!
-//! The new moment's angle starts from the rest edge: the old angle when the axis is the same
-//! (±), else the edge's angle about the new axis in (−π, π]. Whole turns about a new axis are
-//! not known; they shift the potential by a constant and change neither forces nor Hessian.
+//! The new moment's angles start from the old ones when the axis is the same (±; the axial
+//! axis always is), else the frame's twist angle about the new axis in (−2π, 2π]. Whole turns
+//! about a new axis are not known; they shift the potential by a constant and change neither
+//! forces nor Hessian.
 
 use crate::error::ModelError;
 use crate::geometry::Vec3;
@@ -45,11 +46,10 @@ impl Rod {
             ));
         }
         // The moment acts on the edge starting at the vertex (the last edge at the end), split
-        // against its rest tangent as the builder splits it: the same bits.
+        // against its rest frame as the builder splits it: the same bits.
         let edge = v.min(n - 1);
-        let rest = &self.rest.positions;
-        let tangent = (rest[edge + 1] - rest[edge]).normalize();
-        let before = MomentLoad::new(edge, old, &tangent);
+        let rest = self.rest.material_frame(edge);
+        let before = MomentLoad::new(edge, old, &rest);
         let Some(i) = self.moments.iter().position(|m| *m == before) else {
             return Err(ModelError::structure(
                 "moment_change.vertex",
@@ -62,22 +62,23 @@ impl Rod {
                 "the state does not belong to this rod (its moment angles)",
             ));
         }
-        let after = MomentLoad::new(edge, new, &tangent);
-        let alpha_old = s.load_angles[i];
-        let same_axis = after.axis.cross(&before.axis).norm() <= 16.0 * f64::EPSILON;
-        let alpha_new = if same_axis {
-            alpha_old * after.axis.dot(&before.axis).signum()
+        let after = MomentLoad::new(edge, new, &rest);
+        let angles_old = s.load_angles[i];
+        let (a_new, a_old) = (after.axes()[0], before.axes()[0]);
+        // The axial axis is the rest tangent for both: its angle carries on. So does the
+        // bending angle about the same (±) axis; about a new one it starts in (−2π, 2π].
+        let bending = if a_new.cross(&a_old).norm() <= 16.0 * f64::EPSILON {
+            angles_old[0] * a_new.dot(&a_old).signum()
         } else {
-            let e_rest = rest[edge + 1] - rest[edge];
-            let e_now = s.positions[edge + 1] - s.positions[edge];
-            after.updated_angle(&e_rest, &e_now, 0.0)
+            after.angles_of(&s.material_frame(edge))[0]
         };
+        let angles_new = [bending, angles_old[1]];
         self.load_path.begin_moment_change(
             &mut self.moments,
             &mut s.load_angles,
             i,
             after,
-            alpha_new,
+            angles_new,
         );
         Ok(i)
     }

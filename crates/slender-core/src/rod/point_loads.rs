@@ -5,6 +5,7 @@ use crate::error::ModelError;
 use crate::geometry::Vec3;
 
 use super::moment::MomentLoad;
+use super::state::RodState;
 
 /// A dead force (N) on a vertex, scaled by the load factor.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,14 +80,14 @@ pub(super) fn nodal_forces(masses: &[f64], gravity: Vec3, forces: &[PointForce])
 }
 
 /// The point moments as loads on edges (the edge starting at the vertex; the last edge for
-/// the last vertex), split against the rest tangents.
-pub(super) fn moment_loads(moments: &[PointMoment], tangents: &[Vec3]) -> Vec<MomentLoad> {
-    let n = tangents.len();
+/// the last vertex), split against the rest tangents of `rest`, the rod's rest state.
+pub(super) fn moment_loads(moments: &[PointMoment], rest: &RodState) -> Vec<MomentLoad> {
+    let n = rest.thetas().len();
     moments
         .iter()
         .map(|pm| {
             let edge = pm.vertex.min(n - 1);
-            MomentLoad::new(edge, pm.moment, &tangents[edge])
+            MomentLoad::new(edge, pm.moment, &rest.material_frame(edge))
         })
         .collect()
 }

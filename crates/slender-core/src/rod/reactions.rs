@@ -20,6 +20,7 @@ use super::clamp;
 use super::frames::EdgeId;
 use super::hinge::{EdgeHessian, HingeFrame, HingeVector};
 use super::model::Rod;
+use super::moment::MOMENT_DOFS;
 use super::state::RodState;
 use super::stretching::stretching_energy;
 
@@ -143,16 +144,17 @@ impl Rod {
         {
             g[v] -= f * load + f0 + self.load_transition(v, lambda);
         }
-        let mut h6 = SMatrix::<f64, 6, 6>::zeros();
+        let mut g7 = SVector::<f64, MOMENT_DOFS>::zeros();
+        let mut h7 = SMatrix::<f64, MOMENT_DOFS, MOMENT_DOFS>::zeros();
         let n_moments = self.moments.len();
-        for (i, (m, &alpha)) in self.moments.iter().zip(&s.load_angles).enumerate() {
+        for (i, (m, &angles)) in self.moments.iter().zip(&s.load_angles).enumerate() {
             let w = self.load_path.moment_factor(i, n_moments, load, lambda);
             let j = m.edge;
-            let e = s.positions[j + 1] - s.positions[j];
-            m.bending_potential(&e, alpha, w, &mut g6, &mut h6);
-            g[j] += g6.fixed_rows::<3>(0);
-            g[j + 1] += g6.fixed_rows::<3>(3);
-            gt[j] -= w * m.axial;
+            let length = s.frames.lengths[j].length;
+            m.potential(&s.material_frame(j), length, angles, w, &mut g7, &mut h7);
+            g[j] += g7.fixed_rows::<3>(0);
+            g[j + 1] += g7.fixed_rows::<3>(3);
+            gt[j] += g7[6];
         }
         for (i, (f, now)) in self.followers.iter().zip(&s.followers).enumerate() {
             let j = f.edge;
@@ -195,8 +197,8 @@ impl Rod {
 
     /// Resultant of the applied loads at load factor `load` in state `s`: dead nodal forces
     /// (gravity, point forces) at their vertices, and point moments as they act in `s` (the
-    /// couple of their bending part on the edge's end vertices plus their axial torque about
-    /// the current tangent).
+    /// couple on the edge's end vertices plus the torque about its tangent, −∂V/∂ψ of
+    /// `moment.rs`).
     pub fn applied_loads(&self, s: &RodState, load: f64) -> LoadResultant {
         let lambda = load;
         let load = self.load_path.load_factor(load);
@@ -222,18 +224,17 @@ impl Rod {
             moment += e.cross(&c);
             moment += s.frames.edges[j].tangent * tau;
         }
-        let mut g6 = SVector::<f64, 6>::zeros();
-        let mut h6 = SMatrix::<f64, 6, 6>::zeros();
+        let mut g7 = SVector::<f64, MOMENT_DOFS>::zeros();
+        let mut h7 = SMatrix::<f64, MOMENT_DOFS, MOMENT_DOFS>::zeros();
         let n_moments = self.moments.len();
-        for (i, (m, &alpha)) in self.moments.iter().zip(&s.load_angles).enumerate() {
+        for (i, (m, &angles)) in self.moments.iter().zip(&s.load_angles).enumerate() {
             let w = self.load_path.moment_factor(i, n_moments, load, lambda);
             let j = m.edge;
-            let e = s.positions[j + 1] - s.positions[j];
-            m.bending_potential(&e, alpha, w, &mut g6, &mut h6);
-            // Forces −∂V/∂x on the two vertices: equal and opposite, a pure couple.
-            let f1: Vec3 = -g6.fixed_rows::<3>(3).into_owned();
-            moment += e.cross(&f1);
-            moment += s.frames.edges[j].tangent * (w * m.axial);
+            let length = s.frames.lengths[j].length;
+            // The couple of the forces −∂V/∂x on the edge's vertices plus the torque −∂V/∂θ
+            // about its tangent: −∂V/∂ψ.
+            let (_, dv) = m.potential(&s.material_frame(j), length, angles, w, &mut g7, &mut h7);
+            moment -= dv;
         }
         LoadResultant { force, moment }
     }

@@ -8,17 +8,16 @@ use super::model::Rod;
 use super::state::RodState;
 
 impl Rod {
-    /// Continues the moment loads' unwrapped angles from `old` to the positions of `out`, and
+    /// Continues the moment loads' unwrapped angles from `old` to the frames of `out`, and
     /// carries the frozen follower loads over unchanged (they change only when refreshed, so a
     /// trial state's energy is measured under the same loads as the state it left).
     pub(super) fn update_load_angles(&self, old: &RodState, out: &mut RodState) {
         out.followers.clone_from(&old.followers);
         out.load_angles.clear();
-        for (m, &alpha) in self.moments.iter().zip(&old.load_angles) {
+        for (m, &angles) in self.moments.iter().zip(&old.load_angles) {
             let j = m.edge;
-            let e_old = old.positions[j + 1] - old.positions[j];
-            let e_new = out.positions[j + 1] - out.positions[j];
-            out.load_angles.push(m.updated_angle(&e_old, &e_new, alpha));
+            let updated = m.updated_angles(&old.material_frame(j), &out.material_frame(j), angles);
+            out.load_angles.push(updated);
         }
     }
 

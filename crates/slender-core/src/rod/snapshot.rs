@@ -35,8 +35,8 @@ pub struct RodSnapshot {
     pub twists: Vec<f64>,
     /// The clamps' holds at the start and end, if clamped.
     pub clamps: [Option<ClampHold>; 2],
-    /// Unwrapped angles of the moment loads.
-    pub load_angles: Vec<f64>,
+    /// Unwrapped twist angles (rad) of the moment loads about their two axes.
+    pub load_angles: Vec<[f64; 2]>,
 }
 
 impl Rod {

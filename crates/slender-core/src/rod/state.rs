@@ -10,8 +10,9 @@ pub struct RodState {
     pub(super) positions: Vec<Vec3>,
     pub(super) thetas: Vec<f64>,
     pub(super) frames: ReferenceFrames,
-    /// Unwrapped angle (rad) of each moment load's edge about its axis (see `moment.rs`).
-    pub(super) load_angles: Vec<f64>,
+    /// Unwrapped twist angles (rad) of each moment load's edge frame about its two fixed axes
+    /// (see `moment.rs`).
+    pub(super) load_angles: Vec<[f64; 2]>,
     /// Current dead-load stand-ins of the follower loads (see `follower.rs`).
     pub(super) followers: Vec<super::follower::FollowerState>,
 }

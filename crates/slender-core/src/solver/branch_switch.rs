@@ -11,6 +11,12 @@ use super::report::SolveReport;
 /// Largest number of successive switches (each along the lowest mode of the last result).
 const MAX_SWITCHES: usize = 6;
 
+/// Largest residual, relative to the force scale, of an equilibrium a switch may land on. A
+/// solve may report convergence at its round-off floor, and near a singular point of a load's
+/// potential (a dead moment's twist angle at a half turn, `framed/moment.rs`) that floor is
+/// huge: a kick that ran there found no equilibrium, whatever the test said.
+const SWITCH_RELATIVE_RESIDUAL: f64 = 1e-6;
+
 /// What a branch switch did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BranchSwitch {
@@ -92,7 +98,7 @@ pub fn follow_unstable_mode<P: EquilibriumProblem>(
         for sign in [1.0, -1.0] {
             kick(problem, &current, &mode, sign * scale, &mut kicked);
             let report = solver.solve_in_place(problem, &mut kicked, load, load);
-            if !report.converged() {
+            if !report.converged() || !(report.relative_residual <= SWITCH_RELATIVE_RESIDUAL) {
                 continue;
             }
             let e = problem.energy(&kicked, load);
