@@ -11,6 +11,7 @@ mod common;
 use common::max_distance;
 use slender_core::geometry::Vec3;
 use slender_core::rod::{RestCurve, RodBuilder, RodProperties, RodState, SectionStiffness};
+use slender_core::scene::spec::UnstablePolicy;
 use slender_core::scene::{Scene, Session};
 use slender_core::solver::{EquilibriumSolver, SolverParams};
 
@@ -162,6 +163,48 @@ fn a_sagging_cantilever_takes_a_dead_moment_past_m_l_over_ei_one_in_every_model(
     eprintln!("tips: {tips:?}");
     assert!(distance(&tips[0], &tips[1]) <= 1e-3, "{tips:?}");
     assert!(distance(&tips[0], &tips[2]) <= 3e-3, "{tips:?}");
+}
+
+#[test]
+fn past_lateral_buckling_the_planar_arc_is_reported_with_its_own_lowest_eigenvalue() {
+    // M L/EI = 2.5 about z buckles the weightless cantilever sideways (λ_min < 0 on the planar
+    // arc), and the branch switch finds no stable equilibrium near the arc: the solve keeps
+    // the arc and reports it unstable, with the inertia and λ_min of the arc itself — the
+    // same as when the scene asks to keep unstable equilibria. (The switch's last kick used
+    // to leave its own Hessian behind: the Cosserat rod reported λ_min = −6.4e24 and 238
+    // null modes for the arc, measured.)
+    let m = [0.0, 0.0, 2.5 * bending_stiffness()];
+    for model in ["der", "cosserat"] {
+        let mut reports = Vec::new();
+        for policy in [UnstablePolicy::Follow, UnstablePolicy::Keep] {
+            let mut scene = cantilever(model, 40, m, 0.0);
+            scene.unstable = policy;
+            let s = Session::new(scene).expect("a valid scene");
+            let r = s.report(0).clone();
+            assert!(
+                r.converged() && r.stable() == Some(false),
+                "{model}, {policy:?}: {r:?}"
+            );
+            let tip = *positions(&s).last().unwrap();
+            assert!(
+                tip[2].abs() < 1e-9,
+                "{model}: the arc is planar, tip {tip:?}"
+            );
+            reports.push((r, tip));
+        }
+        let ((follow, tip_f), (keep, tip_k)) = (&reports[0], &reports[1]);
+        let (lf, lk) = (follow.lambda_min.unwrap(), keep.lambda_min.unwrap());
+        eprintln!("{model}: λ_min {lf} (follow) and {lk} (keep)");
+        assert!(
+            lk < 0.0 && (lf - lk).abs() <= 1e-6 * lk.abs(),
+            "{model}: {lf} vs {lk}"
+        );
+        assert_eq!(follow.inertia, keep.inertia, "{model}");
+        if let Some(modes) = follow.modes {
+            assert_eq!((modes.unstable, modes.null), (1, 0), "{model}");
+        }
+        assert!(max_distance(&[*tip_f], &[*tip_k]) < 1e-9, "{model}");
+    }
 }
 
 #[test]

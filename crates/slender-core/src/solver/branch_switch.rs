@@ -15,7 +15,7 @@ const MAX_SWITCHES: usize = 6;
 /// solve may report convergence at its round-off floor, and near a singular point of a load's
 /// potential (a dead moment's twist angle at a half turn, `framed/moment.rs`) that floor is
 /// huge: a kick that ran there found no equilibrium, whatever the test said.
-const SWITCH_RELATIVE_RESIDUAL: f64 = 1e-6;
+pub(crate) const SWITCH_RELATIVE_RESIDUAL: f64 = 1e-6;
 
 /// What a branch switch did.
 #[derive(Clone, Debug, PartialEq)]
@@ -131,8 +131,14 @@ pub fn follow_unstable_mode<P: EquilibriumProblem>(
         }
     }
     solver.params = saved;
+    // A kick that relaxed back to the unstable state itself (an energy change of round-off)
+    // is no switch: reporting one would say the mode was followed when nothing moved.
+    let round_off = 64.0 * f64::EPSILON * e0.abs();
     match result {
-        Some(r) if r.energy_drop <= 0.0 => {
+        Some(r)
+            if r.energy_drop < -round_off
+                || (r.energy_drop <= 0.0 && r.report.stable() == Some(true)) =>
+        {
             *state = current;
             Some(r)
         }

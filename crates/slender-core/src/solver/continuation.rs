@@ -475,7 +475,9 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
             let out = newton(problem, &mut kicked, load, &long, &mut self.ws);
             its += out.iterations;
             let stable = out.last.inertia.is_some_and(|i| i.negative == 0);
-            if !(out.converged && stable) {
+            let small = out.last.residual
+                <= super::branch_switch::SWITCH_RELATIVE_RESIDUAL * out.last.force_scale;
+            if !(out.converged && stable && small) {
                 continue;
             }
             let e = problem.energy(&kicked, load);
@@ -492,7 +494,11 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
                 (Some(again).filter(|o| o.converged).or(Some(out)), its)
             }
             None => {
+                // Measure the unstable state again: the workspace holds the last kick's
+                // Hessian, whose inertia and lowest mode the report would otherwise give.
                 self.candidate = start;
+                let again = newton(problem, &mut self.candidate, load, params, &mut self.ws);
+                its += again.iterations;
                 (None, its)
             }
         }
