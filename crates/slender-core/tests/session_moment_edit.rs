@@ -190,6 +190,13 @@ fn past_lateral_buckling_the_planar_arc_is_reported_with_its_own_lowest_eigenval
                 tip[2].abs() < 1e-9,
                 "{model}: the arc is planar, tip {tip:?}"
             );
+            // No switch is reported where none was made (a kick that relaxed back to the arc
+            // used to count as one).
+            let st = &s.results(0, None, 1.0, 1).structures[0].stability;
+            assert!(
+                !st.followed_unstable_mode && (st.unstable_modes, st.null_modes) == (1, 0),
+                "{model}, {policy:?}: {st:?}"
+            );
             reports.push((r, tip));
         }
         let ((follow, tip_f), (keep, tip_k)) = (&reports[0], &reports[1]);
