@@ -65,7 +65,7 @@ pub(crate) fn kick<P: EquilibriumProblem>(
 /// solve, with its lowest mode computed), follows the lowest mode to a stable equilibrium with
 /// minimizations of at most `max_iterations` Newton iterations, kicking by `amplitude` (m, the
 /// largest coordinate change). On success `state` is the new equilibrium; on failure it is left
-/// unchanged and `None` returned. A model with lagged (follower) loads is left as it is
+/// unchanged, the solver re-measured there, and `None` returned. A model with lagged (follower) loads is left as it is
 /// (`None`): its Hessian's modes are the frozen loads' (see
 /// [`EquilibriumProblem::has_lagged_loads`]).
 pub fn follow_unstable_mode<P: EquilibriumProblem>(
@@ -142,6 +142,14 @@ pub fn follow_unstable_mode<P: EquilibriumProblem>(
             *state = current;
             Some(r)
         }
-        _ => None,
+        _ => {
+            // Leave the solver at the kept state, as the continuation's switch does: its
+            // workspace holds the last kick's factorization and lowest mode, which a later
+            // warm re-solve or switch would otherwise start from. (A copy is re-solved: the
+            // state itself stays as it was, bit for bit.)
+            let mut kept = state.clone();
+            solver.solve_in_place(problem, &mut kept, load, load);
+            None
+        }
     }
 }
