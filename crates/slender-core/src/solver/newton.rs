@@ -154,6 +154,12 @@ pub struct NewtonOutcome {
 /// accepted at once; above it, only once Newton stops improving it.
 const FLOOR_ACCEPT: f64 = 1e-6;
 
+/// A residual under the round-off floor that stalls is accepted only up to this multiple of
+/// the largest external force (see [`floor_above_loads`]). Loads below the rounding of the
+/// term forces (the first steps of a ramp, 1e-8 N against a cable's stiffness) leave a
+/// residual of up to about their own size, which is round-off; ten times the loads is not.
+const FLOOR_CEILING: f64 = 10.0;
+
 /// After a chord final check that lowered the residual by at least this factor without
 /// converging, a second chord step is taken before a new Hessian is assembled.
 const CHORD_AGAIN: f64 = 1e-2;
@@ -249,6 +255,22 @@ pub fn newton<P: EquilibriumProblem>(
             };
         }
         let residual = last.residual;
+        if residual <= last.floor
+            && floor_above_loads(&last)
+            && previous_residual.is_some_and(|p| residual > 0.5 * p)
+        {
+            // Stalled at a floor above the loads: more iterations only repeat the rounding.
+            return failed(
+                iteration,
+                &format!(
+                    "residual {residual:.3e} N stalls at its round-off floor {:.3e} N, above \
+                     the loads ({:.3e} N): the term forces are too large for an equilibrium \
+                     at this precision",
+                    last.floor, last.external_force
+                ),
+                last,
+            );
+        }
         previous_residual = Some(residual);
         if iteration == params.max_iterations {
             break;
@@ -654,7 +676,8 @@ fn converged<P: EquilibriumProblem>(
         // the stiffness ratio (the floor of a very stiff term can be a sizeable fraction of a
         // small load).
         last.residual <= FLOOR_ACCEPT * last.force_scale
-            || previous_residual.is_some_and(|p| last.residual > 0.5 * p)
+            || (previous_residual.is_some_and(|p| last.residual > 0.5 * p)
+                && !floor_above_loads(last))
     } else {
         false
     };
@@ -671,6 +694,15 @@ fn converged<P: EquilibriumProblem>(
         info.energy_magnitude
     };
     last.decrement <= params.energy_tolerance * scale || tiny_step
+}
+
+/// True if the residual is under its round-off floor but many times the external loads: the
+/// state's term forces are so large (a singular term, a collapsed edge) that their
+/// rounding exceeds the loads, and Newton can neither lower the residual nor call it an
+/// equilibrium. A structure loaded only by its supports has no such test (its force scale is
+/// its term forces).
+fn floor_above_loads(last: &IterateMeasures) -> bool {
+    last.external_force > 0.0 && last.residual > FLOOR_CEILING * last.external_force
 }
 
 /// After convergence: up to `params.polish_iterations` full Newton steps, each kept only if it
