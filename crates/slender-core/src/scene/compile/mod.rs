@@ -1,12 +1,14 @@
 //! Turning a parsed scene into structures ready to solve, checking everything a file can get
 //! wrong and naming the place when it does. One stage per file: a rod's section and material
 //! (`section.rs`), its nodes, supports, loads and parts (`rod.rs`, `line_loads.rs`), the
-//! grouping of parts into structures by joints and closures (`structures.rs`), the
-//! prescribed motion (`motion.rs`) and the time stepping (`time.rs`).
+//! check that double precision resolves a rod's bending (`precision.rs`), the grouping of
+//! parts into structures by joints and closures (`structures.rs`), the prescribed motion
+//! (`motion.rs`) and the time stepping (`time.rs`).
 
 pub mod contact;
 pub mod line_loads;
 pub mod motion;
+pub mod precision;
 pub mod rod;
 pub mod section;
 pub mod shell_contact;

@@ -20,6 +20,7 @@ use crate::structure::Member;
 use super::super::error::SceneError;
 use super::super::magnitudes::check_magnitudes;
 use super::super::spec::{Centerline, RodModelSpec, RodSpec, SupportKind};
+use super::precision::check_bending_resolved;
 use super::section::{check_name, section, shear};
 
 /// Default number of elements of a rod whose centerline is not a polyline.
@@ -242,6 +243,7 @@ pub(super) fn compile_rod(
             .expect("nodes")
     };
     let positions: Vec<Vec3> = nodes.iter().map(|&s| curve.evaluate(s).0).collect();
+    check_bending_resolved(path, spec, &properties, shear, &positions, length)?;
 
     if spec.closed {
         let gap = (positions[n_edges] - positions[0]).norm();
