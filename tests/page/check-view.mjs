@@ -11,7 +11,8 @@
 //     arrow and Page keys nudge it by 1 mm (1 cm with Shift), each press one step of undo.
 //  2. clip + save: click on the cable in "add a clip" mode (a real mouse click, raycast to an
 //     arc length), then "Save scene": the downloaded TOML has the clip and its `slender solve`
-//     gives the page's equilibrium.
+//     gives the page's equilibrium. The panel's length field pays cable out; the saved scene
+//     (new length) re-solves to the page's equilibrium.
 //  3. Euler column: push a straight clamped column past its Euler load (scenes/euler_column.toml,
 //     unstable = "keep"): the page marks it unstable; "Snap to the stable branch" buckles it
 //     and the mark goes.
@@ -321,6 +322,22 @@ try {
   const [gltfDownload] = await Promise.all([s1.page.waitForEvent("download"), s1.page.click("#gltf")]);
   const gltf = JSON.parse(readFileSync(await gltfDownload.path(), "utf8"));
   check(gltf.asset?.version === "2.0" && gltf.meshes.length >= 2, `glTF export (${gltf.meshes.length} meshes)`);
+
+  // Pay out cable through the panel's length field: the saved scene (new length, supports
+  // moved from its rest centerline) re-solves to the page's equilibrium.
+  const length0 = await s1.page.evaluate(() => { const a = window.slender.state().rods[0].arclengths; return a[a.length - 1]; });
+  await s1.page.selectOption("#length-rod", "0");
+  await s1.page.fill("#length-value", String(1.05 * length0));
+  await s1.page.click("#length-apply");
+  await s1.page.waitForFunction((l) => { const a = window.slender.state().rods[0].arclengths; return Math.abs(a[a.length - 1] - l) < 1e-12 || window.slender.errors.length > 0; }, 1.05 * length0, { timeout: 30000 });
+  const paidOut = await s1.page.evaluate(() => window.slender.state());
+  const paidOutConverged = await s1.page.evaluate(() => document.body.dataset.converged === "true");
+  const [lengthDownload] = await Promise.all([s1.page.waitForEvent("download"), s1.page.click("#save")]);
+  const lengthSaved = readFileSync(await lengthDownload.path(), "utf8");
+  const lengthResolved = solveScene("drag_cable_paid_out_solved", lengthSaved);
+  const lengthTrip = maxRelativeDistance(paidOut.rods.map((r) => r.positions), lengthResolved, 1.0);
+  check(paidOutConverged && lengthTrip <= 1e-9,
+    `length field: cable paid out from ${length0} m to ${(1.05 * length0).toFixed(4)} m; the saved scene re-solves to the page's equilibrium (${lengthTrip.toExponential(2)} of the length)`);
 
   // Delete the original clip (support 1) through the panel button.
   await s1.page.evaluate(() => window.slender.select(0, 1));

@@ -250,6 +250,24 @@ impl PySession {
         edit(py, out)
     }
 
+    /// Sets rod `rod`'s rest length (m): cable paid out or pulled in between supports that
+    /// stay where they are; re-solved from the current shape in steps of at most 5 %.
+    fn set_rod_length(
+        &mut self,
+        py: Python<'_>,
+        rod: usize,
+        length: f64,
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| guarded(|| inner.set_rod_length(rod, length)))?;
+        edit(py, out)
+    }
+
+    /// The rest length (m) of rod `rod`'s centerline, or None for an unknown rod.
+    fn rod_length(&self, rod: usize) -> Option<f64> {
+        self.inner.rod_length(rod)
+    }
+
     /// Sets gravity (m/s²) and re-solves warm.
     fn set_gravity(&mut self, py: Python<'_>, gravity: [f64; 3]) -> PyResult<PyEditReport> {
         let inner = &mut self.inner;

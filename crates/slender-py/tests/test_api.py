@@ -408,3 +408,54 @@ def test_force_edit_matches_a_cold_solve() -> None:
     assert s.scene()["rods"][0]["forces"][0]["force"] == [0.0, 0.0, -2.0 * F]
     with pytest.raises(slender.SceneError, match=r"rods\[0\]\.forces\[4\]"):
         s.set_force(0, 4, [0.0, 0.0, 1.0])
+
+
+def _elastic_catenary_sag(l0: float, q: float, ea: float, span: float) -> float:
+    """Mid-length sag (m) of an elastic catenary (Irvine): rest length l0, weight q per rest
+    length, axial stiffness ea, supports at one height span apart."""
+    lo, hi = 1e-12, 1e6
+    for _ in range(200):
+        h = math.sqrt(lo * hi)
+        if h * l0 / ea + 2.0 * h / q * math.asinh(q * l0 / (2.0 * h)) < span:
+            lo = h
+        else:
+            hi = h
+    h = math.sqrt(lo * hi)
+    v = 0.5 * q * l0
+    return q * l0 * l0 / (8.0 * ea) + h / q * (math.sqrt(1.0 + (v / h) ** 2) - 1.0)
+
+
+def test_cable_length_paid_out_from_python() -> None:
+    """A cord built with `rod_scene` (a polyline) hangs between two pins; paying cable out
+    from Python gives the elastic catenary of the new length, and bad lengths name the
+    field."""
+    d, e, rho = 5e-4, 3e7, 1200.0
+    area = math.pi * d * d / 4.0
+    pts = np.linspace([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 81)
+    scene = slender.rod_scene(
+        pts,
+        section={"shape": "circle", "diameter": d},
+        material={"young": e, "poisson": 0.45, "density": rho},
+        supports=[
+            {"kind": "pin", "vertex": "start"},
+            {"kind": "pin", "vertex": "end"},
+            {"kind": "twist_hold", "vertex": "start"},
+        ],
+        gravity=(0.0, 0.0, -9.81),
+        name="cord",
+    )
+    s = slender.Session(scene)
+    s.move_support(0, 1, translation=[-0.2, 0.0, 0.0])
+    for l0 in (1.2, 0.95):
+        rep = s.set_length(0, l0)
+        assert rep.converged and rep.stable
+        assert abs(s.length(0) - l0) <= 1e-12
+        sag = -s.results().rods[0].positions[40][2]
+        exact = _elastic_catenary_sag(l0, rho * area * 9.81, e * area, 0.8)
+        assert abs(sag - exact) <= 1e-3 * exact, (l0, sag, exact)
+    before = s.results().rods[0].positions
+    with pytest.raises(slender.SceneError, match=r"rods\[0\]\.centerline\.length"):
+        s.set_length(0, -1.0)
+    with pytest.raises(slender.SceneError, match=r"rods\[2\]"):
+        s.length(2)
+    assert np.array_equal(s.results().rods[0].positions, before)

@@ -225,6 +225,26 @@ class Session:
         """Sets gravity (m/s²) and re-solves warm."""
         return self._checked(self._inner.set_gravity(_vec3(gravity, "gravity")), check, "changing gravity")
 
+    def set_length(self, rod: int, length: float, *, check: bool = True) -> EditReport:
+        """Sets rod ``rod``'s rest length (m) — cable paid out (longer) or pulled in
+        (shorter) between supports that stay where they are — and re-solves from the current
+        shape, in steps of at most 5 %. Only a straight rest centerline has its length edited.
+        """
+        r = _index(rod, "rod")
+        return self._checked(
+            self._inner.set_rod_length(r, float(length)), check, f"setting the length of rods[{r}]"
+        )
+
+    def length(self, rod: int) -> float:
+        """The rest length (m) of rod ``rod``."""
+        r = _index(rod, "rod")
+        value = self._inner.rod_length(r)
+        if value is None:
+            e = SceneError(f"rods[{r}]: no such rod")
+            e.field = f"rods[{r}]"
+            raise e
+        return value
+
     def set_force(self, rod: int, force: int, value: Sequence[float], *, check: bool = True) -> EditReport:
         """Sets point force ``force`` of rod ``rod`` (the scene's ``forces[force]``) to
         ``value`` (N) and re-solves warm. A follower force's value is given as it acts at rest,

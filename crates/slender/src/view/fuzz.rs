@@ -243,6 +243,26 @@ fn hostile_messages_are_refused_by_name_and_keep_the_equilibrium() {
             "sensible magnitude",
         ),
         (
+            r#"{"op": "length", "rod": 0, "length": -0.5}"#,
+            "rods[0].centerline.length",
+            "finite and positive",
+        ),
+        (
+            r#"{"op": "length", "rod": 0, "length": 1e6}"#,
+            "rods[0].centerline.length",
+            "at most ×10",
+        ),
+        (
+            r#"{"op": "length", "rod": 5, "length": 0.7}"#,
+            "rods[5]",
+            "no such rod",
+        ),
+        (
+            r#"{"op": "length", "rod": 0, "length": NaN}"#,
+            "request",
+            "NaN",
+        ),
+        (
             r#"{"op": "force", "rod": 0, "force": 0, "value": [0, 0, -1]}"#,
             "rods[0].forces[0]",
             "no such force",
@@ -983,6 +1003,9 @@ fn request() -> impl Strategy<Value = String> {
         )),
         (index(), index()).prop_map(|(r, s)| format!(r#"{{"op": "remove_support", "rod": {r}, "support": {s}}}"#)),
         vec3().prop_map(|g| format!(r#"{{"op": "gravity", "gravity": {g}}}"#)),
+        (index(), hostile_number()).prop_map(|(r, l)| format!(
+            r#"{{"op": "length", "rod": {r}, "length": {l}}}"#
+        )),
         (index(), index(), vec3()).prop_map(|(r, f, v)| format!(
             r#"{{"op": "force", "rod": {r}, "force": {f}, "value": {v}}}"#
         )),

@@ -3,7 +3,7 @@
 //! A snapshot is a clone of the [`Session`] (its equilibria, supports, loads and solver
 //! workspaces), so an undo puts back exactly the equilibrium that was shown, branch included —
 //! no re-solve, which for a bistable cable could land on the other branch. Discrete edits
-//! (adding or removing a support or force, gravity, a force's value, a typed pose (`place`), a
+//! (adding or removing a support or force, gravity, a cable's length, a force's value, a typed pose (`place`), a
 //! `move_by`, snapping to the stable branch) take a snapshot before they run and keep it when they change the
 //! session. A drag is many `move` messages: the page sends `checkpoint` when it starts, so the
 //! whole drag is one step back. At most [`MAX_UNDO`] steps are kept.
@@ -31,12 +31,13 @@ struct Op {
 }
 
 /// Operations that change the session in one step and are undone one by one.
-const DISCRETE: [&str; 12] = [
+const DISCRETE: [&str; 13] = [
     "place",
     "move_by",
     "add_support",
     "remove_support",
     "gravity",
+    "length",
     "force",
     "add_force",
     "remove_force",

@@ -109,6 +109,14 @@ pub enum Request {
         /// Acceleration (m/s²).
         gravity: [f64; 3],
     },
+    /// Set a rod's rest length (m): cable paid out or pulled in between its supports, which
+    /// stay where they are (`Session::set_rod_length`).
+    Length {
+        /// Rod index.
+        rod: usize,
+        /// New rest length (m).
+        length: f64,
+    },
     /// Set a dead point force of a rod (the scene's `rods[rod].forces[force]`) or of a shell
     /// strip (`shells[shell].forces[force]`) to `value` (N).
     Force {
@@ -307,6 +315,7 @@ fn op_name(r: &Request) -> &'static str {
         Request::AddSupport { .. } => "add_support",
         Request::RemoveSupport { .. } => "remove_support",
         Request::Gravity { .. } => "gravity",
+        Request::Length { .. } => "length",
         Request::Force { .. } => "force",
         Request::Moment { .. } => "moment",
         Request::AddMoment { .. } => "add_moment",
@@ -479,6 +488,7 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             finite("gravity", gravity)?;
             Some(session.set_gravity(*gravity)?)
         }
+        Request::Length { rod, length } => Some(session.set_rod_length(*rod, *length)?),
         Request::Force {
             rod,
             shell,

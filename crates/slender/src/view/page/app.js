@@ -1068,6 +1068,17 @@ function updatePanel(reply) {
       <table><tr><td>#</td><td>support</td><td>at</td><td>|force|</td><td title="${ALONG_TITLE}">along</td><td>|moment|</td></tr>${rows}</table></div>`;
   }).join("");
   $("rods").innerHTML = html;
+  // The length control: one entry per cable, its rest length (not while the user types).
+  const pick = $("length-rod");
+  const names = view.rods.map((r) => r.name).join("\n");
+  if (pick.dataset.names !== names) {
+    const keep = pick.value;
+    pick.innerHTML = view.rods.map((r, i) => `<option value="${i}">${r.name}</option>`).join("");
+    pick.dataset.names = names;
+    if (keep && +keep < view.rods.length) pick.value = keep;
+  }
+  const rod = view.rods[+pick.value || 0];
+  if (rod && document.activeElement !== $("length-value")) $("length-value").value = rod.arclengths[rod.arclengths.length - 1];
 }
 
 function showError(err) {
@@ -1420,6 +1431,21 @@ $("gravity-apply").addEventListener("click", () => {
   const gravity = readVector(["gx", "gy", "gz"], "gravity");
   if (gravity) edit({ op: "gravity", gravity });
 });
+$("length-rod").addEventListener("change", () => {
+  const rod = view?.rods[+$("length-rod").value];
+  if (rod) $("length-value").value = rod.arclengths[rod.arclengths.length - 1];
+});
+function setLength() {
+  const raw = $("length-value").value.trim();
+  const length = Number(raw);
+  if (raw === "" || !Number.isFinite(length)) {
+    showError({ field: "length", message: `a finite number of metres is needed, got ${raw || "nothing"}` });
+    return;
+  }
+  edit({ op: "length", rod: +$("length-rod").value, length });
+}
+$("length-apply").addEventListener("click", setLength);
+$("length-value").addEventListener("keydown", (e) => { if (e.key === "Enter") setLength(); });
 $("delete-support").addEventListener("click", () => deleteSelected());
 $("pose-apply").addEventListener("click", () => placeSelected());
 for (const id of POSE_IDS.concat(TURN_IDS)) {

@@ -36,6 +36,8 @@ use super::spec::{
 };
 use crate::bspline_shell::StripEnd;
 
+mod length;
+
 /// Kick of a branch switch: the largest coordinate change, as a fraction of the structure's
 /// length.
 const SWITCH_AMPLITUDE: f64 = 1e-2;
@@ -1334,7 +1336,7 @@ impl Session {
         let mut rest = self.rest_poses.clone();
         poses[rod].remove(support);
         rest[rod].remove(support);
-        self.rebuild_with(spec, poses, rest)
+        self.rebuild_stretched(spec, poses, rest, None, true)
     }
 
     fn rebuild(&mut self, spec: Scene) -> Result<EditReport, SceneError> {
@@ -1348,8 +1350,27 @@ impl Session {
     fn rebuild_with(
         &mut self,
         spec: Scene,
+        poses: Vec<Vec<SupportPose>>,
+        rest: Vec<Vec<SupportPose>>,
+    ) -> Result<EditReport, SceneError> {
+        self.rebuild_stretched(spec, poses, rest, None, false)
+    }
+
+    /// As [`Self::rebuild_with`]; with `stretch = Some((rod, factor))` that rod's rest length
+    /// was multiplied by `factor` (see [`Self::set_rod_length`]): its shape is carried vertex
+    /// by vertex (old rest arc lengths scaled by `factor`), the edges its clamps and clips
+    /// hold get their new rest length along their current tangent, and its supports' rest
+    /// poses move to where the new rest centerline has them. With `release` (a support
+    /// removed) a structure whose Newton solve does not converge in `max_iterations` goes on
+    /// minimizing for `snap_iterations`: freed from a support a slack cable may have far to
+    /// fall, and no load path splits the change.
+    fn rebuild_stretched(
+        &mut self,
+        spec: Scene,
         mut poses: Vec<Vec<SupportPose>>,
         mut rest: Vec<Vec<SupportPose>>,
+        stretch: Option<(usize, f64)>,
+        release: bool,
     ) -> Result<EditReport, SceneError> {
         let mut scene = spec.compile()?;
         // Supports keep their current poses: the scene's rest positions are where the file
@@ -1371,7 +1392,13 @@ impl Session {
             .iter()
             .enumerate()
             .map(|(r, rod)| {
-                let (old, new) = (&self.scene.rods[r].node_arclengths, &rod.node_arclengths);
+                let scaled: Vec<f64>;
+                let mut old = &self.scene.rods[r].node_arclengths;
+                let new = &rod.node_arclengths;
+                if let Some((_, factor)) = stretch.filter(|&(s, _)| s == r) {
+                    scaled = old.iter().map(|s| s * factor).collect();
+                    old = &scaled;
+                }
                 match &stitched[r] {
                     Carried::Der(snap, interior) => {
                         Carried::Der(remesh(snap, old, new), interior.clone())
@@ -1385,8 +1412,13 @@ impl Session {
         // scene re-solves to this very equilibrium (instead of one that differs by the edge's
         // current stretch).
         for (r, rod) in scene.rods.iter().enumerate() {
-            for s in rod.supports.iter().skip(poses[r].len()) {
-                if s.kind != SupportKind::Clip || rod.n_edges == 0 {
+            // A stretched rod's clamps and clips hold edges of a new rest length too.
+            let stretched = stretch.is_some_and(|(s, _)| s == r);
+            let first = if stretched { 0 } else { poses[r].len() };
+            for s in rod.supports.iter().skip(first) {
+                let holds_edge =
+                    s.kind == SupportKind::Clip || (stretched && s.kind == SupportKind::Clamp);
+                if !holds_edge || rod.n_edges == 0 {
                     continue;
                 }
                 let (a, b) = if s.vertex == rod.n_edges {
@@ -1458,6 +1490,15 @@ impl Session {
                 friction,
             };
             run.report = solve_structure(&scene, k, &mut run, 1.0, 1.0);
+            if release && !run.report.converged() {
+                let params = run.solver.params;
+                run.solver.params.max_iterations =
+                    params.snap_iterations.max(params.max_iterations);
+                let first = run.report.iterations;
+                run.report = solve_structure(&scene, k, &mut run, 1.0, 1.0);
+                run.report.iterations += first;
+                run.solver.params = params;
+            }
             run.stability = StabilityResult::of(&run.report);
             run.save();
             runs.push(run);
@@ -1507,6 +1548,20 @@ impl Session {
                     position: rest_x[lv],
                     rotation: Rotation3::identity(),
                 });
+            }
+        }
+        if let Some((r, _)) = stretch {
+            // The saved scene moves the supports from where the new rest centerline has them.
+            let rod = &scene.rods[r];
+            for (pose, s) in rest[r].iter_mut().zip(&rod.supports) {
+                let part = rod
+                    .parts
+                    .iter()
+                    .find(|p| p.contains(s.vertex))
+                    .expect("part");
+                let member_rest =
+                    scene.structures[part.structure].members()[part.member].rest_state();
+                pose.position = member_rest.positions()[s.vertex - part.first_vertex];
             }
         }
         std::mem::swap(&mut self.scene, &mut scene);
