@@ -12,7 +12,7 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 use slender_core::geometry::Vec3;
-use slender_core::scene::{EditReport, Scene, Session};
+use slender_core::scene::{EditReport, Scene, SceneError, Session};
 
 /// One rod clamped at both ends along x: model, elements, length (m), diameter (m), Young's
 /// modulus (Pa), density (kg/m³), extra supports, gravity on or off.
@@ -67,7 +67,7 @@ struct Tally {
 }
 
 impl Tally {
-    fn add(&mut self, r: Result<EditReport, slender_core::scene::SceneError>) {
+    fn add(&mut self, r: Result<EditReport, SceneError>) {
         self.edits += 1;
         match r {
             Ok(r) if r.converged => {
@@ -165,16 +165,11 @@ fn main() {
         ];
         for (name, scene, moves) in cases {
             let name = format!("{model}: {name}");
-            if !name.contains(&filter) {
-                continue;
+            if name.contains(&filter) {
+                run(&name, scene, &moves, |s, r, t| {
+                    s.move_support_by(0, 1, r, t)
+                });
             }
-            let started = Instant::now();
-            let mut session = Session::new(scene).expect("the scene solves");
-            let mut tally = Tally::default();
-            for (rotation, translation) in moves {
-                tally.add(session.move_support_by(0, 1, rotation, translation));
-            }
-            tally.print(&name, started);
         }
         let name = format!("{model}: cable paid out, pulled in");
         if name.contains(&filter) {
@@ -211,15 +206,26 @@ fn main() {
         ),
     ];
     for (name, scene, moves) in flat {
-        if !name.contains(&filter) {
-            continue;
+        if name.contains(&filter) {
+            run(name, scene, &moves, |s, r, t| {
+                s.move_shell_clamp_by(0, 1, r, t)
+            });
         }
-        let started = Instant::now();
-        let mut session = Session::new(scene).expect("the scene solves");
-        let mut tally = Tally::default();
-        for (rotation, translation) in moves {
-            tally.add(session.move_shell_clamp_by(0, 1, rotation, translation));
-        }
-        tally.print(name, started);
     }
+}
+
+/// Solves `scene`, moves its support by each of `moves` with `edit` and prints the tally.
+fn run(
+    name: &str,
+    scene: Scene,
+    moves: &[(Vec3, Vec3)],
+    mut edit: impl FnMut(&mut Session, Vec3, Vec3) -> Result<EditReport, SceneError>,
+) {
+    let started = Instant::now();
+    let mut session = Session::new(scene).expect("the scene solves");
+    let mut tally = Tally::default();
+    for &(rotation, translation) in moves {
+        tally.add(edit(&mut session, rotation, translation));
+    }
+    tally.print(name, started);
 }
