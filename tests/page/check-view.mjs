@@ -826,6 +826,22 @@ try {
   const d5b = await drawn(s5.page);
   check(d5b.markers.length === countContacts(last5) && last5.view.min_gap > 0,
     `bracket: after a drag (${v5.converged ? "converged" : "not converged: last equilibrium kept"}) ${d5b.markers.length} markers for the reply's ${countContacts(last5)} contacts, min gap ${last5.view.min_gap.toExponential(2)} m`);
+  // The bracket lifted 1 cm through the obstacle row: the reply carries the moved bar, the
+  // page draws it there, the cable rests on it (every gap positive), the markers follow.
+  const bar0 = d5b.obstacles.find((o) => o.name === "obstacle:bracket").box;
+  const n5o = s5.replies.length;
+  await s5.page.selectOption("#obstacle-pick", "0");
+  await s5.page.fill("#ox", "0");
+  await s5.page.fill("#oy", "0");
+  await s5.page.fill("#oz", "0.01");
+  await s5.page.click("#obstacle-apply");
+  await s5.page.waitForFunction((n) => window.slender.lastReply && window.slender.lastReply.op === "obstacle" || window.slender.errors.length > 0, n5o, { timeout: 60000 });
+  const moved5 = await s5.page.evaluate(() => window.slender.lastReply);
+  const d5c = await drawn(s5.page);
+  const bar1 = d5c.obstacles.find((o) => o.name === "obstacle:bracket").box;
+  const lift = bar1[0][2] - bar0[0][2];
+  check(moved5.ok && moved5.edit.converged && Math.abs(lift - 0.01) < 1e-6 && moved5.view.min_gap > 0 && d5c.markers.length === countContacts(moved5),
+    `bracket lifted 1 cm through the obstacle row: ${moved5.ok ? (moved5.edit.converged ? "converged" : "not converged") : "refused"}, drawn ${lift.toFixed(6)} m higher, min gap ${moved5.view?.min_gap?.toExponential(2)} m, ${d5c.markers.length} markers for ${countContacts(moved5)} contacts`);
   for (const e of s5.errors) fail(e);
   check(s5.errors.length === 0, "no console errors (bracket page)");
 

@@ -186,6 +186,7 @@ fn moving_all_supports_rigidly_moves_the_equilibrium_rigidly() {
     let rot = [0.3, -0.5, 0.8];
     let tr = [0.2, 0.1, -0.3];
     s.motion.push(MotionStage {
+        obstacle: None,
         rod: Some(0),
         shell: None,
         support: 0,
@@ -308,6 +309,7 @@ fn moving_an_interior_clamp_moves_both_sides_rigidly_and_a_moved_clip_keeps_bala
     let mut s = scene(vec![a, b], [0.0; 3]);
     let (rot, tr) = ([0.4, 0.0, 0.3], [0.0, 0.05, 0.1]);
     s.motion.push(MotionStage {
+        obstacle: None,
         rod: Some(0),
         shell: None,
         support: 0,
@@ -316,6 +318,7 @@ fn moving_an_interior_clamp_moves_both_sides_rigidly_and_a_moved_clip_keeps_bala
         steps: 2,
     });
     s.motion.push(MotionStage {
+        obstacle: None,
         rod: Some(1),
         shell: None,
         support: 1,

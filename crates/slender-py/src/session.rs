@@ -268,6 +268,29 @@ impl PySession {
         self.inner.rod_length(rod)
     }
 
+    /// Moves obstacle `obstacle` rigidly — turned by the rotation vector `rotation` (rad)
+    /// about its reference point, then shifted by `translation` (m) — carrying the cables it
+    /// sweeps, and re-solves every structure.
+    fn move_obstacle(
+        &mut self,
+        py: Python<'_>,
+        obstacle: usize,
+        translation: [f64; 3],
+        rotation: [f64; 3],
+    ) -> PyResult<PyEditReport> {
+        let inner = &mut self.inner;
+        let out = py.detach(|| {
+            guarded(|| inner.move_obstacle_by(obstacle, rotation.into(), translation.into()))
+        })?;
+        edit(py, out)
+    }
+
+    /// The point (m) obstacle `obstacle` turns about, as moved so far; None for an unknown
+    /// obstacle.
+    fn obstacle_reference(&self, obstacle: usize) -> Option<[f64; 3]> {
+        self.inner.obstacle_reference(obstacle).map(Into::into)
+    }
+
     /// Sets gravity (m/s²) and re-solves warm.
     fn set_gravity(&mut self, py: Python<'_>, gravity: [f64; 3]) -> PyResult<PyEditReport> {
         let inner = &mut self.inner;

@@ -459,3 +459,60 @@ def test_cable_length_paid_out_from_python() -> None:
     with pytest.raises(slender.SceneError, match=r"rods\[2\]"):
         s.length(2)
     assert np.array_equal(s.results().rods[0].positions, before)
+
+
+def test_an_obstacle_moved_from_python_carries_the_cable() -> None:
+    """A round bar pushed up 4 cm under a taut cable from Python: the cable ends where the
+    same scene ends with both clamps moved down instead (support moves, not the obstacle
+    code), and bad moves name the obstacle."""
+
+    def scene() -> dict:
+        return {
+            "gravity": [0.0, 0.0, -9.81],
+            "rods": [
+                {
+                    "name": "cable",
+                    "elements": 40,
+                    "centerline": {
+                        "kind": "straight",
+                        "start": [0.0, 0.0, 0.0],
+                        "direction": [1.0, 0.0, 0.0],
+                        "length": 1.0,
+                    },
+                    "section": {"shape": "circle", "diameter": 0.006},
+                    "material": {"young": 2.0e8, "poisson": 0.4, "density": 1400.0},
+                    "supports": [
+                        {"kind": "clamp", "vertex": "start"},
+                        {"kind": "clamp", "vertex": "end"},
+                    ],
+                }
+            ],
+            "obstacles": [
+                {
+                    "name": "bar",
+                    "shape": {
+                        "kind": "cylinder",
+                        "point": [0.45, 0.0, -0.05],
+                        "axis": [0.0, 1.0, 0.0],
+                        "radius": 0.02,
+                    },
+                }
+            ],
+            "contact": {"activation": 1e-4},
+        }
+
+    s = slender.Session(scene())
+    rep = s.move_obstacle(0, translation=[0.0, 0.0, 0.07])
+    assert rep.converged and rep.stable
+    assert np.allclose(s.obstacle_reference(0), [0.45, 0.0, 0.02], atol=1e-15)
+    ref = slender.Session(scene())
+    for support in (0, 1):
+        ref.move_support(0, support, translation=[0.0, 0.0, -0.07])
+    moved = s.results().rods[0].positions
+    expected = ref.results().rods[0].positions + np.array([0.0, 0.0, 0.07])
+    assert np.abs(moved - expected).max() < 1e-7
+    with pytest.raises(slender.SceneError, match=r"obstacles\[1\]"):
+        s.move_obstacle(1, translation=[0.0, 0.0, 0.01])
+    with pytest.raises(slender.SceneError, match=r"obstacles\[3\]"):
+        s.obstacle_reference(3)
+    assert np.array_equal(s.results().rods[0].positions, moved)

@@ -56,7 +56,12 @@ pub(crate) fn contact_problem<'a>(
 }
 
 /// The rod (name) and its vertex for vertex `vertex` of member `member` of structure `k`.
-fn rod_vertex(scene: &CompiledScene, k: usize, member: usize, vertex: usize) -> (String, usize) {
+pub(crate) fn rod_vertex(
+    scene: &CompiledScene,
+    k: usize,
+    member: usize,
+    vertex: usize,
+) -> (String, usize) {
     scene
         .rods
         .iter()

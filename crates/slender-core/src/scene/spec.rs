@@ -603,14 +603,22 @@ pub struct PointMomentSpec {
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct MotionStage {
-    /// Index of the rod in `rods` (give exactly one of `rod` and `shell`).
+    /// Index of the rod in `rods` (give exactly one of `rod`, `shell` and `obstacle`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rod: Option<usize>,
-    /// Index of the strip in `shells` (give exactly one of `rod` and `shell`).
+    /// Index of the strip in `shells` (give exactly one of `rod`, `shell` and `obstacle`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shell: Option<usize>,
+    /// Index of the obstacle in `obstacles` (give exactly one of `rod`, `shell` and
+    /// `obstacle`): moved rigidly, turned by `rotate` about its reference point (a plane's or
+    /// cylinder's `point`, a sphere's, box's or torus's `center`, a mesh's bounding-box
+    /// centre) and shifted by `translate`; the cables it sweeps are carried along.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<usize>,
     /// Index of the support in that rod's `supports`, or of the clamp in that strip's
-    /// `clamps` (0 for a strip without `clamps`: its start clamp).
+    /// `clamps` (0 for a strip without `clamps`: its start clamp); unused for an obstacle.
+    /// Default 0.
+    #[serde(default)]
     pub support: usize,
     /// Translation of the support over the whole stage (m). Default 0.
     #[serde(default)]

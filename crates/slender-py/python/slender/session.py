@@ -245,6 +245,35 @@ class Session:
             raise e
         return value
 
+    def move_obstacle(
+        self,
+        obstacle: int,
+        translation: Sequence[float] = (0.0, 0.0, 0.0),
+        rotation: Sequence[float] = (0.0, 0.0, 0.0),
+        *,
+        check: bool = True,
+    ) -> EditReport:
+        """Moves obstacle ``obstacle`` rigidly — turned by the rotation vector ``rotation``
+        (rad) about its reference point (a plane's or cylinder's ``point``, a sphere's, box's
+        or torus's ``center``, a mesh's bounding-box centre, as moved so far), then shifted by
+        ``translation`` (m) — carrying the cables it sweeps, and re-solves every structure.
+        The saved scene keeps the file's obstacle and moves it by a ``[[motion]]`` stage."""
+        o = _index(obstacle, "obstacle")
+        report = self._inner.move_obstacle(
+            o, _vec3(translation, "translation"), _vec3(rotation, "rotation")
+        )
+        return self._checked(report, check, f"moving obstacles[{o}]")
+
+    def obstacle_reference(self, obstacle: int) -> np.ndarray:
+        """The point (m) obstacle ``obstacle`` turns about in :meth:`move_obstacle`."""
+        o = _index(obstacle, "obstacle")
+        value = self._inner.obstacle_reference(o)
+        if value is None:
+            e = SceneError(f"obstacles[{o}]: no such obstacle")
+            e.field = f"obstacles[{o}]"
+            raise e
+        return np.array(value)
+
     def set_force(self, rod: int, force: int, value: Sequence[float], *, check: bool = True) -> EditReport:
         """Sets point force ``force`` of rod ``rod`` (the scene's ``forces[force]``) to
         ``value`` (N) and re-solves warm. A follower force's value is given as it acts at rest,

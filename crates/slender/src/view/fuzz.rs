@@ -263,6 +263,16 @@ fn hostile_messages_are_refused_by_name_and_keep_the_equilibrium() {
             "NaN",
         ),
         (
+            r#"{"op": "obstacle", "obstacle": 0, "translation": [0, 0, 0.01]}"#,
+            "obstacles[0]",
+            "no such obstacle",
+        ),
+        (
+            r#"{"op": "obstacle", "obstacle": 0, "translation": [0, 1e300, 0]}"#,
+            "obstacles[0]",
+            "no such obstacle",
+        ),
+        (
             r#"{"op": "force", "rod": 0, "force": 0, "value": [0, 0, -1]}"#,
             "rods[0].forces[0]",
             "no such force",
@@ -1006,6 +1016,9 @@ fn request() -> impl Strategy<Value = String> {
         (index(), hostile_number()).prop_map(|(r, l)| format!(
             r#"{{"op": "length", "rod": {r}, "length": {l}}}"#
         )),
+        (index(), vec3(), vec3()).prop_map(|(o, t, q)| format!(
+            r#"{{"op": "obstacle", "obstacle": {o}, "translation": {t}, "rotation": {q}}}"#
+        )),
         (index(), index(), vec3()).prop_map(|(r, f, v)| format!(
             r#"{{"op": "force", "rod": {r}, "force": {f}, "value": {v}}}"#
         )),
@@ -1422,4 +1435,37 @@ fn self_contact_pairs_are_forwarded_as_the_results_list_them() {
     let (v, _) = exchange(&mut contact_session(), r#"{"op": "state"}"#);
     assert!(v["view"].get("segment_contacts").is_none());
     assert_eq!(v["geometry"]["self_contact"], json!(false));
+}
+
+#[test]
+fn an_obstacle_message_moves_the_obstacle_and_undo_puts_it_back() {
+    // The contact scene's round bar (obstacle 3) lifted 5 mm under the cable: the reply
+    // carries the moved bar, its cable equilibrium is the session's, and undo restores both
+    // to the bit.
+    let mut s = contact_session();
+    let mut h = History::default();
+    let before = through(&mut h, &mut s, r#"{"op": "state"}"#);
+    let bar = |v: &Value| v["geometry"]["obstacles"][3]["shape"]["center"].clone();
+    let v = through(
+        &mut h,
+        &mut s,
+        r#"{"op": "obstacle", "obstacle": 3, "translation": [0.0, 0.0, 0.005]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    let (b0, b1) = (bar(&before), bar(&v));
+    assert!(
+        (b1[2].as_f64().unwrap() - b0[2].as_f64().unwrap() - 0.005).abs() < 1e-12,
+        "{b0} → {b1}"
+    );
+    let (gap, _) = gap_and_contacts(&v);
+    assert!(gap > 0.0, "{gap}");
+    // Saved, the scene keeps the bar where the file has it and moves it by a stage.
+    let saved = through(&mut h, &mut s, r#"{"op": "save"}"#);
+    let scene: Scene = toml::from_str(saved["toml"].as_str().unwrap()).unwrap();
+    assert_eq!(scene.motion.len(), 1);
+    assert_eq!(scene.motion[0].obstacle, Some(3));
+    let undone = through(&mut h, &mut s, r#"{"op": "undo"}"#);
+    assert_eq!(bar(&undone), b0);
+    assert_eq!(undone["view"], before["view"]);
 }

@@ -31,8 +31,9 @@ struct Op {
 }
 
 /// Operations that change the session in one step and are undone one by one.
-const DISCRETE: [&str; 13] = [
+const DISCRETE: [&str; 14] = [
     "place",
+    "obstacle",
     "move_by",
     "add_support",
     "remove_support",

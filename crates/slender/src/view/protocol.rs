@@ -117,6 +117,21 @@ pub enum Request {
         /// New rest length (m).
         length: f64,
     },
+    /// Move obstacle `obstacle` (index in the scene's `obstacles`) rigidly: turned by
+    /// `rotation` (a rotation vector, rad) about its reference point, then shifted by
+    /// `translation` (m); the cables it sweeps are carried along and every structure
+    /// re-solves (`Session::move_obstacle_by`). The reply carries the moved shapes
+    /// (`geometry`).
+    Obstacle {
+        /// Obstacle index.
+        obstacle: usize,
+        /// Translation (m).
+        #[serde(default)]
+        translation: [f64; 3],
+        /// Rotation vector (rad) about the obstacle's reference point.
+        #[serde(default)]
+        rotation: [f64; 3],
+    },
     /// Set a dead point force of a rod (the scene's `rods[rod].forces[force]`) or of a shell
     /// strip (`shells[shell].forces[force]`) to `value` (N).
     Force {
@@ -271,7 +286,8 @@ pub struct OkReply {
     pub solve_seconds: f64,
     /// The equilibria now.
     pub view: ViewState,
-    /// `state`: the obstacles' shapes (they never move, so only this reply carries them).
+    /// `state` and `obstacle`: the obstacles' shapes (only these replies carry them: the
+    /// other edits leave the obstacles where they are).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub geometry: Option<SceneGeometry>,
     /// `save`: the scene as TOML.
@@ -316,6 +332,7 @@ fn op_name(r: &Request) -> &'static str {
         Request::RemoveSupport { .. } => "remove_support",
         Request::Gravity { .. } => "gravity",
         Request::Length { .. } => "length",
+        Request::Obstacle { .. } => "obstacle",
         Request::Force { .. } => "force",
         Request::Moment { .. } => "moment",
         Request::AddMoment { .. } => "add_moment",
@@ -489,6 +506,19 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             Some(session.set_gravity(*gravity)?)
         }
         Request::Length { rod, length } => Some(session.set_rod_length(*rod, *length)?),
+        Request::Obstacle {
+            obstacle,
+            translation,
+            rotation,
+        } => {
+            finite("translation", translation)?;
+            finite("rotation", rotation)?;
+            Some(session.move_obstacle_by(
+                *obstacle,
+                Vec3::from(*rotation),
+                Vec3::from(*translation),
+            )?)
+        }
         Request::Force {
             rod,
             shell,
@@ -558,7 +588,7 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
                 message: format!("the scene could not be written as TOML: {e}"),
             })?;
             toml_text = Some(format!(
-                "# Saved by `slender view`: the edited scene. Moved supports are moved from their\n# rest pose by the [[motion]] stages; its solve gives the equilibrium shown.\n\n{text}"
+                "# Saved by `slender view`: the edited scene. Moved supports and obstacles are moved\n# from their rest pose by the [[motion]] stages; its solve gives the equilibrium shown.\n\n{text}"
             ));
             None
         }
@@ -576,7 +606,9 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             gltf::scene_up(scene.gravity),
         ));
     }
-    let geometry = matches!(request, Request::State {}).then(|| scene_geometry(session, &step));
+    // The obstacles' shapes go with `state` and with every move of an obstacle.
+    let geometry = matches!(request, Request::State {} | Request::Obstacle { .. })
+        .then(|| scene_geometry(session, &step));
     Ok(OkReply {
         ok: true,
         op: op_name(request),

@@ -3,7 +3,7 @@
 //! against the allowed one, its supports with their poses and reactions; per structure its
 //! solve and stability; the shell strips as surfaces with their clamps as handles; every
 //! obstacle's active contacts and the scene's smallest gap. The obstacles' shapes do not change
-//! in a session: [`SceneGeometry`] is sent once, with the reply to `state`.
+//! in a session: [`SceneGeometry`] is sent with the replies to `state` and `obstacle`.
 
 use serde::Serialize;
 use serde_json::Value;
@@ -628,7 +628,9 @@ pub fn scene_geometry(session: &Session, step: &SceneStep) -> SceneGeometry {
         .iter()
         .enumerate()
         .map(|(i, o)| {
-            let shape = match &o.shape {
+            // Where the edits have moved it.
+            let moved = session.obstacle_shape(i).unwrap_or_else(|| o.shape.clone());
+            let shape = match &moved {
                 ObstacleShapeSpec::Plane { point, normal } => {
                     let n = unit(*normal);
                     let p = Vec3::from(*point);

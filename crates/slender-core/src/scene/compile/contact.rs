@@ -84,7 +84,7 @@ fn shape_error(path: &str, e: ModelError) -> SceneError {
 }
 
 /// Builds one obstacle.
-fn obstacle(path: &str, spec: &ObstacleSpec) -> Result<Arc<dyn Obstacle>, SceneError> {
+pub(crate) fn obstacle(path: &str, spec: &ObstacleSpec) -> Result<Arc<dyn Obstacle>, SceneError> {
     let mu = spec.friction;
     if !(mu.is_finite() && mu >= 0.0) {
         return Err(SceneError::new(

@@ -159,7 +159,7 @@ impl Scene {
         }
         let contact = contact::compile_contact(self, &rods, &structures, &shells)?;
         for (k, stage) in self.motion.iter().enumerate() {
-            motion::check_stage(k, stage, &rods, &shortest, &shells)?;
+            motion::check_stage(k, stage, &rods, &shortest, &shells, self.obstacles.len())?;
         }
         let mut solver = self.solver;
         solver

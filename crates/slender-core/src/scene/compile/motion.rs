@@ -33,21 +33,27 @@ pub(super) fn check_stage(
     rods: &[CompiledRod],
     shortest: &[f64],
     shells: &[CompiledShell],
+    obstacles: usize,
 ) -> Result<(), SceneError> {
     let path = format!("motion[{k}]");
-    let rod_index = match (stage.rod, stage.shell) {
-        (Some(r), None) => r,
-        (None, Some(s)) => return check_shell_stage(&path, stage, s, shells),
-        (Some(_), Some(_)) => {
-            return Err(SceneError::new(
-                format!("{path}.shell"),
-                "give either `rod` (a rod's support) or `shell` (a strip's clamp), not both",
-            ))
+    let rod_index = match (stage.rod, stage.shell, stage.obstacle) {
+        (Some(r), None, None) => r,
+        (None, Some(s), None) => return check_shell_stage(&path, stage, s, shells),
+        (None, None, Some(o)) => {
+            return check_obstacle_stage(&path, stage, o, obstacles, shortest, shells)
         }
-        (None, None) => {
+        (None, None, None) => {
             return Err(SceneError::new(
                 format!("{path}.rod"),
-                "missing: give `rod` (a rod's support) or `shell` (a strip's clamp)",
+                "missing: give `rod` (a rod's support), `shell` (a strip's clamp) or \
+                 `obstacle`",
+            ))
+        }
+        _ => {
+            return Err(SceneError::new(
+                path,
+                "give one of `rod` (a rod's support), `shell` (a strip's clamp) and \
+                 `obstacle`, not several",
             ))
         }
     };
@@ -97,6 +103,42 @@ fn check_steps(path: &str, stage: &MotionStage) -> Result<(), SceneError> {
         ));
     }
     Ok(())
+}
+
+/// A stage moving obstacle `obstacle` (of `count`), in a scene whose rods' shortest parts
+/// are `shortest` long.
+fn check_obstacle_stage(
+    path: &str,
+    stage: &MotionStage,
+    obstacle: usize,
+    count: usize,
+    shortest: &[f64],
+    shells: &[CompiledShell],
+) -> Result<(), SceneError> {
+    if obstacle >= count {
+        return Err(SceneError::new(
+            format!("{path}.obstacle"),
+            format!("{obstacle}: must be < {count} (number of obstacles)"),
+        ));
+    }
+    if !shells.is_empty() {
+        return Err(SceneError::new(
+            format!("{path}.obstacle"),
+            "obstacles cannot move in a scene with shell strips (the strips keep the \
+             obstacles of their own solve)",
+        ));
+    }
+    let t = finite3(&format!("{path}.translate"), stage.translate)?;
+    let rot = finite3(&format!("{path}.rotate"), stage.rotate)?;
+    check_steps(path, stage)?;
+    let length = shortest.iter().copied().fold(f64::INFINITY, f64::min);
+    check_pieces(
+        path,
+        stage,
+        t,
+        rot,
+        if length.is_finite() { length } else { 1.0 },
+    )
 }
 
 /// A stage moving clamp `stage.support` of strip `shell`.

@@ -37,6 +37,7 @@ use super::spec::{
 use crate::bspline_shell::StripEnd;
 
 mod length;
+mod obstacle;
 
 /// Kick of a branch switch: the largest coordinate change, as a fraction of the structure's
 /// length.
@@ -207,6 +208,9 @@ pub struct Session {
     poses: Vec<Vec<SupportPose>>,
     /// Per rod, per support: where it was at rest (the saved scene moves it from there).
     rest_poses: Vec<Vec<SupportPose>>,
+    /// Per obstacle, its rigid motion from the file's shape: rotation about the file's
+    /// reference point, then translation (m) (see `move_obstacle_by`).
+    obstacle_moves: Vec<(Rotation3<f64>, Vec3)>,
     unstable: UnstablePolicy,
     /// Pose of the moving support when the current motion stage started.
     stage_start: Option<SupportPose>,
@@ -232,6 +236,7 @@ impl Session {
 
     /// Solves the loaded scene `scene`, compiled from `spec`.
     pub fn from_compiled(spec: Scene, scene: CompiledScene) -> Self {
+        let n_obstacles = spec.obstacles.len();
         let unstable = scene.unstable;
         let mut runs = Vec::with_capacity(scene.structures.len());
         for (k, s) in scene.structures.iter().enumerate() {
@@ -277,6 +282,7 @@ impl Session {
             runs,
             shells,
             unstable,
+            obstacle_moves: vec![(Rotation3::identity(), Vec3::zeros()); n_obstacles],
             stage_start: None,
             held: Vec::new(),
             affected: Vec::new(),
@@ -436,6 +442,20 @@ impl Session {
         self.unstable = policy;
         let mut r = self.summary(&ks, None);
         r.followed_unstable_mode = followed;
+        r
+    }
+
+    /// The end of a converged edit of structures `ks` (the move's buffer, kept for the next
+    /// edit): each follows an unstable equilibrium to a stable one when the policy says so,
+    /// and the report sums them up.
+    fn stabilized(&mut self, ks: Vec<usize>) -> EditReport {
+        let mut followed = false;
+        for &k in &ks {
+            followed |= self.stabilize(k);
+        }
+        let mut r = self.summary(&ks, None);
+        r.followed_unstable_mode = followed;
+        self.affected = ks;
         r
     }
 
@@ -695,14 +715,7 @@ impl Session {
             return Ok(summary);
         }
         self.poses[rod][support] = target;
-        let mut followed = false;
-        for &k in &affected {
-            followed |= self.stabilize(k);
-        }
-        let mut r = self.summary(&affected, None);
-        r.followed_unstable_mode = followed;
-        self.affected = affected;
-        Ok(r)
+        Ok(self.stabilized(affected))
     }
 
     /// Moves a support by a rotation vector (rad, about its vertex) and a translation (m).
@@ -809,14 +822,7 @@ impl Session {
         }
         self.spec.gravity = [g.x, g.y, g.z];
         self.scene.gravity = self.spec.gravity;
-        let mut followed = false;
-        for &k in &ks {
-            followed |= self.stabilize(k);
-        }
-        let mut r = self.summary(&ks, None);
-        r.followed_unstable_mode = followed;
-        self.affected = ks;
-        Ok(r)
+        Ok(self.stabilized(ks))
     }
 
     /// The force in space now (N) of point force `force` of rod `rod`: the file's value for a
@@ -1658,14 +1664,29 @@ impl Session {
         let (stage_index, k) = self.locate(step);
         let stage: MotionStage = self.scene.motion[stage_index].clone();
         if k == 0 {
-            self.stage_start = match (stage.rod, stage.shell) {
-                (Some(r), _) => self.pose(r, stage.support),
-                (None, Some(s)) => self.shell_pose(s, stage.support),
-                (None, None) => None,
+            self.stage_start = match (stage.rod, stage.shell, stage.obstacle) {
+                (Some(r), _, _) => self.pose(r, stage.support),
+                (None, Some(s), _) => self.shell_pose(s, stage.support),
+                (None, None, Some(o)) => self.obstacle_moves.get(o).map(|&(r, t)| SupportPose {
+                    position: t,
+                    rotation: r,
+                }),
+                (None, None, None) => None,
             };
         }
         let start = self.stage_start.expect("stage start");
         let f = (k + 1) as f64 / stage.steps as f64;
+        if let Some(o) = stage.obstacle {
+            // The stage turns the obstacle about its reference point where the stage found
+            // it, and shifts it: from the motion at the stage's start to this step's.
+            let rotation = Rotation3::new(Vec3::from(stage.rotate) * f) * start.rotation;
+            let translation = start.position + Vec3::from(stage.translate) * f;
+            let pieces = match self.move_obstacle_to(o, rotation, translation) {
+                Ok(r) => r.load_steps,
+                Err(_) => 0,
+            };
+            return self.results(step, Some(stage_index), f, pieces);
+        }
         let target = SupportPose {
             position: start.position + Vec3::from(stage.translate) * f,
             rotation: Rotation3::new(Vec3::from(stage.rotate) * f) * start.rotation,
@@ -1673,7 +1694,7 @@ impl Session {
         let edit = match (stage.rod, stage.shell) {
             (Some(r), _) => self.move_support(r, stage.support, target),
             (None, Some(s)) => self.move_shell_clamp(s, stage.support, target),
-            (None, None) => unreachable!("compiled stages name a rod or a shell"),
+            (None, None) => unreachable!("compiled stages name a rod, a shell or an obstacle"),
         };
         let pieces = match edit {
             Ok(r) => r.load_steps,
@@ -1720,12 +1741,31 @@ impl Session {
                 spec.motion.push(MotionStage {
                     rod: Some(r),
                     shell: None,
+                    obstacle: None,
                     support: s,
                     translate: [translation.x, translation.y, translation.z],
                     rotate: [rotation.x, rotation.y, rotation.z],
                     steps,
                 });
             }
+        }
+        // A moved obstacle stays where the file has it (the rest cable is built around it)
+        // and a stage moves it where it is now, carrying the cable as the edit did.
+        let shortest = self.shortest_member();
+        for (o, (r, t)) in self.obstacle_moves.iter().enumerate() {
+            let rotation = rotation_vector(r);
+            if rotation.norm() == 0.0 && t.norm() == 0.0 {
+                continue;
+            }
+            spec.motion.push(MotionStage {
+                rod: None,
+                shell: None,
+                obstacle: Some(o),
+                support: 0,
+                translate: [t.x, t.y, t.z],
+                rotate: [rotation.x, rotation.y, rotation.z],
+                steps: obstacle::stage_steps(&rotation, t, shortest),
+            });
         }
         // A strip's clamps are saved at their poses (the file's `clamps`), which the initial
         // solve reaches from rest.

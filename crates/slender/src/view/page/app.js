@@ -110,7 +110,7 @@ const world = new THREE.Group(); // rods, shells, handles, arrows
 scene3.add(world);
 
 let view = null; // the last ViewState
-let geometry = null; // the obstacles' shapes (the first `state` reply's `geometry`)
+let geometry = null; // the obstacles' shapes (the last `state` or `obstacle` reply's `geometry`)
 let sceneSize = 1; // diagonal of the first equilibrium's bounding box (m)
 const rods = []; // per rod: { mesh, outline, tight, colours }
 const shells = [];
@@ -818,9 +818,14 @@ function obstacleMesh(shape) {
   return mesh;
 }
 
-/** Draws every obstacle once (they do not move). */
+/** Draws every obstacle (again after one was moved) and lists them for the move row. */
 function buildObstacles() {
   for (const o of [...obstacleGroup.children]) disposeObject(o);
+  const pick = $("obstacle-pick");
+  const keep = pick.value;
+  pick.innerHTML = geometry.obstacles.map((o, i) => `<option value="${i}">${o.name}</option>`).join("");
+  if (keep && +keep < geometry.obstacles.length) pick.value = keep;
+  $("obstacle-move").hidden = geometry.obstacles.length === 0;
   geometry.obstacles.forEach((ob, i) => {
     const mesh = obstacleMesh(ob.shape);
     mesh.name = `obstacle:${ob.name}`;
@@ -1155,7 +1160,8 @@ async function placeSelected() {
 function applyView(reply) {
   const first = view === null;
   view = reply.view;
-  if (reply.geometry && !geometry) { geometry = reply.geometry; buildObstacles(); }
+  // The obstacles' shapes come with `state` and with every move of an obstacle.
+  if (reply.geometry) { geometry = reply.geometry; buildObstacles(); }
   if (first) frameCamera();
   updateRods();
   updateShells();
@@ -1445,6 +1451,10 @@ function setLength() {
   edit({ op: "length", rod: +$("length-rod").value, length });
 }
 $("length-apply").addEventListener("click", setLength);
+$("obstacle-apply").addEventListener("click", () => {
+  const translation = readVector(["ox", "oy", "oz"], "translation");
+  if (translation) edit({ op: "obstacle", obstacle: +$("obstacle-pick").value, translation });
+});
 $("length-value").addEventListener("keydown", (e) => { if (e.key === "Enter") setLength(); });
 $("delete-support").addEventListener("click", () => deleteSelected());
 $("pose-apply").addEventListener("click", () => placeSelected());
