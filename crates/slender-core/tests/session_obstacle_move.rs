@@ -231,7 +231,7 @@ fn a_motion_stage_moves_an_obstacle_and_bad_stages_are_refused_by_name() {
     assert!((c - Vec3::new(0.45, 0.0, 0.02)).norm() < 1e-15, "{c:?}");
     for (fields, path, words) in [
         ("obstacle = 1", "motion[0].obstacle", "must be < 1"),
-        ("obstacle = 0\nrod = 0", "motion[0]", "not several"),
+        ("obstacle = 0\nrod = 0", "motion[0].obstacle", "alone"),
     ] {
         let e = stage(fields).compile().unwrap_err().to_string();
         assert!(e.contains(path) && e.contains(words), "{fields}: {e}");

@@ -49,11 +49,16 @@ pub(super) fn check_stage(
                  `obstacle`",
             ))
         }
+        (Some(_), Some(_), _) => {
+            return Err(SceneError::new(
+                format!("{path}.shell"),
+                "give either `rod` (a rod's support) or `shell` (a strip's clamp), not both",
+            ))
+        }
         _ => {
             return Err(SceneError::new(
-                path,
-                "give one of `rod` (a rod's support), `shell` (a strip's clamp) and \
-                 `obstacle`, not several",
+                format!("{path}.obstacle"),
+                "an obstacle stage moves the obstacle alone: give no `rod` or `shell` with it",
             ))
         }
     };
