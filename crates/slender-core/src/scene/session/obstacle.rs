@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 use nalgebra::Rotation3;
 
-use super::{solve_structure, EditReport, SceneError, Session};
+use super::{rotation_vector, solve_structure, EditReport, SceneError, Session};
 use crate::contact::{ContactSites, Friction, Obstacle};
 use crate::geometry::Vec3;
 use crate::scene::compile::contact::obstacle;
@@ -129,9 +129,7 @@ fn moved_shape(shape: &ObstacleShapeSpec, m: &RigidMotion) -> ObstacleShapeSpec 
         } => ObstacleShapeSpec::Box {
             center: point(center),
             size: *size,
-            rotate: (m.rotation * Rotation3::new(Vec3::from(*rotate)))
-                .scaled_axis()
-                .into(),
+            rotate: rotation_vector(&(m.rotation * Rotation3::new(Vec3::from(*rotate)))).into(),
         },
         ObstacleShapeSpec::Torus {
             center,
@@ -682,11 +680,6 @@ fn no_obstacle(obstacle: usize, count: usize) -> SceneError {
         format!("obstacles[{obstacle}]"),
         format!("no such obstacle (the scene has {count})"),
     )
-}
-
-/// The rotation vector (rad) of `r`.
-fn rotation_vector(r: &Rotation3<f64>) -> Vec3 {
-    r.scaled_axis()
 }
 
 /// The obstacle of `spec` with its shape replaced by `shape`.
