@@ -44,7 +44,9 @@
 //  5. contacts (examples/cable_over_bracket.toml): one marker per active contact of the
 //     server's reply, coloured by sticking / sliding / frictionless; the normal-force arrows
 //     along the reply's normal forces with lengths |f_n| × the page's scale; the bracket's
-//     value under the pointer (hover) and its resultant in the panel; a drag updates them.
+//     value under the pointer (hover) and its resultant in the panel; a drag updates them;
+//     the bracket lifted 1 cm and then turned 10° about z through the obstacle rows: drawn
+//     there (the reply's axis to round-off), converged, the cable still on it.
 //  5b. cable on cable (scenes/crossing_cables.toml, self_contact): where the core's results
 //     list the touching segment pairs, one marker per pair, the force on each cable as an
 //     arrow, the pair's values on hover (skipped, and said so, where they are not listed).
@@ -842,6 +844,26 @@ try {
   const lift = bar1[0][2] - bar0[0][2];
   check(moved5.ok && moved5.edit.converged && Math.abs(lift - 0.01) < 1e-6 && moved5.view.min_gap > 0 && d5c.markers.length === countContacts(moved5),
     `bracket lifted 1 cm through the obstacle row: ${moved5.ok ? (moved5.edit.converged ? "converged" : "not converged") : "refused"}, drawn ${lift.toFixed(6)} m higher, min gap ${moved5.view?.min_gap?.toExponential(2)} m, ${d5c.markers.length} markers for ${countContacts(moved5)} contacts`);
+  // Then turned 10° about the vertical through its reference point (the row's rotation
+  // fields, degrees): the reply's bar axis is the y axis turned by 10° about z, the page draws
+  // the bar along it, and the cable still rests on it.
+  const n5r = s5.replies.length;
+  await s5.page.fill("#oz", "0");
+  await s5.page.fill("#orz", "10");
+  await s5.page.click("#obstacle-apply");
+  await s5.page.waitForFunction(() => Math.abs(window.slender.lastReply?.geometry?.obstacles?.[0]?.shape?.axis?.[0] ?? 0) > 1e-3
+    || window.slender.errors.length > 0, null, { timeout: 60000 });
+  const turned5 = (await Promise.all(s5.replies.slice(n5r))).filter((r) => r.op === "obstacle").at(-1);
+  await s5.page.fill("#orz", "0");
+  const axis = turned5?.geometry?.obstacles?.find((o) => o.name === "bracket")?.shape?.axis ?? [NaN, NaN, NaN];
+  const t = 10 / 180 * Math.PI;
+  const axisErr = Math.hypot(axis[0] + Math.sin(t), axis[1] - Math.cos(t), axis[2]);
+  const d5d = await drawn(s5.page);
+  const bar2 = d5d.obstacles.find((o) => o.name === "obstacle:bracket").box;
+  // Drawn x extent: the bar's length L seen at 10°, L sin 10° + 2 r cos 10°, wider than 2 r.
+  const widened = (bar2[1][0] - bar2[0][0]) - (bar1[1][0] - bar1[0][0]);
+  check(turned5?.ok && turned5.edit.converged && axisErr < 1e-12 && widened > 0.01 && turned5.view.min_gap > 0,
+    `bracket turned 10° about z through the obstacle row: ${turned5?.ok ? (turned5.edit.converged ? "converged" : "not converged") : "refused"}, axis off by ${axisErr.toExponential(1)}, drawn ${widened.toFixed(4)} m wider in x, min gap ${turned5?.view?.min_gap?.toExponential(2)} m`);
   for (const e of s5.errors) fail(e);
   check(s5.errors.length === 0, "no console errors (bracket page)");
 

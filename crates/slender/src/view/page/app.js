@@ -1453,7 +1453,8 @@ function setLength() {
 $("length-apply").addEventListener("click", setLength);
 $("obstacle-apply").addEventListener("click", () => {
   const translation = readVector(["ox", "oy", "oz"], "translation");
-  if (translation) edit({ op: "obstacle", obstacle: +$("obstacle-pick").value, translation });
+  const deg = translation && readVector(["orx", "ory", "orz"], "rotation");
+  if (deg) edit({ op: "obstacle", obstacle: +$("obstacle-pick").value, translation, rotation: deg.map((x) => x / DEG) });
 });
 $("length-value").addEventListener("keydown", (e) => { if (e.key === "Enter") setLength(); });
 $("delete-support").addEventListener("click", () => deleteSelected());
