@@ -47,6 +47,9 @@
 //     value under the pointer (hover) and its resultant in the panel; a drag updates them;
 //     the bracket lifted 1 cm and then turned 10° about z through the obstacle rows: drawn
 //     there (the reply's axis to round-off), converged, the cable still on it.
+//  5c. a flat cable over the bracket (examples/flat_cable_on_bracket.toml): the bracket lifted
+//     5 mm through the obstacle row carries the strip up; its equilibrium = slender solve's of
+//     the file with the lift as its motion stage (1e-9 of the length).
 //  5b. cable on cable (scenes/crossing_cables.toml, self_contact): where the core's results
 //     list the touching segment pairs, one marker per pair, the force on each cable as an
 //     arrow, the pair's values on hover (skipped, and said so, where they are not listed).
@@ -866,6 +869,35 @@ try {
     `bracket turned 10° about z through the obstacle row: ${turned5?.ok ? (turned5.edit.converged ? "converged" : "not converged") : "refused"}, axis off by ${axisErr.toExponential(1)}, drawn ${widened.toFixed(4)} m wider in x, min gap ${turned5?.view?.min_gap?.toExponential(2)} m`);
   for (const e of s5.errors) fail(e);
   check(s5.errors.length === 0, "no console errors (bracket page)");
+
+  // ---- 5c. a flat cable over the bracket: the bracket lifted through the obstacle row ----
+  const flatScene = join(here, "../../examples/flat_cable_on_bracket.toml");
+  const flatText = readFileSync(flatScene, "utf8");
+  const s5f = await open(flatScene);
+  sessions.push(s5f);
+  const r5f = await s5f.replies[0];
+  const flat0 = r5f.view.shells[0].positions;
+  const n5f = s5f.replies.length;
+  await s5f.page.selectOption("#obstacle-pick", "0");
+  await s5f.page.fill("#ox", "0");
+  await s5f.page.fill("#oy", "0.005");
+  await s5f.page.fill("#oz", "0");
+  await s5f.page.click("#obstacle-apply");
+  await s5f.page.waitForFunction(() => (window.slender.lastReply?.geometry?.obstacles?.[0]?.shape?.center?.[1] ?? -1) > -0.0425
+    || window.slender.errors.length > 0, null, { timeout: 120000 });
+  const lifted5f = (await Promise.all(s5f.replies.slice(n5f))).filter((r) => r.op === "obstacle").at(-1);
+  const flat1 = lifted5f?.view?.shells?.[0]?.positions ?? flat0;
+  // Over the bracket (x = 0.2 ± 3 cm): the strip's highest point there, lifted with it.
+  const overBracket = (ps) => Math.max(...ps.filter((p) => Math.abs(p[0] - 0.2) < 0.03).map((p) => p[1]));
+  const rise = overBracket(flat1) - overBracket(flat0);
+  // slender solve of the file with the lift as its motion stage (instead of the clamp's).
+  const liftText = flatText.slice(0, flatText.indexOf("[[motion]]")) + "[[motion]]\nobstacle = 0\ntranslate = [0.0, 0.005, 0.0]\n";
+  const liftCold = solveSceneResult("flat_cable_bracket_lifted", liftText).shells[0].positions;
+  const liftGap = maxRelativeDistance([flat1], [liftCold], 0.6);
+  check(lifted5f?.ok && lifted5f.edit.converged && rise > 0.004 && liftGap <= 1e-9 && lifted5f.view.min_gap > 0,
+    `flat cable: the bracket lifted 5 mm through the obstacle row: ${lifted5f?.ok ? (lifted5f.edit.converged ? "converged" : "not converged") : "refused"}, the strip over it ${(rise * 1000).toFixed(2)} mm higher, every vertex within ${liftGap.toExponential(2)} of its length of slender solve with the lift as a motion stage, min gap ${lifted5f?.view?.min_gap?.toExponential(2)} m`);
+  for (const e of s5f.errors) fail(e);
+  check(s5f.errors.length === 0, "no console errors (flat cable on the bracket)");
 
   // ---- 5b. cable on cable (self-contact), where the core's results list the pairs ----
   const s5c = await open(join(scenes, "crossing_cables.toml"));

@@ -88,7 +88,10 @@ impl ContactStripRun {
     }
 
     /// The contact problem around `shell` with the current friction state.
-    fn problem<'a>(&self, shell: &'a Shell) -> Result<ContactProblem<'a, Shell>, String> {
+    pub(crate) fn problem<'a>(
+        &self,
+        shell: &'a Shell,
+    ) -> Result<ContactProblem<'a, Shell>, String> {
         ContactProblem::new(
             shell,
             self.contact.obstacles.clone(),
@@ -110,6 +113,29 @@ impl ContactStripRun {
             self.friction = problem.friction_state();
         }
         report
+    }
+
+    /// Obstacle `o` replaced by `moved` (an obstacle moved in a session); the state is not
+    /// re-solved.
+    pub(crate) fn set_obstacle(&mut self, o: usize, moved: Arc<dyn Obstacle>) {
+        self.contact.obstacles[o] = moved;
+    }
+
+    /// The state and the friction state of its contacts, for an obstacle move to carry along
+    /// (see `Session::move_obstacle_to`).
+    pub(crate) fn state_and_friction(&mut self) -> (&mut ShellState, &mut Vec<Friction>) {
+        (&mut self.state, &mut self.friction)
+    }
+
+    /// Re-solves at full load, warm from the current state, with the long Newton budget of a
+    /// snap (a contact pressed by a moved obstacle settles on its barrier by many short
+    /// steps); the state stays where the solve leaves it, converged or not.
+    pub(crate) fn resolve(&mut self, shell: &Shell) -> SolveReport {
+        let user = self.solver.params;
+        self.solver.params.max_iterations = user.snap_iterations.max(user.max_iterations);
+        self.report = self.solve(shell, 1.0, 1.0);
+        self.solver.params = user;
+        self.report.clone()
     }
 
     fn save(&mut self) {

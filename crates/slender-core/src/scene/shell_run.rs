@@ -302,6 +302,23 @@ impl ShellRun {
         }
     }
 
+    /// The last solve of the strip's run in contact with the scene's obstacles (`None`
+    /// without obstacles).
+    pub(crate) fn contact_report(&self) -> Option<&SolveReport> {
+        match &self.runs {
+            Runs::MidedgeContact(r) => Some(&r.report),
+            _ => None,
+        }
+    }
+
+    /// The strip's run in contact with the scene's obstacles (`None` without obstacles).
+    pub(crate) fn contact_run_mut(&mut self) -> Option<&mut ContactStripRun> {
+        match &mut self.runs {
+            Runs::MidedgeContact(r) => Some(r),
+            _ => None,
+        }
+    }
+
     /// The pose of clamp `k` (in the order of the spec's `clamps`): the position of its
     /// edge's centre (m) and its rotation from rest.
     pub fn pose(&self, c: &CompiledShell, k: usize) -> Option<SupportPose> {

@@ -111,7 +111,7 @@ fn check_steps(path: &str, stage: &MotionStage) -> Result<(), SceneError> {
 }
 
 /// A stage moving obstacle `obstacle` (of `count`), in a scene whose rods' shortest parts
-/// are `shortest` long.
+/// are `shortest` long, with the strips `shells`.
 fn check_obstacle_stage(
     path: &str,
     stage: &MotionStage,
@@ -126,17 +126,14 @@ fn check_obstacle_stage(
             format!("{obstacle}: must be < {count} (number of obstacles)"),
         ));
     }
-    if !shells.is_empty() {
-        return Err(SceneError::new(
-            format!("{path}.obstacle"),
-            "obstacles cannot move in a scene with shell strips (the strips keep the \
-             obstacles of their own solve)",
-        ));
-    }
     let t = finite3(&format!("{path}.translate"), stage.translate)?;
     let rot = finite3(&format!("{path}.rotate"), stage.rotate)?;
     check_steps(path, stage)?;
-    let length = shortest.iter().copied().fold(f64::INFINITY, f64::min);
+    let length = shortest
+        .iter()
+        .copied()
+        .chain(shells.iter().map(|c| c.length()))
+        .fold(f64::INFINITY, f64::min);
     check_pieces(
         path,
         stage,

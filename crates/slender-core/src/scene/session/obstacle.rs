@@ -13,19 +13,24 @@
 //! cable to its supports, linearly in arc length, so that a taut cable lifted at one point
 //! starts as a V rather than with one edge kinked. Then every structure re-solves warm; a step
 //! that does not converge is undone and halved, and a move that still fails is undone whole
-//! and the report says why.
+//! and the report says why. A flat cable (a mid-edge shell strip in contact) is carried the
+//! same way: its vertices are its contact sites, and the moves spread along each column of
+//! vertices (one line along the strip per column) to its clamped edges.
 
 use std::sync::Arc;
 
 use nalgebra::Rotation3;
 
 use super::{rotation_vector, solve_structure, EditReport, SceneError, Session};
-use crate::contact::{ContactSites, Friction, Obstacle};
+use crate::contact::{ContactSite, ContactSites, Friction, Obstacle};
 use crate::geometry::Vec3;
 use crate::scene::compile::contact::obstacle;
 use crate::scene::compile::{MAX_STEP_ROTATION, MAX_STEP_TRANSLATION};
 use crate::scene::contact_report::{contact_problem, rod_vertex};
+use crate::scene::shell_contact_run::ContactStripRun;
+use crate::scene::shells::StripModel;
 use crate::scene::spec::ObstacleShapeSpec;
+use crate::shell::Shell;
 use crate::solver::EquilibriumProblem;
 use crate::structure::StructureState;
 
@@ -169,12 +174,15 @@ enum CarryError {
 /// length (a taut cable lifted at one point becomes a V, not a kink of one edge: the first
 /// guess's stretch is then spread as the equilibrium's is). `old` is obstacle `o` of
 /// `problem.obstacles()` before the step. When the spread would press a site into an
-/// obstacle, the swept sites alone are carried.
+/// obstacle, the swept sites alone are carried. `chain` places a site on the lines the moves
+/// are spread along: (line, position along it) — a rod's (member, vertex), a strip's
+/// (column, station).
 fn carry_displacement<P: ContactSites>(
     problem: &crate::contact::ContactProblem<'_, P>,
     state: &P::State,
     o: usize,
     step: &RigidMotion,
+    chain: impl Fn(&ContactSite) -> (usize, usize),
     dx: &mut [f64],
 ) -> Result<(), CarryError> {
     let sites = problem.sites();
@@ -228,7 +236,7 @@ fn carry_displacement<P: ContactSites>(
             step.apply(&(p + seen.normal * lift)) - p
         });
     }
-    let spread = spread_along_members(sites, &position, &carried, fixed);
+    let spread = spread_along_lines(sites, chain, &position, &carried, fixed);
     // The moved obstacle is obstacle o after the step; every other obstacle stays.
     let gap_after = |i: usize, q: &Vec3| -> (usize, f64) {
         problem
@@ -269,20 +277,22 @@ fn carry_displacement<P: ContactSites>(
     Ok(())
 }
 
-/// Each member's site moves from its carried sites' moves (`carried`), spread to the sites
-/// between them and the member's held sites (`fixed`: no move) linearly in arc length along
-/// the current centerline; past the last anchor at either end, the nearest anchor's move.
-/// Members without a carried site do not move.
-fn spread_along_members(
-    sites: &[crate::contact::ContactSite],
+/// The site moves along each line of sites (`chain`: a site's line and its position along
+/// it — a rod's member, a strip's column of vertices), from its carried sites' moves
+/// (`carried`), spread to the sites between them and the line's held sites (`fixed`: no
+/// move) linearly in arc length along the current shape; past the last anchor at either end,
+/// the nearest anchor's move. Lines without a carried site do not move.
+fn spread_along_lines(
+    sites: &[ContactSite],
+    chain: impl Fn(&ContactSite) -> (usize, usize),
     position: &[Vec3],
     carried: &[Option<Vec3>],
     fixed: impl Fn(usize) -> bool,
 ) -> Vec<Option<Vec3>> {
     let mut out = vec![None; sites.len()];
     let mut order: Vec<usize> = (0..sites.len()).collect();
-    order.sort_by_key(|&i| (sites[i].member, sites[i].vertex));
-    for chain in order.chunk_by(|&a, &b| sites[a].member == sites[b].member) {
+    order.sort_by_key(|&i| chain(&sites[i]));
+    for chain in order.chunk_by(|&a, &b| chain(&sites[a]).0 == chain(&sites[b]).0) {
         if !chain.iter().any(|&i| carried[i].is_some()) {
             continue;
         }
@@ -356,13 +366,14 @@ pub(super) fn stage_steps(rotation: &Vec3, translation: &Vec3, shortest: f64) ->
 }
 
 impl Session {
-    /// The length (m) of the shortest member of any structure (∞ without one): what sets the
-    /// largest translation of an obstacle per step.
+    /// The length (m) of the shortest member of any structure or strip (∞ without one): what
+    /// sets the largest translation of an obstacle per step.
     pub(super) fn shortest_member(&self) -> f64 {
         self.scene
             .structures
             .iter()
             .flat_map(|s| s.members().iter().map(|m| m.length()))
+            .chain(self.scene.shells.iter().map(|c| c.length()))
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -430,9 +441,10 @@ impl Session {
     /// says so.
     ///
     /// Errors name `obstacles[i]`: no such obstacle, a move that is not finite or too large
-    /// for one edit, a scene with shell strips (they keep the obstacles of their own solve).
-    /// An obstacle that would push into a support or press a cable into another obstacle is
-    /// a report that did not converge, saying so.
+    /// for one edit. An obstacle that would push into a support or a strip's clamped edge, or
+    /// press a cable or strip into another obstacle, is a report that did not converge,
+    /// saying so. Shell strips in contact are carried and re-solved with the rods (their
+    /// reports add to the edit's iterations and residual).
     pub fn move_obstacle_to(
         &mut self,
         obstacle: usize,
@@ -454,13 +466,6 @@ impl Session {
         {
             return Err(SceneError::new(path(), "the move must be finite"));
         }
-        if !self.shells.is_empty() {
-            return Err(SceneError::new(
-                path(),
-                "moving an obstacle in a scene with shell strips is not supported (the strips \
-                 keep the obstacles of their own solve): edit the scene file instead",
-            ));
-        }
         let turn = rotation_vector(&(rotation * r0.inverse()));
         let shift = translation - t0;
         let shortest = self.shortest_member();
@@ -476,6 +481,18 @@ impl Session {
                 }
                 for p in now.positions() {
                     reach = reach.max((p - centre).norm());
+                }
+            }
+        }
+        for (c, run) in self.scene.shells.iter().zip(&self.shells) {
+            if let (StripModel::Midedge(shell), Some(now)) = (&c.model, run.midedge_state()) {
+                let mesh = shell.mesh();
+                let p = shell.properties();
+                edge = edge
+                    .min(p.length / mesh.n_length as f64)
+                    .min(p.width / mesh.n_width as f64);
+                for x in &now.positions {
+                    reach = reach.max((x - centre).norm());
                 }
             }
         }
@@ -521,6 +538,10 @@ impl Session {
         for run in self.runs.iter_mut() {
             run.save();
         }
+        // The strips keep no backup of their own across several solves: the whole runs are
+        // kept (an obstacle move is no interactive drag; the copies are not on a hot path).
+        let strips_before = self.shells.clone();
+        let mut strip_snapshot = Vec::new();
         let mut reason = None;
         let n_obstacles = self.spec.obstacles.len();
         // Fractions of the edit done and tried next; a step that does not converge is
@@ -551,6 +572,7 @@ impl Session {
                     .iter()
                     .map(|r| (r.state.clone(), r.friction.clone())),
             );
+            strip_snapshot.clone_from(&self.shells);
             let this = to.after_undoing(&from);
             let mut failure = None;
             for &k in &ks {
@@ -562,10 +584,45 @@ impl Session {
                 }
             }
             if failure.is_none() {
+                for (c, run) in self.scene.shells.iter().zip(self.shells.iter_mut()) {
+                    let (StripModel::Midedge(shell), Some(run)) = (&c.model, run.contact_run_mut())
+                    else {
+                        continue;
+                    };
+                    if let Err(e) = carry_strip(run, shell, &c.name, obstacle, n_obstacles, &this) {
+                        failure = Some((e, false));
+                        break;
+                    }
+                }
+            }
+            if failure.is_none() {
                 if let Some(c) = self.scene.contact.as_mut() {
                     c.obstacles[obstacle] = moved.clone();
                 }
+                for (c, run) in self.scene.shells.iter().zip(self.shells.iter_mut()) {
+                    if let (StripModel::Midedge(shell), Some(run)) =
+                        (&c.model, run.contact_run_mut())
+                    {
+                        run.set_obstacle(obstacle, moved.clone());
+                        if failure.is_some() {
+                            continue;
+                        }
+                        let report = run.resolve(shell);
+                        if !report.converged() {
+                            failure = Some((
+                                format!(
+                                    "strip {:?}, the obstacle at {:.3} of its move: {:?}",
+                                    c.name, next, report.status
+                                ),
+                                true,
+                            ));
+                        }
+                    }
+                }
                 for &k in &ks {
+                    if failure.is_some() {
+                        break;
+                    }
                     let run = &mut self.runs[k];
                     // A contact pressed by the moving obstacle settles on its barrier by
                     // many short Newton steps: the step gets the long budget of a snap.
@@ -605,6 +662,8 @@ impl Session {
                     if let Some(c) = self.scene.contact.as_mut() {
                         c.obstacles[obstacle] = current.clone();
                     }
+                    // The strips' runs hold their copies of the obstacles: back with them.
+                    self.shells.clone_from(&strip_snapshot);
                     halvings += 1;
                     if !retry || halvings > MAX_OBSTACLE_HALVINGS {
                         reason = Some(format!("{why} (after {taken} steps)"));
@@ -618,15 +677,31 @@ impl Session {
             if let Some(c) = self.scene.contact.as_mut() {
                 c.obstacles[obstacle] = before;
             }
-            let summary = self.summary(&ks, reason);
+            let mut summary = self.summary(&ks, reason);
+            self.add_strips(&mut summary);
             for run in self.runs.iter_mut() {
                 run.restore();
             }
+            self.shells = strips_before;
             self.affected = ks;
             return Ok(summary);
         }
         self.obstacle_moves[obstacle] = (rotation, translation);
-        Ok(self.stabilized(ks))
+        let mut report = self.stabilized(ks);
+        self.add_strips(&mut report);
+        Ok(report)
+    }
+
+    /// Adds the last solves of the strips in contact to `report` (an obstacle move re-solves
+    /// them with the rods).
+    fn add_strips(&self, report: &mut EditReport) {
+        for run in self.shells.iter() {
+            if let Some(r) = run.contact_report() {
+                report.iterations += r.iterations;
+                report.load_steps += r.load_steps;
+                report.relative_residual = report.relative_residual.max(r.relative_residual);
+            }
+        }
     }
 
     /// Carries structure `k`'s sites swept by obstacle `o`'s step `step` (and its contacts'
@@ -646,7 +721,8 @@ impl Session {
         };
         let structure = &self.scene.structures[k];
         let mut dx = vec![0.0; structure.n_free()];
-        match carry_displacement(&problem, &run.state, o, step, &mut dx) {
+        let along_members = |s: &ContactSite| (s.member, s.vertex);
+        match carry_displacement(&problem, &run.state, o, step, along_members, &mut dx) {
             Ok(()) => {}
             Err(CarryError::Held(member, vertex)) => {
                 let (rod, v) = rod_vertex(&self.scene, k, member, vertex);
@@ -672,6 +748,54 @@ impl Session {
         carry_friction(&mut run.friction, o, n_obstacles, step);
         Ok(())
     }
+}
+
+/// Carries the vertices of strip `name` (mid-edge `shell`, solved by `run`) that obstacle
+/// `o`'s step `step` sweeps or squeezes along, spread along each column of vertices to its
+/// clamped ends, and the anchors of its contacts' friction; an error names a clamped vertex
+/// in the way or a vertex pressed into another obstacle.
+fn carry_strip(
+    run: &mut ContactStripRun,
+    shell: &Shell,
+    name: &str,
+    o: usize,
+    n_obstacles: usize,
+    step: &RigidMotion,
+) -> Result<(), String> {
+    let columns = shell.mesh().n_width + 1;
+    let place = |v: usize| (v / columns, v % columns);
+    let problem = run.problem(shell)?;
+    let mut dx = vec![0.0; problem.n_free()];
+    let (state, _) = run.state_and_friction();
+    let along_columns = |s: &ContactSite| (s.vertex % columns, s.vertex / columns);
+    match carry_displacement(&problem, state, o, step, along_columns, &mut dx) {
+        Ok(()) => {}
+        Err(CarryError::Held(_, v)) => {
+            let (station, column) = place(v);
+            return Err(format!(
+                "obstacles[{o}] would push into the clamped edge of strip {name:?} (station \
+                 {station}, column {column}): move the clamp first"
+            ));
+        }
+        Err(CarryError::Pressed(other, _, v)) => {
+            let (station, column) = place(v);
+            return Err(format!(
+                "obstacles[{o}] would press strip {name:?} (station {station}, column \
+                 {column}) into obstacles[{other}]"
+            ));
+        }
+    }
+    let (state, friction) = run.state_and_friction();
+    if dx.iter().any(|&d| d != 0.0) {
+        // Positions move by exactly their steps; the moved state was produced by no Newton
+        // step, so it has no membrane remainder.
+        let mut moved = state.clone();
+        problem.displace(state, &dx, 1.0, &mut moved);
+        moved.membrane_remainder.clear();
+        *state = moved;
+    }
+    carry_friction(friction, o, n_obstacles, step);
+    Ok(())
 }
 
 /// The error for an obstacle index past the `count` of the scene.
