@@ -1411,6 +1411,25 @@ fn fuzz_contact_scene_requests() {
 }
 
 #[test]
+fn fuzz_flat_cable_on_the_bracket_requests() {
+    // A strip in contact: obstacle moves carry it along and re-solve it, and an edit refused
+    // or not converged keeps its equilibrium (and the obstacles) where they were; every
+    // accepted reply keeps every gap open.
+    let scene: Scene = toml::from_str(include_str!(
+        "../../../../examples/flat_cable_on_bracket.toml"
+    ))
+    .expect("the example parses");
+    let session = Session::new(scene).expect("the example compiles");
+    fuzz_session(session, request(), 40, |v| {
+        if v["ok"] == json!(true) {
+            let (gap, _) = gap_and_contacts(v);
+            prop_assert!(gap > 0.0, "min gap {gap}: {v}");
+        }
+        Ok(())
+    });
+}
+
+#[test]
 fn self_contact_pairs_are_forwarded_as_the_results_list_them() {
     // Two cables crossing 8 mm apart, the upper one sagging onto the lower one (the page
     // test's scene). Where the core's results list the touching segment pairs, the view
@@ -1468,4 +1487,37 @@ fn an_obstacle_message_moves_the_obstacle_and_undo_puts_it_back() {
     let undone = through(&mut h, &mut s, r#"{"op": "undo"}"#);
     assert_eq!(bar(&undone), b0);
     assert_eq!(undone["view"], before["view"]);
+}
+
+#[test]
+fn an_obstacle_turned_about_a_pivot_moves_its_reference_point_with_the_turn() {
+    // The page's gizmo turns an obstacle about the centre of its drawn shape: the contact
+    // scene's ring (obstacle 5, centre (0.7, 0.08, 0.02), axis z) turned by 0.2 rad about z
+    // through a pivot 5 cm off its centre swings its centre about the pivot:
+    // c' = q + R (c − q), in closed form (0.7 + 0.05 sin 0.2, 0.13 − 0.05 cos 0.2, 0.02).
+    let mut s = contact_session();
+    let (v, _) = exchange(
+        &mut s,
+        r#"{"op": "obstacle", "obstacle": 5, "rotation": [0.0, 0.0, 0.2], "pivot": [0.7, 0.13, 0.02]}"#,
+    );
+    assert_eq!(v["ok"], json!(true), "{v}");
+    assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+    let ring = &v["geometry"]["obstacles"][5]["shape"];
+    let centre: Vec<f64> = (0..3)
+        .map(|i| ring["center"][i].as_f64().unwrap())
+        .collect();
+    let expected = [0.7 + 0.05 * 0.2f64.sin(), 0.13 - 0.05 * 0.2f64.cos(), 0.02];
+    let off = (0..3)
+        .map(|i| (centre[i] - expected[i]).abs())
+        .fold(0.0, f64::max);
+    assert!(off < 1e-15, "{centre:?} vs {expected:?}");
+    // A turn about z keeps the ring's axis.
+    assert_eq!(ring["axis"][2].as_f64().unwrap().abs(), 1.0, "{ring}");
+    // A pivot that is not finite is refused by name.
+    let (v, kept) = exchange(
+        &mut s,
+        r#"{"op": "obstacle", "obstacle": 5, "rotation": [0.0, 0.0, 0.2], "pivot": [0.7, 1e999, 0.02]}"#,
+    );
+    assert!(kept);
+    assert_eq!(v["ok"], json!(false), "{v}");
 }

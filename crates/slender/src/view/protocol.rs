@@ -128,9 +128,13 @@ pub enum Request {
         /// Translation (m).
         #[serde(default)]
         translation: [f64; 3],
-        /// Rotation vector (rad) about the obstacle's reference point.
+        /// Rotation vector (rad) about the obstacle's reference point, or about `pivot`.
         #[serde(default)]
         rotation: [f64; 3],
+        /// The point (m) the rotation turns about, if not the obstacle's reference point (the
+        /// page's gizmo turns an obstacle about the centre of its drawn shape).
+        #[serde(default)]
+        pivot: Option<[f64; 3]>,
     },
     /// Set a dead point force of a rod (the scene's `rods[rod].forces[force]`) or of a shell
     /// strip (`shells[shell].forces[force]`) to `value` (N).
@@ -510,14 +514,22 @@ fn apply(session: &mut Session, request: &Request) -> Result<OkReply, ErrorReply
             obstacle,
             translation,
             rotation,
+            pivot,
         } => {
             finite("translation", translation)?;
             finite("rotation", rotation)?;
-            Some(session.move_obstacle_by(
-                *obstacle,
-                Vec3::from(*rotation),
-                Vec3::from(*translation),
-            )?)
+            let mut shift = Vec3::from(*translation);
+            if let Some(pivot) = pivot {
+                finite("pivot", pivot)?;
+                // Turning by R about c, then shifting by t, is turning about the reference
+                // point p and shifting by t + (I − R)(c − p).
+                if let Some(p) = session.obstacle_reference(*obstacle) {
+                    let c = Vec3::from(*pivot);
+                    let r = nalgebra::Rotation3::new(Vec3::from(*rotation));
+                    shift += (c - p) - r * (c - p);
+                }
+            }
+            Some(session.move_obstacle_by(*obstacle, Vec3::from(*rotation), shift)?)
         }
         Request::Force {
             rod,

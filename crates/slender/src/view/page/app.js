@@ -99,6 +99,8 @@ scene3.add(gizmo.getHelper());
 let checkpointing = null;
 gizmo.addEventListener("dragging-changed", (e) => {
   orbit.enabled = !e.value;
+  // An obstacle moves as one edit when the gizmo is released (its own step of undo).
+  if (grabbed) { if (!e.value) applyObstacleDrag(); return; }
   if (e.value) checkpointing = request({ op: "checkpoint" });
   if (!e.value) afterDrag();
 });
@@ -119,6 +121,7 @@ let arrows = [];
 let labels = [];
 let labelSpecs = []; // reaction values: { at, text, cls }
 let selected = null; // the handle being edited
+let grabbed = null; // an obstacle held by the gizmo: { index, mesh, position, quaternion } (its pose when grabbed)
 let dragging = false;
 let pendingMove = null;
 let moveInFlight = false;
@@ -832,6 +835,8 @@ function buildObstacles() {
     mesh.userData = { obstacle: i, kind: ob.shape.kind, name: ob.name };
     obstacleGroup.add(mesh);
   });
+  // A grabbed obstacle's mesh was replaced: the gizmo holds the new one, at its new pose.
+  if (grabbed) grabObstacle(obstacleGroup.children.find((m) => m.userData.obstacle === grabbed.index) ?? null);
   const any = geometry.obstacles.length > 0 || geometry.self_contact;
   $("contacts-box").hidden = !any;
   $("pair-legend").hidden = !geometry.self_contact;
@@ -1207,6 +1212,7 @@ async function edit(req) {
 // ---------- dragging ----------
 
 function select(h) {
+  if (h) grabbed = null;
   selected = h;
   if (!h) { gizmo.detach(); updateSelectionPanel(); requestRender(); return; }
   gizmo.attach(h);
@@ -1216,7 +1222,39 @@ function select(h) {
   requestRender();
 }
 
+/** Puts the gizmo on obstacle mesh `mesh` (null: lets go of any), remembering its pose: the
+ *  drag's move is applied when the gizmo is released ([`applyObstacleDrag`]). */
+function grabObstacle(mesh) {
+  if (!mesh) {
+    if (grabbed) { grabbed = null; gizmo.detach(); $("selection").textContent = "Click an obstacle to move it with the gizmo."; requestRender(); }
+    return;
+  }
+  if (selected) select(null);
+  grabbed = { index: mesh.userData.obstacle, mesh, position: mesh.position.clone(), quaternion: mesh.quaternion.clone() };
+  gizmo.attach(mesh);
+  gizmo.setMode(document.querySelector('input[name="gizmo"]:checked').value);
+  $("obstacle-pick").value = String(grabbed.index);
+  $("selection").textContent = `selected: obstacle ${mesh.userData.name}: move or turn it with the gizmo; the move is applied on release`;
+  requestRender();
+}
+
+/** The gizmo let go of the grabbed obstacle: its move from where it was grabbed (a turn about
+ *  the drawn shape's centre, the gizmo's pivot, then a translation) as one `obstacle` edit.
+ *  The reply's shapes replace the meshes; a refused move puts the mesh back. */
+async function applyObstacleDrag() {
+  const g = grabbed;
+  if (!g) return null;
+  const translation = g.mesh.position.clone().sub(g.position).toArray();
+  const rotation = quaternionToRotation(g.mesh.quaternion.clone().multiply(g.quaternion.clone().invert()));
+  if (translation.every((x) => x === 0) && rotation.every((x) => x === 0)) return null;
+  const reply = await edit({ op: "obstacle", obstacle: g.index, translation, rotation, pivot: g.position.toArray() });
+  if (!reply.ok) buildObstacles();
+  render();
+  return reply;
+}
+
 function setGizmoMode(mode) {
+  if (grabbed) { gizmo.setMode(mode); return; }
   if (!selected) return;
   const kind = selected.userData.kind;
   // Pins and sliders have no orientation; a twist hold has no position.
@@ -1313,6 +1351,12 @@ canvas.addEventListener("pointerup", async (ev) => {
   if (!down || Math.hypot(ev.clientX - down.x, ev.clientY - down.y) > 4 || gizmo.dragging) { down = null; return; }
   down = null;
   const tool = document.querySelector('input[name="tool"]:checked').value;
+  if (tool === "move-obstacle") {
+    if (gizmo.axis) return;
+    const hit = pick(ev, obstacleGroup.children).find((h) => h.object.isMesh && h.object.userData.obstacle !== undefined);
+    grabObstacle(hit ? hit.object : null);
+    return;
+  }
   if (tool === "add-clip" || tool === "add-force" || tool === "add-moment") {
     const targets = rods.map((r) => r.mesh).concat(tool === "add-force" ? shells : []);
     // Meshes only: a strip's wireframe child is a line, which the ray "hits" within a metre.
@@ -1422,7 +1466,9 @@ function frameCamera() {
 
 document.querySelectorAll('input[name="gizmo"]').forEach((el) => el.addEventListener("change", () => setGizmoMode(el.value)));
 document.querySelectorAll('input[name="tool"]').forEach((el) => el.addEventListener("change", () => {
+  if (el.checked && el.value !== "move-obstacle") grabObstacle(null);
   $("hint").textContent = !el.checked ? "" : el.value === "add-clip" ? "Click a cable to add a clip there."
+    : el.value === "move-obstacle" ? "Click an obstacle, then move or turn it with the gizmo: the move is applied on release."
     : el.value === "add-force" ? "Click a cable or a flat cable to add a point force at its nearest vertex; set its value in the panel."
     : el.value === "add-moment" ? "Click a cable to add a point moment at its nearest vertex; set its value in the panel." : "";
 }));
@@ -1594,6 +1640,23 @@ const slender = {
     const p = v3(r.positions[j]).lerp(v3(r.positions[j + 1]), u).project(camera);
     const box = canvas.getBoundingClientRect();
     return { x: box.left + ((p.x + 1) / 2) * box.width, y: box.top + ((1 - p.y) / 2) * box.height };
+  },
+  /** The obstacle the gizmo holds (its index), or null. */
+  grabbedObstacle() {
+    return grabbed ? grabbed.index : null;
+  },
+  /** Moves obstacle `index` as the gizmo does: grabbed, its mesh shifted by `d` (m) and turned
+   *  by the rotation vector `turn` (rad) about its drawn centre, then released; resolves to
+   *  the `obstacle` reply. */
+  async dragObstacle(index, d, turn = [0, 0, 0]) {
+    this.setTool("move-obstacle");
+    grabObstacle(obstacleGroup.children.find((m) => m.userData.obstacle === index) ?? null);
+    if (!grabbed) throw new Error(`no obstacle ${index}`);
+    const { mesh } = grabbed;
+    mesh.position.add(v3(d));
+    const angle = Math.hypot(...turn);
+    if (angle > 0) mesh.quaternion.premultiply(new THREE.Quaternion().setFromAxisAngle(v3(turn).normalize(), angle));
+    return applyObstacleDrag();
   },
   setTool(name) {
     const el = document.querySelector(`input[name="tool"][value="${name}"]`);
