@@ -486,11 +486,11 @@ impl Session {
         }
         for (c, run) in self.scene.shells.iter().zip(&self.shells) {
             if let (StripModel::Midedge(shell), Some(now)) = (&c.model, run.midedge_state()) {
+                // The mesh's shortest rest edge (a graded strip's are shortest at its start).
                 let mesh = shell.mesh();
-                let p = shell.properties();
-                edge = edge
-                    .min(p.length / mesh.n_length as f64)
-                    .min(p.width / mesh.n_width as f64);
+                for &[a, b] in &mesh.edges {
+                    edge = edge.min((mesh.rest_positions[a] - mesh.rest_positions[b]).norm());
+                }
                 for x in &now.positions {
                     reach = reach.max((x - centre).norm());
                 }
