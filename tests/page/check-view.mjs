@@ -116,6 +116,28 @@ function solveScene(name, text) {
   return solveSceneResult(name, text).rods.map((r) => r.positions);
 }
 
+/** Moves obstacle `index` through the panel's obstacle rows — translation `t` (m), turn `deg`
+ *  (a rotation vector in degrees) — and resolves to the server's reply once the page has
+ *  drawn it (null if none came within two minutes). */
+async function moveObstacleByRows(s, index, t, deg = [0, 0, 0]) {
+  const n = s.replies.length;
+  await s.page.selectOption("#obstacle-pick", String(index));
+  for (const [i, c] of ["x", "y", "z"].entries()) {
+    await s.page.fill(`#o${c}`, String(t[i]));
+    await s.page.fill(`#or${c}`, String(deg[i]));
+  }
+  await s.page.click("#obstacle-apply");
+  for (let k = 0; k < 1200; k++) {
+    const reply = (await Promise.all(s.replies.slice(n))).find((r) => r.op === "obstacle" || r.ok === false);
+    if (reply) {
+      await s.page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
+      return reply;
+    }
+    await s.page.waitForTimeout(100);
+  }
+  return null;
+}
+
 /** Largest distance between corresponding vertices over the rods, over `length`. */
 function maxRelativeDistance(a, b, length) {
   let worst = 0;
@@ -836,30 +858,16 @@ try {
   // The bracket lifted 1 cm through the obstacle row: the reply carries the moved bar, the
   // page draws it there, the cable rests on it (every gap positive), the markers follow.
   const bar0 = d5b.obstacles.find((o) => o.name === "obstacle:bracket").box;
-  const n5o = s5.replies.length;
-  await s5.page.selectOption("#obstacle-pick", "0");
-  await s5.page.fill("#ox", "0");
-  await s5.page.fill("#oy", "0");
-  await s5.page.fill("#oz", "0.01");
-  await s5.page.click("#obstacle-apply");
-  await s5.page.waitForFunction((n) => window.slender.lastReply && window.slender.lastReply.op === "obstacle" || window.slender.errors.length > 0, n5o, { timeout: 60000 });
-  const moved5 = await s5.page.evaluate(() => window.slender.lastReply);
+  const moved5 = await moveObstacleByRows(s5, 0, [0, 0, 0.01]);
   const d5c = await drawn(s5.page);
   const bar1 = d5c.obstacles.find((o) => o.name === "obstacle:bracket").box;
   const lift = bar1[0][2] - bar0[0][2];
-  check(moved5.ok && moved5.edit.converged && Math.abs(lift - 0.01) < 1e-6 && moved5.view.min_gap > 0 && d5c.markers.length === countContacts(moved5),
-    `bracket lifted 1 cm through the obstacle row: ${moved5.ok ? (moved5.edit.converged ? "converged" : "not converged") : "refused"}, drawn ${lift.toFixed(6)} m higher, min gap ${moved5.view?.min_gap?.toExponential(2)} m, ${d5c.markers.length} markers for ${countContacts(moved5)} contacts`);
+  check(moved5?.ok && moved5.edit.converged && Math.abs(lift - 0.01) < 1e-6 && moved5.view.min_gap > 0 && d5c.markers.length === countContacts(moved5),
+    `bracket lifted 1 cm through the obstacle row: ${moved5?.ok ? (moved5.edit.converged ? "converged" : "not converged") : "refused"}, drawn ${lift.toFixed(6)} m higher, min gap ${moved5.view?.min_gap?.toExponential(2)} m, ${d5c.markers.length} markers for ${countContacts(moved5)} contacts`);
   // Then turned 10° about the vertical through its reference point (the row's rotation
   // fields, degrees): the reply's bar axis is the y axis turned by 10° about z, the page draws
   // the bar along it, and the cable still rests on it.
-  const n5r = s5.replies.length;
-  await s5.page.fill("#oz", "0");
-  await s5.page.fill("#orz", "10");
-  await s5.page.click("#obstacle-apply");
-  await s5.page.waitForFunction(() => Math.abs(window.slender.lastReply?.geometry?.obstacles?.[0]?.shape?.axis?.[0] ?? 0) > 1e-3
-    || window.slender.errors.length > 0, null, { timeout: 60000 });
-  const turned5 = (await Promise.all(s5.replies.slice(n5r))).filter((r) => r.op === "obstacle").at(-1);
-  await s5.page.fill("#orz", "0");
+  const turned5 = await moveObstacleByRows(s5, 0, [0, 0, 0], [0, 0, 10]);
   const axis = turned5?.geometry?.obstacles?.find((o) => o.name === "bracket")?.shape?.axis ?? [NaN, NaN, NaN];
   const t = 10 / 180 * Math.PI;
   const axisErr = Math.hypot(axis[0] + Math.sin(t), axis[1] - Math.cos(t), axis[2]);
@@ -906,15 +914,7 @@ try {
   sessions.push(s5f);
   const r5f = await s5f.replies[0];
   const flat0 = r5f.view.shells[0].positions;
-  const n5f = s5f.replies.length;
-  await s5f.page.selectOption("#obstacle-pick", "0");
-  await s5f.page.fill("#ox", "0");
-  await s5f.page.fill("#oy", "0.005");
-  await s5f.page.fill("#oz", "0");
-  await s5f.page.click("#obstacle-apply");
-  await s5f.page.waitForFunction(() => (window.slender.lastReply?.geometry?.obstacles?.[0]?.shape?.center?.[1] ?? -1) > -0.0425
-    || window.slender.errors.length > 0, null, { timeout: 120000 });
-  const lifted5f = (await Promise.all(s5f.replies.slice(n5f))).filter((r) => r.op === "obstacle").at(-1);
+  const lifted5f = await moveObstacleByRows(s5f, 0, [0, 0.005, 0]);
   const flat1 = lifted5f?.view?.shells?.[0]?.positions ?? flat0;
   // Over the bracket (x = 0.2 ± 3 cm): the strip's highest point there, lifted with it.
   const overBracket = (ps) => Math.max(...ps.filter((p) => Math.abs(p[0] - 0.2) < 0.03).map((p) => p[1]));
