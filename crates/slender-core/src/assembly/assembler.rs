@@ -42,6 +42,11 @@ pub struct Assembler<'o, M: SymmetricMatrix> {
     /// Scale of the chart the derivatives are taken in: gradients are multiplied by it and
     /// Hessians by its square (1 except in a [`Self::rescaled`] assembly).
     chart_scale: f64,
+    /// The term groups whose Hessian is kept apart (see [`Self::lagging`]); none by default.
+    lagged: TermSet,
+    /// Where the Hessians of the terms made only of `lagged` groups go: into this matrix, or
+    /// nowhere (not evaluated) when `None`.
+    lagged_hess: Option<&'o mut M>,
 }
 
 /// Where one free DOF of a part (a member of a composite structure) goes in the whole: the
@@ -83,7 +88,24 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             remap: None,
             weight: 1.0,
             chart_scale: 1.0,
+            lagged: TermSet::NONE,
+            lagged_hess: None,
         }
+    }
+
+    /// Keeps the Hessians of the terms made only of the groups in `groups` out of the
+    /// Hessian output: into `into` (zeroed here), or, with `None`, not evaluated at all (their
+    /// energies and gradients are assembled as usual). The Newton solver uses it to reuse the
+    /// slowly varying part of a Hessian (a rod's bending and twisting) from an earlier
+    /// assembly while the fast part (stretching, loads) is fresh; `add_same_pattern` puts the
+    /// two together.
+    pub fn lagging(mut self, groups: TermSet, mut into: Option<&'o mut M>) -> Self {
+        if let Some(h) = into.as_deref_mut() {
+            h.set_zero();
+        }
+        self.lagged = groups;
+        self.lagged_hess = into;
+        self
     }
 
     /// An assembler for a part of the system (a member of a composite structure) whose own
@@ -106,6 +128,8 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             remap: (!identity).then_some(remap),
             weight: self.weight,
             chart_scale: self.chart_scale,
+            lagged: self.lagged,
+            lagged_hess: self.lagged_hess.as_deref_mut(),
         }
     }
 
@@ -125,6 +149,8 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             remap: self.remap,
             weight: self.weight * weight,
             chart_scale: self.chart_scale * chart_scale,
+            lagged: self.lagged,
+            lagged_hess: self.lagged_hess.as_deref_mut(),
         }
     }
 
@@ -185,23 +211,26 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
             if selected == TermSet::NONE {
                 continue;
             }
+            let lagged =
+                self.lagged != TermSet::NONE && selected.without(self.lagged) == TermSet::NONE;
+            let term_hess = want_hess && !(lagged && self.lagged_hess.is_none());
             // Whole-matrix assignment: vector stores (nalgebra's `fill` walks the entries).
             if want_grad {
                 g = SVector::zeros();
             }
-            if want_hess && !T::OVERWRITES_HESSIAN {
+            if term_hess && !T::OVERWRITES_HESSIAN {
                 h = SMatrix::zeros();
             }
             let mut out = LocalDerivatives {
                 energy: 0.0,
                 magnitude: 0.0,
                 grad: want_grad.then_some(&mut g),
-                hess: want_hess.then_some(&mut h),
+                hess: term_hess.then_some(&mut h),
             };
             term.evaluate(ctx, selected, &mut out);
             let (energy, magnitude) = (out.energy, out.magnitude);
             let plan = plan.map(|p| (p, index));
-            self.local_planned(term.stencil(), energy, magnitude, &g, &h, plan);
+            self.local_planned(term.stencil(), energy, magnitude, &g, &h, plan, lagged);
         }
     }
 
@@ -216,7 +245,7 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         g: &SVector<f64, D>,
         h: &SMatrix<f64, D, D>,
     ) {
-        self.local_planned(stencil, energy, magnitude, g, h, None);
+        self.local_planned(stencil, energy, magnitude, g, h, None, false);
     }
 
     /// [`Self::local`] for term `plan.1` of a scatter plan.
@@ -228,13 +257,14 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         g: &SVector<f64, D>,
         h: &SMatrix<f64, D, D>,
         plan: Option<(&ScatterPlan, usize)>,
+        lagged: bool,
     ) {
         // Factors of 1 multiply exactly: plain assemblies are bit-for-bit unchanged.
         let (w, gw, hw) = self.factors();
         self.info.energy += w * energy;
         self.info.energy_magnitude += w.abs() * magnitude;
         if let Some(remap) = self.remap {
-            self.scatter_mapped(stencil, remap, g, h);
+            self.scatter_mapped(stencil, remap, g, h, lagged);
             return;
         }
         // Unit factors (a plain assembly) take a path without the multiplications by them,
@@ -244,7 +274,12 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         } else {
             self.scatter_gradient(stencil, |a| gw * g[a]);
         }
-        if let Some(hm) = self.hess.as_deref_mut() {
+        let target = if lagged {
+            self.lagged_hess.as_deref_mut()
+        } else {
+            self.hess.as_deref_mut()
+        };
+        if let Some(hm) = target {
             // Lower triangle of the stencil (b ≤ a): each unordered pair once, read from the
             // upper one (column a, rows b ≤ a: contiguous in nalgebra's column-major storage,
             // where row a is strided; the local Hessian is symmetric).
@@ -288,6 +323,7 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
         remap: &[MapSlot],
         g: &SVector<f64, D>,
         h: &SMatrix<f64, D, D>,
+        lagged: bool,
     ) {
         let (_, gw, hw) = self.factors();
         let slot = |a: usize| -> Option<MapSlot> {
@@ -311,7 +347,12 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
                 ab[i] += (gw * ma.coef * g[a]).abs();
             }
         }
-        if let Some(hm) = self.hess.as_deref_mut() {
+        let target = if lagged {
+            self.lagged_hess.as_deref_mut()
+        } else {
+            self.hess.as_deref_mut()
+        };
+        if let Some(hm) = target {
             // Unit coefficients (every DOF but a slider's) multiply exactly: skip them.
             if coefs
                 .iter()

@@ -45,6 +45,14 @@ impl SymmetricMatrix for AdaptiveMatrix {
         }
     }
 
+    fn add_same_pattern(&mut self, other: &Self) -> bool {
+        match (self, other) {
+            (Self::Band(a), Self::Band(b)) => a.add_same_pattern(b),
+            (Self::Sparse(a), Self::Sparse(b)) => a.add_same_pattern(b),
+            _ => false,
+        }
+    }
+
     fn add(&mut self, i: usize, j: usize, v: f64) {
         match self {
             Self::Band(m) => m.add(i, j, v),

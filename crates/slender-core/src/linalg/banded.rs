@@ -636,6 +636,16 @@ impl SymmetricMatrix for SymmetricBandMatrix {
         SymmetricBandMatrix::set_zero(self)
     }
 
+    fn add_same_pattern(&mut self, other: &Self) -> bool {
+        if self.n != other.n || self.bw != other.bw {
+            return false;
+        }
+        for (a, b) in self.data.iter_mut().zip(&other.data) {
+            *a += b;
+        }
+        true
+    }
+
     #[inline]
     fn add(&mut self, i: usize, j: usize, v: f64) {
         SymmetricBandMatrix::add(self, i, j, v)

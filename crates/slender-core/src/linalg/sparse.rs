@@ -189,6 +189,16 @@ impl SymmetricMatrix for SparseSymmetricMatrix {
         self.values.fill(0.0);
     }
 
+    fn add_same_pattern(&mut self, other: &Self) -> bool {
+        if !std::sync::Arc::ptr_eq(&self.pattern, &other.pattern) {
+            return false;
+        }
+        for (a, b) in self.values.iter_mut().zip(&other.values) {
+            *a += b;
+        }
+        true
+    }
+
     fn add(&mut self, i: usize, j: usize, v: f64) {
         match self.position(i, j) {
             Some(k) => self.values[k] += v,

@@ -83,6 +83,13 @@ pub trait SymmetricMatrix: Clone + std::fmt::Debug {
 
     /// `out` = S A S with S = diag(`s`) (same pattern; `out` is reshaped if needed).
     fn congruence_scaled(&self, s: &[f64], out: &mut Self);
+
+    /// Adds `other`'s stored entries to this matrix's when both have the same storage
+    /// pattern (e.g. one is a clone of the other) and returns true; returns false, changing
+    /// nothing, when they do not or the storage cannot tell.
+    fn add_same_pattern(&mut self, _other: &Self) -> bool {
+        false
+    }
 }
 
 /// An LDLᵀ factorization (no pivoting) of A + σI for a matrix type `M`.

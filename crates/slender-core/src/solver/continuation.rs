@@ -553,6 +553,8 @@ impl<S: Clone, M: SymmetricMatrix> EquilibriumSolver<S, M> {
         }
         let alpha = problem.max_step(&self.candidate, &self.predictor).min(1.0);
         problem.displace(&self.candidate, &self.predictor, alpha, &mut self.ws.trial);
+        // The first Newton step after it may keep the slow part of the Hessian.
+        self.ws.lag_next = self.params.lagged_first_step;
         // At α = 0 the merit is the energy (`info.energy`).
         if self.params.deferred_energy_check && problem.merit_is_energy() {
             // Newton's first measure computes the energy there anyway, and undoes the

@@ -31,6 +31,13 @@ pub struct NewtonWorkspace<S, M: SymmetricMatrix = SymmetricBandMatrix> {
     pub(crate) deferred: Option<DeferredCheck>,
     /// The per-DOF scales of the last round-off floor.
     pub(crate) scales: FloorScales,
+    /// The Hessian of the problem's lagged term groups at the last complete assembly (see
+    /// [`SolverParams::lagged_first_step`]); allocated by the first such assembly.
+    pub(crate) lagged: Option<M>,
+    /// True if `lagged` is that of the last complete assembly of this workspace.
+    pub(crate) lagged_fresh: bool,
+    /// Set after a chord predictor: the next measure may reuse `lagged`.
+    pub(crate) lag_next: bool,
 }
 
 /// The per-DOF scales a residual's round-off floor is made of, refilled at every measured
@@ -98,6 +105,9 @@ impl<S: Clone, M: SymmetricMatrix> NewtonWorkspace<S, M> {
             },
             deferred: None,
             scales: FloorScales::default(),
+            lagged: None,
+            lagged_fresh: false,
+            lag_next: false,
         }
     }
 
@@ -224,7 +234,8 @@ pub fn newton<P: EquilibriumProblem>(
     // `SolverParams::deferred_energy_check`) until one of them fails it.
     let mut defer = params.deferred_energy_check && problem.merit_is_energy();
     for iteration in 0..=params.max_iterations {
-        let (measures, info) = measure(problem, state, load, params, ws);
+        let lag = std::mem::take(&mut ws.lag_next);
+        let (measures, mut info, mut lagged) = measure_with(problem, state, load, params, ws, lag);
         last = measures;
         if let Some(check) = ws.deferred.take() {
             if !check.passes(info.energy, params) {
@@ -259,6 +270,16 @@ pub fn newton<P: EquilibriumProblem>(
                 }
                 continue;
             }
+        }
+        if lagged
+            && (!last.inertia.is_some_and(|i| i.is_positive_definite())
+                || last.residual <= last.floor.max(params.force_tolerance * last.force_scale))
+        {
+            // The lagged Hessian only takes a clear Newton step: an indefinite one, or an
+            // iterate that may have converged (whose inertia is the stability verdict), is
+            // measured in full.
+            let (m, i) = measure(problem, state, load, params, ws);
+            (last, info, lagged) = (m, i, false);
         }
         let inertia = last.inertia;
         if last.residual < 0.5 * best_residual {
@@ -310,6 +331,7 @@ pub fn newton<P: EquilibriumProblem>(
         let forecast = previous_decrement.take();
         previous_decrement = Some(last.decrement);
         if params.chord_final_check
+            && !lagged
             && inertia.is_some_and(|i| i.is_positive_definite())
             && next_decrement_passes(&last, forecast, &info, params)
         {
@@ -489,8 +511,76 @@ fn measure<P: EquilibriumProblem>(
     params: &SolverParams,
     ws: &mut NewtonWorkspace<P::State, P::Hessian>,
 ) -> (IterateMeasures, crate::solver::AssemblyInfo) {
-    let n = problem.n_free();
+    let (m, info, _) = measure_with(problem, state, load, params, ws, false);
+    (m, info)
+}
+
+/// Energy, gradient and Hessian at `state` into the workspace (see [`measure_with`]): the
+/// whole Hessian, with the lagged groups' part kept apart in `ws.lagged` when the problem has
+/// such groups and `params.lagged_first_step` is on; or, if `lag` and that part is fresh, the
+/// other groups' Hessian plus the kept part (returns true then).
+fn assemble_hessian<P: EquilibriumProblem>(
+    problem: &P,
+    state: &P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+    lag: bool,
+) -> (crate::solver::AssemblyInfo, bool) {
+    let groups = if params.lagged_first_step {
+        problem.lagged_hessian_groups()
+    } else {
+        TermSet::NONE
+    };
+    if groups != TermSet::NONE {
+        if lag && ws.lagged_fresh {
+            if let Some(kept) = ws.lagged.as_ref() {
+                let mut asm = Assembler::new(
+                    TermSet::ALL,
+                    Some(&mut ws.grad),
+                    Some(&mut ws.hess),
+                    Some(&mut ws.abs_grad),
+                )
+                .lagging(groups, None);
+                problem.assemble_selected(state, load, &mut asm);
+                let info = asm.finish();
+                if ws.hess.add_same_pattern(kept) {
+                    return (info, true);
+                }
+            }
+        }
+        let kept = ws.lagged.get_or_insert_with(|| ws.hess.clone());
+        let mut asm = Assembler::new(
+            TermSet::ALL,
+            Some(&mut ws.grad),
+            Some(&mut ws.hess),
+            Some(&mut ws.abs_grad),
+        )
+        .lagging(groups, Some(kept));
+        problem.assemble_selected(state, load, &mut asm);
+        let info = asm.finish();
+        ws.lagged_fresh = ws.hess.add_same_pattern(kept);
+        if ws.lagged_fresh {
+            return (info, false);
+        }
+    }
+    ws.lagged_fresh = false;
     let info = problem.assemble(state, load, &mut ws.grad, &mut ws.hess, &mut ws.abs_grad);
+    (info, false)
+}
+
+/// [`measure`], with the lagged Hessian of the problem's slow groups if `lag` (see
+/// [`SolverParams::lagged_first_step`]); the flag returned says whether it was used.
+fn measure_with<P: EquilibriumProblem>(
+    problem: &P,
+    state: &P::State,
+    load: f64,
+    params: &SolverParams,
+    ws: &mut NewtonWorkspace<P::State, P::Hessian>,
+    lag: bool,
+) -> (IterateMeasures, crate::solver::AssemblyInfo, bool) {
+    let n = problem.n_free();
+    let (info, lagged) = assemble_hessian(problem, state, load, params, ws, lag);
     let (residual, floor) = residual_and_floor(
         problem,
         state,
@@ -529,6 +619,7 @@ fn measure<P: EquilibriumProblem>(
             hessian_lags: false,
         },
         info,
+        lagged,
     )
 }
 

@@ -112,6 +112,20 @@ pub struct SolverParams {
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub deferred_energy_check: bool,
+    /// After a chord predictor, take the first Newton step with the Hessian of the problem's
+    /// slowly varying term groups ([`EquilibriumProblem::lagged_hessian_groups`], a rod's
+    /// bending and twisting) kept from the previous solve's last assembly and the other
+    /// groups' Hessian fresh: a dragged cable's tension changes at once, its bending stiffness
+    /// turns with it by the small angle of the drag, and the step is as good as Newton's at a
+    /// fraction of the assembly. Its gradient is exact; a step that is not positive definite,
+    /// or an iterate that converged there, is measured again in full, so every convergence and
+    /// stability verdict rests on complete Hessians. Not part of the scene file: scene
+    /// sessions turn it on; benchmarks keep it off.
+    ///
+    /// [`EquilibriumProblem::lagged_hessian_groups`]: super::problem::EquilibriumProblem::lagged_hessian_groups
+    #[serde(skip)]
+    #[cfg_attr(feature = "schema", schemars(skip))]
+    pub lagged_first_step: bool,
 }
 
 impl Default for SolverParams {
@@ -136,6 +150,7 @@ impl Default for SolverParams {
             chord_final_check: false,
             indefinite_patience: None,
             deferred_energy_check: false,
+            lagged_first_step: false,
         }
     }
 }

@@ -198,6 +198,18 @@ pub trait EquilibriumProblem: MassMetric {
         true
     }
 
+    /// The term groups whose Hessian changes slowly along a warm re-solve (a rod's bending and
+    /// twisting: the stencil turns with the rod, while the stretching's geometric stiffness
+    /// follows the tension, which a support's move changes at once). The first Newton step
+    /// after a chord predictor may reuse their Hessian from the previous solve's last
+    /// assembly with the other groups' Hessian fresh (see [`SolverParams::lagged_first_step`]).
+    /// Default: none (every assembly is complete).
+    ///
+    /// [`SolverParams::lagged_first_step`]: crate::solver::SolverParams::lagged_first_step
+    fn lagged_hessian_groups(&self) -> TermSet {
+        TermSet::NONE
+    }
+
     /// Length (m) that turns the generalized force of DOF `i` into a force: 1 for coordinates,
     /// a characteristic length for angles (whose generalized forces are moments).
     fn force_length(&self, i: usize) -> f64;

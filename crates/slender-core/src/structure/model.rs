@@ -3,10 +3,10 @@
 // Members have one formulation today; the `if let`s over member kinds stay for the others.
 #![allow(irrefutable_let_patterns)]
 
-use crate::assembly::{Assembler, TermGroup, FIXED};
+use crate::assembly::{Assembler, TermGroup, TermSet, FIXED};
 use crate::geometry::Vec3;
 use crate::linalg::{AdaptiveMatrix, SymmetricMatrix};
-use crate::rod::groups::ALL_GROUPS;
+use crate::rod::groups::{ALL_GROUPS, BENDING, TWISTING};
 
 /// The term groups of a structure with shearable members (Cosserat rods, SE(3) beams): the
 /// discrete elastic rod's, which they share bit for bit, and shear.
@@ -292,6 +292,17 @@ impl EquilibriumProblem for Structure {
             &WITH_SHEAR
         } else {
             &ALL_GROUPS
+        }
+    }
+
+    /// A structure of discrete elastic rods lags its hinges' (and joints') bending and
+    /// twisting Hessians on the first step of a warm re-solve; other models assemble whole
+    /// (their groups number differently).
+    fn lagged_hessian_groups(&self) -> TermSet {
+        if self.members.iter().all(|m| m.as_der().is_some()) {
+            BENDING.set().with(TWISTING.set())
+        } else {
+            TermSet::NONE
         }
     }
 

@@ -169,6 +169,7 @@ impl Scene {
         solver.chord_predictor = true;
         solver.chord_final_check = true;
         solver.deferred_energy_check = true;
+        solver.lagged_first_step = true;
         Ok(CompiledScene {
             rods,
             structures,
