@@ -249,6 +249,7 @@ impl<'o, M: SymmetricMatrix> Assembler<'o, M> {
     }
 
     /// [`Self::local`] for term `plan.1` of a scatter plan.
+    #[allow(clippy::too_many_arguments)] // the term's outputs, its plan and its Hessian's target
     fn local_planned<const D: usize>(
         &mut self,
         stencil: &Stencil<D>,
