@@ -48,7 +48,8 @@
 //     the bracket lifted 1 cm and then turned 10° about z through the obstacle rows: drawn
 //     there (the reply's axis to round-off), converged, the cable still on it; grabbed by a
 //     click in "move an obstacle" mode, dragged 5 mm down and turned back 10° with the gizmo
-//     (applied on release; the turn about the drawn piece's centre, the gizmo's pivot).
+//     (live: each gizmo change is a move from the server's pose; the turn about the drawn
+//     piece's centre, the gizmo's pivot); one Undo takes a whole gizmo drag back.
 //  5c. a flat cable over the bracket (examples/flat_cable_on_bracket.toml): the bracket lifted
 //     5 mm through the obstacle row carries the strip up; its equilibrium = slender solve's of
 //     the file with the lift as its motion stage (1e-9 of the length).
@@ -878,7 +879,8 @@ try {
   check(turned5?.ok && turned5.edit.converged && axisErr < 1e-12 && widened > 0.01 && turned5.view.min_gap > 0,
     `bracket turned 10° about z through the obstacle row: ${turned5?.ok ? (turned5.edit.converged ? "converged" : "not converged") : "refused"}, axis off by ${axisErr.toExponential(1)}, drawn ${widened.toFixed(4)} m wider in x, min gap ${turned5?.view?.min_gap?.toExponential(2)} m`);
   // The gizmo: in "move an obstacle" mode a click on the bracket grabs it; dragged 5 mm down
-  // and released, it moves there (one edit; the gizmo holds the new mesh); turned back by
+  // in five gizmo changes, the cable follows live (one move per change) and it ends there
+  // (the gizmo holds the new mesh); turned back by
   // −10° about z, it turns about the centre of its drawn piece (the gizmo's pivot): the axis
   // is the y axis again and still passes through that centre.
   await s5.page.evaluate(() => window.slender.setTool("move-obstacle"));
@@ -887,13 +889,16 @@ try {
   const at5 = await s5.page.evaluate((c) => window.slender.screenPointOf(c), centre5);
   await s5.page.mouse.click(at5.x, at5.y);
   const grabbed5 = await s5.page.evaluate(() => window.slender.grabbedObstacle());
+  const nDrag5 = s5.replies.length;
   const down5 = await s5.page.evaluate(() => window.slender.dragObstacle(0, [0, 0, -0.005]));
+  const pieces5 = (await Promise.all(s5.replies.slice(nDrag5))).filter((r) => r.op === "obstacle");
   const d5e = await drawn(s5.page);
   const bar3 = d5e.obstacles.find((o) => o.name === "obstacle:bracket").box;
   const drop = bar3[0][2] - bar2[0][2];
   const still5 = await s5.page.evaluate(() => window.slender.grabbedObstacle());
-  check(barCentre && grabbed5 === 0 && down5?.ok && down5.edit.converged && Math.abs(drop + 0.005) < 1e-6 && still5 === 0 && down5.view.min_gap > 0,
-    `bracket grabbed by a click (obstacle ${grabbed5}) and dragged 5 mm down with the gizmo: ${down5?.ok ? (down5.edit.converged ? "converged" : "not converged") : "refused"}, drawn ${(-drop * 1000).toFixed(3)} mm lower, the gizmo still on it (${still5}), min gap ${down5?.view?.min_gap?.toExponential(2)} m`);
+  check(barCentre && grabbed5 === 0 && down5?.ok && down5.edit.converged && Math.abs(drop + 0.005) < 1e-6 && still5 === 0 && down5.view.min_gap > 0
+    && pieces5.length >= 2 && pieces5.every((r) => r.ok && r.edit.converged),
+    `bracket grabbed by a click (obstacle ${grabbed5}) and dragged 5 mm down with the gizmo, live (${pieces5.length} moves answered during the drag): ${down5?.ok ? (down5.edit.converged ? "converged" : "not converged") : "refused"}, drawn ${(-drop * 1000).toFixed(3)} mm lower, the gizmo still on it (${still5}), min gap ${down5?.view?.min_gap?.toExponential(2)} m`);
   const pivot5 = down5.geometry.obstacles.find((o) => o.name === "bracket").shape.center;
   const back5 = await s5.page.evaluate(() => window.slender.dragObstacle(0, [0, 0, 0], [0, 0, -10 / 180 * Math.PI]));
   const bent = back5?.geometry?.obstacles?.find((o) => o.name === "bracket")?.shape;
@@ -904,6 +909,15 @@ try {
   const offAxis = Math.hypot(...rel.map((x, k) => x - along * (bent?.axis[k] ?? NaN)));
   check(back5?.ok && back5.edit.converged && axisBack < 1e-12 && offAxis < 1e-9,
     `bracket turned back 10° with the gizmo: ${back5?.ok ? (back5.edit.converged ? "converged" : "not converged") : "refused"}, axis off y by ${axisBack.toExponential(1)}, the turn's pivot ${offAxis.toExponential(1)} m from the new axis`);
+  // The turning drag was many moves and is one step of undo: Undo draws the bracket where the
+  // 5 mm drag left it, with that drag's cable.
+  await s5.page.click("#undo");
+  await s5.page.waitForFunction(() => window.slender.lastReply?.op === "undo", null, { timeout: 20000 });
+  const bar4 = (await drawn(s5.page)).obstacles.find((o) => o.name === "obstacle:bracket").box;
+  const undoErr = Math.max(...[0, 1].flatMap((c) => [0, 1, 2].map((k) => Math.abs(bar4[c][k] - bar3[c][k]))));
+  const cableBack = await s5.page.evaluate(() => JSON.stringify(window.slender.state().rods[0].positions));
+  check(undoErr < 1e-12 && cableBack === JSON.stringify(down5.view.rods[0].positions),
+    `one Undo takes the turning gizmo drag back: the bracket drawn where the 5 mm drag left it (${undoErr.toExponential(1)} m), the cable that drag's bit for bit`);
   for (const e of s5.errors) fail(e);
   check(s5.errors.length === 0, "no console errors (bracket page)");
 

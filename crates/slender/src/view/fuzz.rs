@@ -1490,6 +1490,66 @@ fn an_obstacle_message_moves_the_obstacle_and_undo_puts_it_back() {
 }
 
 #[test]
+fn an_obstacle_dragged_after_a_checkpoint_is_undone_in_one_step() {
+    // The page's gizmo drags an obstacle live: a checkpoint, then `drag_obstacle` pieces
+    // (each the move from the pose the server has). Without friction (with it the cable's
+    // equilibrium depends on the path) they end where one `obstacle` move of the whole way
+    // ends, and one undo takes the whole drag back.
+    let frictionless = || {
+        let text = ["friction = 0.3\n", "friction = 0.2\n", "friction = 0.1\n"]
+            .iter()
+            .fold(CONTACT_SCENE.to_string(), |t, f| t.replace(f, ""));
+        assert!(!text.contains("friction"));
+        Session::new(toml::from_str(&text).unwrap()).unwrap()
+    };
+    let mut s = frictionless();
+    let mut h = History::default();
+    let before = through(&mut h, &mut s, r#"{"op": "state"}"#);
+    let v = through(&mut h, &mut s, r#"{"op": "checkpoint"}"#);
+    assert_eq!(v["history"], json!({"undo": 1, "redo": 0}), "{v}");
+    for _ in 0..5 {
+        let v = through(
+            &mut h,
+            &mut s,
+            r#"{"op": "drag_obstacle", "obstacle": 3, "translation": [0.0, 0.0, 0.001]}"#,
+        );
+        assert_eq!(v["edit"]["converged"], json!(true), "{v}");
+        assert_eq!(v["op"], json!("obstacle"), "{v}");
+    }
+    let mut whole = frictionless();
+    let (w, _) = exchange(
+        &mut whole,
+        r#"{"op": "obstacle", "obstacle": 3, "translation": [0.0, 0.0, 0.005]}"#,
+    );
+    assert_eq!(w["edit"]["converged"], json!(true), "{w}");
+    let bar = |v: &Value| {
+        v["geometry"]["obstacles"][3]["shape"]["center"][2]
+            .as_f64()
+            .unwrap()
+    };
+    let dragged = through(&mut h, &mut s, r#"{"op": "state"}"#);
+    assert!(
+        (bar(&dragged) - bar(&w)).abs() < 1e-15,
+        "{} vs {}",
+        bar(&dragged),
+        bar(&w)
+    );
+    let (a, b) = (equilibrium(&s).0, equilibrium(&whole).0);
+    let worst = a
+        .iter()
+        .flatten()
+        .zip(b.iter().flatten())
+        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
+    println!("five drag pieces end {worst:e} m from one move of the whole way");
+    assert!(worst < 1e-9, "five pieces end {worst:e} m from one move");
+    let undone = through(&mut h, &mut s, r#"{"op": "undo"}"#);
+    assert_eq!(undone["history"], json!({"undo": 0, "redo": 1}), "{undone}");
+    assert_eq!(undone["view"], before["view"]);
+    assert_eq!(bar(&undone), bar(&before));
+}
+
+#[test]
 fn an_obstacle_turned_about_a_pivot_moves_its_reference_point_with_the_turn() {
     // The page's gizmo turns an obstacle about the centre of its drawn shape: the contact
     // scene's ring (obstacle 5, centre (0.7, 0.08, 0.02), axis z) turned by 0.2 rad about z

@@ -121,7 +121,9 @@ pub enum Request {
     /// `rotation` (a rotation vector, rad) about its reference point, then shifted by
     /// `translation` (m); the cables it sweeps are carried along and every structure
     /// re-solves (`Session::move_obstacle_by`). The reply carries the moved shapes
-    /// (`geometry`).
+    /// (`geometry`). As `drag_obstacle` it is a piece of a gizmo drag: the same move, undone
+    /// with the whole drag from its `checkpoint` (an `obstacle` is one step of undo by itself).
+    #[serde(alias = "drag_obstacle")]
     Obstacle {
         /// Obstacle index.
         obstacle: usize,

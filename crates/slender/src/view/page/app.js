@@ -99,12 +99,13 @@ scene3.add(gizmo.getHelper());
 let checkpointing = null;
 gizmo.addEventListener("dragging-changed", (e) => {
   orbit.enabled = !e.value;
-  // An obstacle moves as one edit when the gizmo is released (its own step of undo).
-  if (grabbed) { if (!e.value) applyObstacleDrag(); return; }
   if (e.value) checkpointing = request({ op: "checkpoint" });
+  // An obstacle follows the gizmo live too: each change is sent as the move from where the
+  // server has it (`drag_obstacle`), the whole drag one step of undo.
+  if (grabbed) { if (e.value) startObstacleDrag(); else endObstacleDrag(); return; }
   if (!e.value) afterDrag();
 });
-gizmo.addEventListener("objectChange", () => onHandleChange());
+gizmo.addEventListener("objectChange", () => (grabbed ? onObstacleChange() : onHandleChange()));
 orbit.addEventListener("change", () => requestRender());
 gizmo.addEventListener("change", () => requestRender());
 
@@ -121,10 +122,11 @@ let arrows = [];
 let labels = [];
 let labelSpecs = []; // reaction values: { at, text, cls }
 let selected = null; // the handle being edited
-let grabbed = null; // an obstacle held by the gizmo: { index, mesh, position, quaternion } (its pose when grabbed)
+let grabbed = null; // an obstacle held by the gizmo: { index, mesh, sent: { position, quaternion } (the pose the server has), dragging }
 let dragging = false;
-let pendingMove = null;
+let pendingMove = null; // the next move: { req, queued }, or { obstacle: true, queued } (built when sent)
 let moveInFlight = false;
+let lastObstacleReply = null; // the reply to the last piece of an obstacle's drag
 const timing = { updates: [] }; // per applied move: { sent, received, rendered, serverMs }
 let lastEdit = null;
 
@@ -1165,8 +1167,9 @@ async function placeSelected() {
 function applyView(reply) {
   const first = view === null;
   view = reply.view;
-  // The obstacles' shapes come with `state` and with every move of an obstacle.
-  if (reply.geometry) { geometry = reply.geometry; buildObstacles(); }
+  // The obstacles' shapes come with `state` and with every move of an obstacle; during a
+  // gizmo drag the held mesh stays under the mouse and is redrawn from them on release.
+  if (reply.geometry) { geometry = reply.geometry; if (!grabbed?.dragging) buildObstacles(); }
   if (first) frameCamera();
   updateRods();
   updateShells();
@@ -1222,35 +1225,61 @@ function select(h) {
   requestRender();
 }
 
-/** Puts the gizmo on obstacle mesh `mesh` (null: lets go of any), remembering its pose: the
- *  drag's move is applied when the gizmo is released ([`applyObstacleDrag`]). */
+/** Puts the gizmo on obstacle mesh `mesh` (null: lets go of any), remembering its pose (the
+ *  server's): a drag sends the moves from it ([`onObstacleChange`]). */
 function grabObstacle(mesh) {
   if (!mesh) {
     if (grabbed) { grabbed = null; gizmo.detach(); $("selection").textContent = "Click an obstacle to move it with the gizmo."; requestRender(); }
     return;
   }
   if (selected) select(null);
-  grabbed = { index: mesh.userData.obstacle, mesh, position: mesh.position.clone(), quaternion: mesh.quaternion.clone() };
+  grabbed = { index: mesh.userData.obstacle, mesh, sent: { position: mesh.position.clone(), quaternion: mesh.quaternion.clone() }, dragging: false };
   gizmo.attach(mesh);
   gizmo.setMode(document.querySelector('input[name="gizmo"]:checked').value);
   $("obstacle-pick").value = String(grabbed.index);
-  $("selection").textContent = `selected: obstacle ${mesh.userData.name}: move or turn it with the gizmo; the move is applied on release`;
+  $("selection").textContent = `selected: obstacle ${mesh.userData.name}: move or turn it with the gizmo; the cables follow as it moves`;
   requestRender();
 }
 
-/** The gizmo let go of the grabbed obstacle: its move from where it was grabbed (a turn about
- *  the drawn shape's centre, the gizmo's pivot, then a translation) as one `obstacle` edit.
- *  The reply's shapes replace the meshes; a refused move puts the mesh back. */
-async function applyObstacleDrag() {
+/** A gizmo drag of the grabbed obstacle starts (after its checkpoint). */
+function startObstacleDrag() {
+  lastObstacleReply = null;
+  grabbed.dragging = true;
+  grabbed.sent = { position: grabbed.mesh.position.clone(), quaternion: grabbed.mesh.quaternion.clone() };
+}
+
+/** The gizmo moved the grabbed obstacle: queue its move (built when it is sent). */
+function onObstacleChange() {
+  if (!grabbed) return;
+  dragging = true;
+  pendingMove = { obstacle: true, queued: performance.now() };
+  pump();
+}
+
+/** The grabbed obstacle's move from the pose the server has to the mesh's — a turn about the
+ *  drawn shape's centre there (the gizmo's pivot), then a shift — and the pose it reaches;
+ *  null if the mesh is where the server has it. */
+function obstacleStep() {
   const g = grabbed;
   if (!g) return null;
-  const translation = g.mesh.position.clone().sub(g.position).toArray();
-  const rotation = quaternionToRotation(g.mesh.quaternion.clone().multiply(g.quaternion.clone().invert()));
+  const position = g.mesh.position.clone();
+  const quaternion = g.mesh.quaternion.clone();
+  const translation = position.clone().sub(g.sent.position).toArray();
+  const rotation = quaternionToRotation(quaternion.clone().multiply(g.sent.quaternion.clone().invert()));
   if (translation.every((x) => x === 0) && rotation.every((x) => x === 0)) return null;
-  const reply = await edit({ op: "obstacle", obstacle: g.index, translation, rotation, pivot: g.position.toArray() });
-  if (!reply.ok) buildObstacles();
+  const req = { op: "drag_obstacle", obstacle: g.index, translation, rotation, pivot: g.sent.position.toArray() };
+  return { req, target: { position, quaternion } };
+}
+
+/** The gizmo let go of the obstacle: once its last move is answered, the meshes are drawn
+ *  from the server's shapes (a refused or unconverged piece leaves it where the server kept
+ *  it) and the gizmo holds the new one. */
+async function endObstacleDrag() {
+  dragging = false;
+  await idle();
+  if (grabbed) grabbed.dragging = false;
+  if (geometry) buildObstacles();
   render();
-  return reply;
 }
 
 function setGizmoMode(mode) {
@@ -1279,13 +1308,29 @@ function onHandleChange() {
 
 async function pump() {
   if (moveInFlight || !pendingMove) return;
-  const { req, queued } = pendingMove;
+  const { queued } = pendingMove;
+  let { req } = pendingMove;
+  const obstacle = pendingMove.obstacle === true;
   pendingMove = null;
   moveInFlight = true;
   if (checkpointing) { const c = checkpointing; checkpointing = null; await c; }
+  // An obstacle's move is taken from the pose the server has now (earlier pieces answered).
+  const step = obstacle ? obstacleStep() : null;
+  if (obstacle) req = step?.req;
+  if (!req) {
+    moveInFlight = false;
+    if (pendingMove) pump();
+    else if (!dragging) afterDrag();
+    for (const w of idleWaiters.splice(0)) if (isIdle()) w(); else idleWaiters.push(w);
+    return;
+  }
   const sent = performance.now();
   const reply = await request(req);
   const received = performance.now();
+  if (obstacle) {
+    lastObstacleReply = reply;
+    if (reply.ok && reply.edit?.converged && grabbed) grabbed.sent = step.target;
+  }
   const ok = applyReply(reply);
   const rendered = performance.now();
   timing.updates.push({ queued, sent, received, rendered, serverMs: (reply.solve_seconds ?? 0) * 1e3,
@@ -1645,18 +1690,31 @@ const slender = {
   grabbedObstacle() {
     return grabbed ? grabbed.index : null;
   },
-  /** Moves obstacle `index` as the gizmo does: grabbed, its mesh shifted by `d` (m) and turned
-   *  by the rotation vector `turn` (rad) about its drawn centre, then released; resolves to
-   *  the `obstacle` reply. */
-  async dragObstacle(index, d, turn = [0, 0, 0]) {
+  /** Drags obstacle `index` as the gizmo does: grabbed, its mesh shifted by `d` (m) and
+   *  turned by the rotation vector `turn` (rad) about its drawn centre in `steps` gizmo
+   *  changes (one per frame, each sent as it comes), then released; resolves to the reply to
+   *  the drag's last piece. */
+  async dragObstacle(index, d, turn = [0, 0, 0], steps = 5) {
     this.setTool("move-obstacle");
     grabObstacle(obstacleGroup.children.find((m) => m.userData.obstacle === index) ?? null);
     if (!grabbed) throw new Error(`no obstacle ${index}`);
+    // What the gizmo's dragging-changed does when a drag starts: one step of undo.
+    checkpointing = request({ op: "checkpoint" });
+    startObstacleDrag();
     const { mesh } = grabbed;
-    mesh.position.add(v3(d));
+    const p0 = mesh.position.clone();
+    const q0 = mesh.quaternion.clone();
     const angle = Math.hypot(...turn);
-    if (angle > 0) mesh.quaternion.premultiply(new THREE.Quaternion().setFromAxisAngle(v3(turn).normalize(), angle));
-    return applyObstacleDrag();
+    for (let k = 1; k <= steps; k++) {
+      const f = k / steps;
+      mesh.position.set(p0.x + d[0] * f, p0.y + d[1] * f, p0.z + d[2] * f);
+      mesh.quaternion.copy(q0);
+      if (angle > 0) mesh.quaternion.premultiply(new THREE.Quaternion().setFromAxisAngle(v3(turn).normalize(), angle * f));
+      onObstacleChange();
+      await nextFrame();
+    }
+    await endObstacleDrag();
+    return lastObstacleReply;
   },
   setTool(name) {
     const el = document.querySelector(`input[name="tool"][value="${name}"]`);
