@@ -533,22 +533,7 @@ fn assemble_hessian<P: EquilibriumProblem>(
         TermSet::NONE
     };
     if groups != TermSet::NONE {
-        if lag && ws.lagged_fresh {
-            if let Some(kept) = ws.lagged.as_ref() {
-                let mut asm = Assembler::new(
-                    TermSet::ALL,
-                    Some(&mut ws.grad),
-                    Some(&mut ws.hess),
-                    Some(&mut ws.abs_grad),
-                )
-                .lagging(groups, None);
-                problem.assemble_selected(state, load, &mut asm);
-                let info = asm.finish();
-                if ws.hess.add_same_pattern(kept) {
-                    return (info, true);
-                }
-            }
-        }
+        let reuse = lag && ws.lagged_fresh && ws.lagged.is_some();
         let kept = ws.lagged.get_or_insert_with(|| ws.hess.clone());
         let mut asm = Assembler::new(
             TermSet::ALL,
@@ -556,12 +541,13 @@ fn assemble_hessian<P: EquilibriumProblem>(
             Some(&mut ws.hess),
             Some(&mut ws.abs_grad),
         )
-        .lagging(groups, Some(kept));
+        .lagging(groups, (!reuse).then_some(&mut *kept));
         problem.assemble_selected(state, load, &mut asm);
         let info = asm.finish();
-        ws.lagged_fresh = ws.hess.add_same_pattern(kept);
-        if ws.lagged_fresh {
-            return (info, false);
+        // Clones of one matrix always add; a storage that cannot assembles whole below.
+        if ws.hess.add_same_pattern(kept) {
+            ws.lagged_fresh = true;
+            return (info, reuse);
         }
     }
     ws.lagged_fresh = false;
