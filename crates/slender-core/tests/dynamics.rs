@@ -1,7 +1,7 @@
 //! Implicit dynamics against closed forms: cantilever frequencies (Euler–Bernoulli), energy
 //! conservation and dissipation, the schemes' orders of convergence, free fall, bad input.
 //!
-//! Run: `cargo test -p slender-core --release --test dynamics -- --nocapture` (prints the
+//! Run: `cargo test -p slender-core --release --test integration dynamics:: -- --skip framed --nocapture` (prints the
 //! measured figures).
 
 use nalgebra::{DMatrix, SymmetricEigen};

@@ -6,7 +6,7 @@
 //! frequencies (Euler–Bernoulli, Saint-Venant) from the eigenproblem and from time
 //! histories; energy of a large swing; orders of the schemes; a rod spinning about its axis.
 //!
-//! Run: `cargo test -p slender-core --release --test framed_dynamics -- --nocapture` (prints
+//! Run: `cargo test -p slender-core --release --test integration framed_dynamics:: -- --nocapture` (prints
 //! the measured figures).
 
 use nalgebra::{DMatrix, SymmetricEigen, UnitQuaternion, Vector3};

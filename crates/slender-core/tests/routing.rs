@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 use slender_core::scene::spec::UnstablePolicy;
 use slender_core::scene::{Scene, Session};
 
-mod common;
+use crate::common;
 use common::{clamped_elastica_deflection, elliptic_ke};
 
 fn scene(text: &str) -> Scene {

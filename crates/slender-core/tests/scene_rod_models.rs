@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 use slender_core::scene::spec::{SupportKind, SupportSpec};
 use slender_core::scene::{Scene, Session};
 
-mod common;
+use crate::common;
 use common::{clamped_elastica_deflection, elliptic_ke};
 
 const SHEARABLE: [&str; 3] = ["cosserat", "cosserat_tan", "se3"];

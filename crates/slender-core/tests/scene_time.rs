@@ -6,7 +6,7 @@
 
 use slender_core::scene::{Scene, Session, TimeRun};
 
-mod common;
+use crate::common;
 use common::elliptic_ke;
 
 fn scene(text: &str) -> Scene {

@@ -5,7 +5,7 @@
 //! (energy-conserving) or comes to rest on the floor carrying its weight (backward Euler);
 //! what time stepping with contact refuses is named.
 
-mod common;
+use crate::common;
 use common::dropped_rod::{drop, scene, weight, D, G, L};
 
 /// The discrete elastic rod lying flat at `z0` over the floor (see

@@ -15,7 +15,7 @@
 use nalgebra::{UnitQuaternion, Vector3};
 use slender_core::scene::TimeRun;
 
-mod common;
+use crate::common;
 use common::dropped_rod::{drop, drop_scene, scene, weight, D, G, L, RHO};
 
 const MODELS: [&str; 2] = ["cosserat", "se3"];

@@ -7,7 +7,7 @@
 //! Adding a force at an arc length (snapped to the file's nearest vertex, across a vertex
 //! inserted for a clip) and removing one end where cold solves of the edited files end.
 
-mod common;
+use crate::common;
 
 use common::max_distance;
 use slender_core::scene::spec::VertexRef;

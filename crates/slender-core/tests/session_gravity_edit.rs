@@ -3,7 +3,7 @@
 //! every rod model; a change that does not converge keeps the equilibrium and puts the loads
 //! back exactly, so that later edits end where they end in a session that never tried it.
 
-mod common;
+use crate::common;
 
 use common::max_distance;
 use slender_core::scene::{Scene, Session};

@@ -6,7 +6,7 @@
 //! ones and at λ = 1 exactly the new ones; a change that does not converge puts everything
 //! back; bad input names its field and changes nothing.
 
-mod common;
+use crate::common;
 
 use common::max_distance;
 use slender_core::geometry::Vec3;

@@ -6,9 +6,9 @@
 //! force (`Session::add_shell_force`) ends where a cold solve with it ends, and removing it
 //! where a cold solve without it ends; an added zero force changes nothing.
 //!
-//! Run with `cargo test -p slender-core --release --test session_shell_force_edit`.
+//! Run with `cargo test -p slender-core --release --test integration session_shell_force_edit::`.
 
-mod common;
+use crate::common;
 
 use common::max_distance;
 use slender_core::scene::{Scene, Session};

@@ -3,7 +3,7 @@
 //! strip's beam limit (clamped–guided bending 12EI/L³, Saint-Venant torsion GJ/L of a thin
 //! rectangle), a move and its reverse, save → reload, and bad input named by field.
 //!
-//! Run with `cargo test -p slender-core --release --test shell_scene_clamps`.
+//! Run with `cargo test -p slender-core --release --test integration shell_scene_clamps::`.
 
 use slender_core::assembly::TermSet;
 use slender_core::geometry::Vec3;

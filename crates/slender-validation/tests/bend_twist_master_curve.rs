@@ -3,7 +3,7 @@
 //! continuity, convergence of the numerics, bad input, and the cross-check against the
 //! discrete rod model (DER, slender-core).
 //!
-//! Run with `cargo test -p slender-validation --release --test bend_twist_master_curve`
+//! Run with `cargo test -p slender-validation --release --test integration bend_twist_master_curve::`
 //! (add `-- --nocapture` for the tables).
 
 use slender_core::geometry::Vec3;

@@ -2,7 +2,7 @@
 //! design.md §1.3's reference values, the Γ conversion, the Kirchhoff plate's convergence,
 //! narrow-strip limit and membrane statics, and the plate against the Vlasov band.
 //!
-//! Run in release: `cargo test -p slender-validation --release --test lateral_buckling_master_curve`.
+//! Run in release: `cargo test -p slender-validation --release --test integration lateral_buckling_master_curve::`.
 
 use slender_validation::lateral_buckling::generalized_eigen::PencilError;
 use slender_validation::lateral_buckling::legendre::gauss_legendre;

@@ -263,8 +263,8 @@ fn finite_difference_shape_ends_at_the_tip() {
     }
 }
 
-/// Not a test: `cargo test -p slender-validation --release --test master_curve -- --ignored
-/// --nocapture timing` prints the cost of one master-curve point.
+/// Not a test: `cargo test -p slender-validation --release --test integration -- --exact
+/// master_curve::timing --ignored --nocapture` prints the cost of one master-curve point.
 #[test]
 #[ignore]
 fn timing() {
