@@ -432,3 +432,70 @@ fn cable_over_bracket_follows_one_centimetre_drags_of_its_clamp_in_every_directi
         }
     }
 }
+
+/// A bar thinner than an element passes between two vertices of a coarse cable (contact acts at
+/// the vertices): the solve converges to a cable running through the bar, and the step says so
+/// — the edge, the obstacle, how deep. Meshed finer than the bar, the cable rests on it and
+/// nothing is reported.
+#[test]
+fn an_edge_running_through_a_thin_bar_is_reported() {
+    // A 0.5 m cantilever whose free sag at x = 0.3125 m (mid-edge of 4 elements) is about
+    // 2.6 cm; the bar (radius 1 cm) is centred 2 cm below the rest line there.
+    let text = |elements: usize| {
+        format!(
+            r#"
+gravity = [0.0, 0.0, -9.81]
+[[rods]]
+name = "cable"
+elements = {elements}
+centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 0.5 }}
+section = {{ shape = "circle", diameter = 0.006 }}
+material = {{ young = 1.0e9, poisson = 0.4, density = 1500.0 }}
+supports = [{{ kind = "clamp", vertex = "start" }}]
+[[obstacles]]
+name = "bar"
+shape = {{ kind = "cylinder", point = [0.3125, 0.0, -0.02], axis = [0.0, 1.0, 0.0], radius = 0.01 }}
+"#
+        )
+    };
+    let coarse = Session::new(scene(&text(4))).expect("compiles");
+    assert!(
+        coarse.report(0).converged(),
+        "{:?}",
+        coarse.report(0).status
+    );
+    let step = coarse.results(0, None, 1.0, 1);
+    assert!(
+        step.obstacles[0].contacts.is_empty(),
+        "no vertex is near the bar"
+    );
+    let through = &step.edges_through_obstacles;
+    println!("coarse cable: {through:?}");
+    assert_eq!(through.len(), 1, "{through:?}");
+    let e = &through[0];
+    assert_eq!(
+        (e.rod.as_str(), e.edge, e.obstacle.as_str()),
+        ("cable", 2, "bar")
+    );
+    // The deepest point is inside the bar: within its radius of the axis, by `depth`.
+    let r = ((e.position[0] - 0.3125).powi(2) + (e.position[2] + 0.02).powi(2)).sqrt();
+    assert!(
+        (0.01 - r - e.depth).abs() < 1e-9,
+        "r = {r}, depth {}",
+        e.depth
+    );
+    assert!(e.depth > 1e-3 && e.depth < 0.01, "depth {}", e.depth);
+
+    let fine = Session::new(scene(&text(100))).expect("compiles");
+    assert!(fine.report(0).converged(), "{:?}", fine.report(0).status);
+    let step = fine.results(0, None, 1.0, 1);
+    assert!(
+        !step.obstacles[0].contacts.is_empty(),
+        "the fine cable rests on the bar"
+    );
+    assert!(
+        step.edges_through_obstacles.is_empty(),
+        "{:?}",
+        step.edges_through_obstacles
+    );
+}

@@ -12,6 +12,7 @@ pub mod barrier;
 pub mod broad_phase;
 pub mod cuboid;
 pub mod cylinder;
+pub mod edge_penetration;
 pub mod friction;
 pub mod frictional_step;
 pub mod mesh;

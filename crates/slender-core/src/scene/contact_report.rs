@@ -5,12 +5,15 @@
 //! [`TimeRun`](super::TimeRun), so both report contacts the same way.
 
 use crate::assembly::FIXED;
+use crate::contact::edge_penetration::deepest_point_inside;
 use crate::contact::{ContactProblem, ContactSites, Friction, SegmentSide};
 use crate::geometry::Vec3;
 use crate::structure::{Structure, StructureState};
 
 use super::compile::CompiledScene;
-use super::result::{ContactResult, ObstacleResult, SegmentContactKind, SegmentContactResult};
+use super::result::{
+    ContactResult, EdgeThroughObstacle, ObstacleResult, SegmentContactKind, SegmentContactResult,
+};
 use super::shell_contact_run::StripContacts;
 
 /// Everything a scene step reports about its contacts.
@@ -29,6 +32,8 @@ pub(crate) struct ContactReport {
     /// force and moment balance. Segment pairs act between parts of one structure and cancel
     /// in its balance, so they are not listed.
     pub external: Vec<Vec<(Vec3, Vec3)>>,
+    /// Rod edges whose centerline runs through an obstacle between their vertices.
+    pub edges_through_obstacles: Vec<EdgeThroughObstacle>,
 }
 
 /// The contact problem of structure `k` of `scene` around `state`, with friction state
@@ -74,6 +79,36 @@ pub(crate) fn rod_vertex(
         .unwrap_or_else(|| (format!("structure{k}.member{member}"), vertex))
 }
 
+/// Appends every edge of structure `k` (in `state`) whose centerline runs through one of the
+/// scene's obstacles between its vertices (see [`deepest_point_inside`]).
+fn edges_through(
+    scene: &CompiledScene,
+    k: usize,
+    state: &StructureState,
+    out: &mut Vec<EdgeThroughObstacle>,
+) {
+    let Some(c) = &scene.contact else {
+        return;
+    };
+    for edge in scene.structures[k].contact_edges() {
+        let positions = state.members[edge.member].positions();
+        let [a, b] = edge.vertices;
+        let (p, q) = (positions[a], positions[b]);
+        for (obstacle, name) in c.obstacles.iter().zip(&c.names) {
+            if let Some((t, d)) = deepest_point_inside(|x| obstacle.surface(x).distance, &p, &q) {
+                let (rod, vertex) = rod_vertex(scene, k, edge.member, a);
+                out.push(EdgeThroughObstacle {
+                    rod,
+                    edge: vertex,
+                    obstacle: name.clone(),
+                    position: (p + (q - p) * t).into(),
+                    depth: -d,
+                });
+            }
+        }
+    }
+}
+
 /// The contacts of the structures in `states` (one per structure of `scene`), each with its
 /// friction state in `friction`.
 pub(crate) fn contact_report(
@@ -100,6 +135,7 @@ pub(crate) fn contact_report(
     let mut external = vec![Vec::new(); states.len()];
     let mut min_gap = f64::INFINITY;
     let mut min_segment_gap = f64::INFINITY;
+    let mut through = Vec::new();
     for (k, state) in states.iter().enumerate() {
         let Some(Ok(p)) = contact_problem(scene, k, state, friction.get(k).copied().unwrap_or(&[]))
         else {
@@ -108,6 +144,7 @@ pub(crate) fn contact_report(
         let held = |site: usize| p.sites()[site].dofs.iter().all(|d| d.dof == FIXED);
         if !c.obstacles.is_empty() {
             min_gap = min_gap.min(p.min_gap(state));
+            edges_through(scene, k, state, &mut through);
         }
         for f in p.contact_forces(state) {
             if held(f.site) {
@@ -177,6 +214,7 @@ pub(crate) fn contact_report(
         segment_contacts: self_contact.then_some(pairs),
         min_segment_gap: (self_contact && min_segment_gap.is_finite()).then_some(min_segment_gap),
         external,
+        edges_through_obstacles: through,
     }
 }
 

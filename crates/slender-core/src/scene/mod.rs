@@ -23,8 +23,9 @@ pub mod time_run;
 pub use compile::{CompiledRod, CompiledScene, CompiledSupport, RodPart};
 pub use error::SceneError;
 pub use result::{
-    ContactResult, FrameEnergy, ObstacleResult, RodResult, SceneStep, SegmentContactKind,
-    SegmentContactResult, StabilityResult, StructureResult, SupportResult, TimeFrame,
+    ContactResult, EdgeThroughObstacle, FrameEnergy, ObstacleResult, RodResult, SceneStep,
+    SegmentContactKind, SegmentContactResult, StabilityResult, StructureResult, SupportResult,
+    TimeFrame,
 };
 pub use session::{EditReport, Session, StructureList, SupportPose};
 pub use shell_run::ShellRun;

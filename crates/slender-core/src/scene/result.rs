@@ -171,6 +171,28 @@ pub struct SceneStep {
     /// touch (absent without self-contact, or when no two segments are near each other).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_segment_gap: Option<f64>,
+    /// Rod edges whose centerline runs *through* an obstacle between their two vertices
+    /// (absent when there is none). Contact acts at the vertices, so an obstacle thinner than
+    /// an element can pass between two of them: such a shape is the discrete model's
+    /// equilibrium but not the cable's, and a finer mesh is needed there.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub edges_through_obstacles: Vec<EdgeThroughObstacle>,
+}
+
+/// A rod edge whose centerline passes through an obstacle between its two vertices (see
+/// [`SceneStep::edges_through_obstacles`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EdgeThroughObstacle {
+    /// The rod (name).
+    pub rod: String,
+    /// The edge's first vertex (the edge joins it to the next one).
+    pub edge: usize,
+    /// The obstacle (name).
+    pub obstacle: String,
+    /// The deepest point of the centerline inside the obstacle (m).
+    pub position: [f64; 3],
+    /// How deep (m) that point is inside the obstacle's surface (> 0).
+    pub depth: f64,
 }
 
 /// What touches in a [`SegmentContactResult`].

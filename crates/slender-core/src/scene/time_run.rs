@@ -329,6 +329,7 @@ impl<'a> TimeRun<'a> {
             min_gap: contacts.min_gap,
             segment_contacts: contacts.segment_contacts,
             min_segment_gap: contacts.min_segment_gap,
+            edges_through_obstacles: contacts.edges_through_obstacles,
             time: Some(TimeFrame {
                 t,
                 frame,

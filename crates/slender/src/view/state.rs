@@ -50,6 +50,10 @@ pub struct ViewState {
     /// core's results give it (`min_segment_gap`); absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_segment_gap: Option<Value>,
+    /// Rod edges whose centerline runs through an obstacle between their vertices (rod, edge,
+    /// obstacle, deepest point, depth), as the core's results list them: the page warns that
+    /// the mesh is coarser than the obstacle there. Empty otherwise.
+    pub edges_through_obstacles: Vec<slender_core::scene::EdgeThroughObstacle>,
 }
 
 /// One rod as drawn.
@@ -453,6 +457,7 @@ pub fn view_state(session: &Session, step: &SceneStep) -> ViewState {
         min_gap: step.min_gap,
         segment_contacts,
         min_segment_gap,
+        edges_through_obstacles: step.edges_through_obstacles.clone(),
     }
 }
 

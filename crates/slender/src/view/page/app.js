@@ -981,6 +981,12 @@ function updateContactPanel() {
   const gap = view.min_gap;
   $("min-gap").textContent = fmtGap(gap);
   $("min-gap").className = gap === null || gap >= 0 ? "ok" : "bad";
+  // Contact acts at the vertices: an obstacle thinner than an element can sit between two.
+  const through = view.edges_through_obstacles ?? [];
+  document.body.dataset.edgesThrough = String(through.length);
+  $("through-note").hidden = through.length === 0;
+  $("through-note").textContent = through.map((e) =>
+    `${e.rod}, edge ${e.edge}–${e.edge + 1}: its centerline runs ${fmtLength(e.depth)} deep through ${e.obstacle} between the vertices (contact acts at vertices): mesh finer than the obstacle`).join("; ");
   const pairs = view.segment_contacts;
   $("pairs-row").hidden = !geometry?.self_contact;
   $("pairs").textContent = pairs === undefined
