@@ -14,24 +14,29 @@ mod slurm;
 mod stick_slip;
 mod store;
 
-/// A file of this directory that is not declared above would never be compiled or run
-/// (`autotests = false` in Cargo.toml): every one must be.
+/// A test file that is not declared as a module of its crate's `tests/integration.rs` would
+/// never be compiled or run (`autotests = false` in each Cargo.toml): every one must be. Checked
+/// here for the three crates.
 #[test]
-fn every_test_file_is_a_module_of_this_binary() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
-    let root = std::fs::read_to_string(dir.join("integration.rs")).unwrap();
-    let apart: &[&str] = &[];
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let name = entry.unwrap().file_name().into_string().unwrap();
-        let Some(stem) = name.strip_suffix(".rs") else {
-            continue;
-        };
-        if stem == "integration" || apart.contains(&stem) {
-            continue;
+fn every_test_file_is_a_module_of_its_crates_test_binary() {
+    let crates = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    // Files with their own binary ([[test]] in Cargo.toml).
+    let apart = [("slender-core", "resolve_allocations")];
+    for krate in ["slender-core", "slender-validation", "slender"] {
+        let dir = crates.join(krate).join("tests");
+        let root = std::fs::read_to_string(dir.join("integration.rs")).unwrap();
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let name = entry.unwrap().file_name().into_string().unwrap();
+            let Some(stem) = name.strip_suffix(".rs") else {
+                continue;
+            };
+            if stem == "integration" || apart.contains(&(krate, stem)) {
+                continue;
+            }
+            assert!(
+                root.lines().any(|l| l == format!("mod {stem};")),
+                "crates/{krate}/tests/{name} is not a module of its tests/integration.rs"
+            );
         }
-        assert!(
-            root.lines().any(|l| l == format!("mod {stem};")),
-            "tests/{name} is not a module of tests/integration.rs"
-        );
     }
 }
