@@ -38,6 +38,10 @@ pub fn deepest_point_inside(
     let at = |t: f64| distance(&(p + (q - p) * t));
     let (dp, dq) = (at(0.0), at(1.0));
     let mut best = if dp <= dq { (0.0, dp) } else { (1.0, dq) };
+    if 0.5 * (dp + dq - length) >= 0.0f64.min(best.1) {
+        // Clear by the Lipschitz bound (almost every edge of a scene): no search, no buffer.
+        return (best.1 < 0.0).then_some(best);
+    }
     // Pieces (a, b, d(a), d(b)) still to search.
     let mut pieces = vec![(0.0, 1.0, dp, dq)];
     let mut evaluations = 2;
