@@ -10,6 +10,7 @@ mod scene_bad_input;
 mod scene_fuzz;
 mod sensitivity;
 mod shape_files;
+mod shared_builds;
 mod slurm;
 mod stick_slip;
 mod store;
