@@ -1,7 +1,8 @@
 //! Shell strips on obstacles in scene files, solved by `Session`: a flat cable lying on a box
 //! and hanging over its edge (no gap closes, the box and the clamp carry the weight computed
-//! here from the scene's data, each contact listed under the box as the strip's), and bad
-//! input naming the field.
+//! here from the scene's data, each contact listed under the box as the strip's), a coarse
+//! strip running through a thin bar between its vertices (reported) against a fine one resting
+//! on it, and bad input naming the field.
 
 use slender_core::scene::{Scene, Session};
 
@@ -98,6 +99,89 @@ activation = 1e-6
     assert!(
         box_force[1] > 0.5 * weight && box_force[1] < weight,
         "{box_force:?}"
+    );
+}
+
+#[test]
+fn a_strip_running_through_a_thin_bar_between_its_vertices_is_reported() {
+    // A 0.3 m strip 1 mm thick clamped at x = 0: beam theory puts its sag under its own weight
+    // at 11.3 mm at the tip and 5.7 mm at x = 0.1875 m, the middle of the third of four
+    // elements. A bar of radius 4 mm across the whole width, its axis 9 mm below the rest
+    // plane there, reaches up to 5 mm below it: the coarse strip's vertices are 3.75 cm away,
+    // nothing holds its faces, and their mid-surface runs about 0.7 mm deep through the bar.
+    let h = 1e-3;
+    let (x_bar, y_bar, r_bar) = (0.1875, -0.009, 0.004);
+    let text = |elements: usize| {
+        format!(
+            r#"
+gravity = [0.0, -9.81, 0.0]
+
+[[shells]]
+name = "strip"
+length = 0.3
+width = 0.03
+thickness = {h}
+material = {{ young = 10530e6, poisson = 0.3, density = 1000.0 }}
+elements = {elements}
+width_elements = 2
+grading = {{ kind = "uniform" }}
+
+[[obstacles]]
+name = "bar"
+shape = {{ kind = "cylinder", point = [{x_bar}, {y_bar}, 0.0], axis = [0.0, 0.0, 1.0], radius = {r_bar} }}
+
+[contact]
+activation = 1e-6
+"#
+        )
+    };
+    let coarse = Session::new(scene(&text(4))).expect("compiles");
+    let step = coarse.results(0, None, 1.0, 1);
+    assert!(step.converged, "{:?}", step.shells[0].report.status);
+    assert!(
+        step.obstacles[0].contacts.is_empty(),
+        "no vertex is near the bar: {:?}",
+        step.obstacles[0].contacts
+    );
+    let through = &step.edges_through_obstacles;
+    println!("coarse strip: {through:?}");
+    assert!(!through.is_empty());
+    let faces = &step.shells[0].faces;
+    for e in through {
+        assert!(e.shell && e.rod == "strip" && e.obstacle == "bar", "{e:?}");
+        // The face named is the strip's, with its vertices; it spans the bar's x.
+        assert_eq!(e.vertices, faces[e.edge].to_vec(), "{e:?}");
+        let xs: Vec<f64> = e
+            .vertices
+            .iter()
+            .map(|&v| step.shells[0].positions[v][0])
+            .collect();
+        let (lo, hi) = xs
+            .iter()
+            .fold((1.0f64, -1.0f64), |(l, u), &x| (l.min(x), u.max(x)));
+        assert!(lo < x_bar && x_bar < hi, "{e:?}: x from {lo} to {hi}");
+        // The deepest point is inside the bar by `depth`, on the bar's top side.
+        let r = ((e.position[0] - x_bar).powi(2) + (e.position[1] - y_bar).powi(2)).sqrt();
+        assert!((r_bar - r - e.depth).abs() < 1e-9, "r = {r}, {e:?}");
+        assert!(e.depth > 2e-4 && e.depth < 2e-3, "{e:?}");
+        assert!(e.position[1] > y_bar, "{e:?}");
+    }
+    // Every face across the bar's line, on both rows of the width, is named.
+    assert_eq!(through.len(), 4, "{through:?}");
+
+    // 100 elements (3 mm apart, a chord's sagitta over the bar 0.28 mm, under h/2): the strip
+    // rests on the bar and no face runs through it.
+    let fine = Session::new(scene(&text(100))).expect("compiles");
+    let step = fine.results(0, None, 1.0, 1);
+    assert!(step.converged, "{:?}", step.shells[0].report.status);
+    assert!(
+        !step.obstacles[0].contacts.is_empty(),
+        "the fine strip rests on the bar"
+    );
+    assert!(
+        step.edges_through_obstacles.is_empty(),
+        "{:?}",
+        step.edges_through_obstacles
     );
 }
 

@@ -1,19 +1,29 @@
-//! Whether a centerline edge passes *through* an obstacle between its two end vertices.
+//! Whether a rod's centerline edge, or a shell strip's mid-surface triangle, passes *through*
+//! an obstacle between its vertices.
 //!
 //! Contact acts at the vertices (see [`sites`](super::sites)): an obstacle thinner than an
-//! element can sit between two vertices, and a solve then returns a cable that runs through
-//! it, which no energy sees. This check makes such a shape visible in the results instead of
-//! passing for a valid equilibrium. It asks whether the edge's centerline itself enters the
-//! obstacle (signed distance below zero), not whether the tube around it touches: a polyline
-//! resting on a curved surface dips into it between vertices by the chord's sagitta, a
-//! discretization error of order l²/R, while a centerline inside the obstacle is a
-//! pass-through.
+//! element can sit between two vertices, and a solve then returns a cable or a strip that runs
+//! through it, which no energy sees. This check makes such a shape visible in the results
+//! instead of passing for a valid equilibrium. It asks whether the centerline (mid-surface)
+//! itself enters the obstacle (signed distance below zero), not whether the tube (the
+//! thickness) around it touches: a polyline resting on a curved surface dips into it between
+//! vertices by the chord's sagitta, a discretization error of order l²/R, while a centerline
+//! inside the obstacle is a pass-through.
 
 use nalgebra::Vector3;
 
 /// Intervals of the edge shorter than this (relative to the edge) are not split further: a
 /// centerline that enters the obstacle over less than this is not reported.
 const RESOLUTION: f64 = 1e-6;
+
+/// A triangle's depth is searched to this fraction of its size (the distance from its centroid
+/// to its farthest corner), and a triangle whose mid-surface enters an obstacle by less is
+/// not reported (see [`deepest_point_inside_triangle`]).
+const FACE_TOLERANCE: f64 = 1e-4;
+
+/// Evaluations of the distance per triangle at most: the search's cost where a face grazes an
+/// obstacle's surface or lies along it (see [`deepest_point_inside_triangle`]).
+const MAX_FACE_EVALUATIONS: usize = 256;
 
 /// Evaluations of the distance per edge at most (a bound on the search, never reached for an
 /// edge that is clear of the obstacle by more than its length's millionth).
@@ -63,6 +73,102 @@ pub fn deepest_point_inside(
     (best.1 < 0.0).then_some(best)
 }
 
+/// Where the triangle `corners` (m) is deepest inside the obstacle whose signed distance is
+/// `distance` (negative inside, 1-Lipschitz): `Some((x, d))` with the point x at signed
+/// distance d < 0 (m), or `None` if no point inside was found.
+///
+/// Best-first branch and bound: no point of a triangle is closer than d(m) − R, m its centroid
+/// and R the distance from m to its farthest corner (the farthest point of a convex set from
+/// m is a corner); the piece with the lowest bound is split in four at its edges' midpoints
+/// until no bound is below the deepest point found (or the surface) by more than
+/// [`FACE_TOLERANCE`] of the triangle's size, or after [`MAX_FACE_EVALUATIONS`]. Unlike on a
+/// segment, the deepest point is not resolved to [`RESOLUTION`]: the pieces a Lipschitz bound
+/// cannot prune around the minimum grow as the inverse of the tolerance in two dimensions, and
+/// where the minimum is a line (a face across a cylinder) as its square. The depth returned is
+/// that of the point returned, which is inside: a lower bound of the face's depth, to the
+/// tolerance when the search closes; a face that only grazes the surface, by less than the
+/// tolerance or than the search reaches in its budget, is not reported.
+pub fn deepest_point_inside_triangle(
+    distance: impl Fn(&Vector3<f64>) -> f64,
+    corners: [Vector3<f64>; 3],
+) -> Option<(Vector3<f64>, f64)> {
+    let piece_of = |corners: [Vector3<f64>; 3]| {
+        let [a, b, c] = corners;
+        let m = (a + b + c) / 3.0;
+        let reach = (a - m).norm().max((b - m).norm()).max((c - m).norm());
+        let dm = distance(&m);
+        (
+            Piece {
+                bound: dm - reach,
+                corners,
+            },
+            m,
+            dm,
+        )
+    };
+    let (top, m, dm) = piece_of(corners);
+    let mut best = (m, dm);
+    for corner in corners {
+        let d = distance(&corner);
+        if d < best.1 {
+            best = (corner, d);
+        }
+    }
+    let tolerance = FACE_TOLERANCE * (dm - top.bound);
+    if top.bound + tolerance >= 0.0f64.min(best.1) {
+        // Clear by the Lipschitz bound (almost every face of a scene): no search, no buffer.
+        return (best.1 < 0.0).then_some(best);
+    }
+    let mut pieces = std::collections::BinaryHeap::from([top]);
+    let mut evaluations = 4;
+    while let Some(Piece { bound, corners }) = pieces.pop() {
+        // The lowest bound left cannot hold a point inside, or deeper than the best found by
+        // more than the tolerance: the search is closed.
+        if bound + tolerance >= 0.0f64.min(best.1) || evaluations + 4 > MAX_FACE_EVALUATIONS {
+            break;
+        }
+        let [a, b, c] = corners;
+        let (ab, bc, ca) = ((a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0);
+        for child in [[a, ab, ca], [ab, b, bc], [ca, bc, c], [bc, ca, ab]] {
+            let (piece, m, dm) = piece_of(child);
+            evaluations += 1;
+            if dm < best.1 {
+                best = (m, dm);
+            }
+            pieces.push(piece);
+        }
+    }
+    (best.1 < 0.0).then_some(best)
+}
+
+/// A piece of a triangle in the search of [`deepest_point_inside_triangle`], ordered so that
+/// the heap pops the lowest bound first.
+struct Piece {
+    /// No point of the piece is closer to the surface than this (m).
+    bound: f64,
+    corners: [Vector3<f64>; 3],
+}
+
+impl PartialEq for Piece {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == std::cmp::Ordering::Equal
+    }
+}
+
+impl Eq for Piece {}
+
+impl PartialOrd for Piece {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Piece {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        other.bound.total_cmp(&self.bound)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -98,5 +204,56 @@ mod tests {
             deepest_point_inside(bar(Vector3::new(0.1, 0.0, -1.0), 0.001), &p, &q),
             None
         );
+    }
+
+    #[test]
+    fn a_triangle_pierced_by_a_small_sphere_is_found_at_its_depth() {
+        // A 10 cm triangle in the plane z = 0; a 2 mm sphere centred 0.5 mm below an interior
+        // point, far from the corners and edges: only the face, not an edge, passes through it,
+        // 1.5 mm deep at the point above the centre.
+        let corners = [
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(0.1, 0.0, 0.0),
+            Vector3::new(0.0, 0.1, 0.0),
+        ];
+        let centre = Vector3::new(0.03, 0.02, -0.0005);
+        let sphere = |x: &Vector3<f64>| (x - centre).norm() - 0.002;
+        for [p, q] in [[0, 1], [1, 2], [2, 0]] {
+            assert_eq!(deepest_point_inside(sphere, &corners[p], &corners[q]), None);
+        }
+        let (x, d) = deepest_point_inside_triangle(sphere, corners).expect("the face runs through");
+        // The depth to within the search's tolerance (1e-4 of the 4.7 cm reach: 4.7 µm; 0.2 µm
+        // in the 256 evaluations), the point to about its square root over the sphere's
+        // curvature.
+        assert!(
+            (x - Vector3::new(0.03, 0.02, 0.0)).norm() < 1e-4,
+            "x = {x:?}"
+        );
+        assert!((d + 0.0015).abs() < 4.8e-6, "depth {d}");
+        assert!(
+            ((x - centre).norm() - 0.002 - d).abs() < 1e-15,
+            "d is the distance at x"
+        );
+    }
+
+    #[test]
+    fn a_triangle_above_or_beside_a_sphere_is_not_reported() {
+        let corners = [
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(0.1, 0.0, 0.0),
+            Vector3::new(0.0, 0.1, 0.0),
+        ];
+        // Just below the face (0.1 mm gap) and beside it, past the hypotenuse.
+        for centre in [
+            Vector3::new(0.03, 0.02, -0.0021),
+            Vector3::new(0.06, 0.06, 0.0),
+        ] {
+            let sphere = |x: &Vector3<f64>| (x - centre).norm() - 0.002;
+            assert_eq!(
+                deepest_point_inside_triangle(sphere, corners),
+                None,
+                "{centre:?}"
+            );
+        }
     }
 }

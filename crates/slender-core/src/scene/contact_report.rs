@@ -32,7 +32,8 @@ pub(crate) struct ContactReport {
     /// force and moment balance. Segment pairs act between parts of one structure and cancel
     /// in its balance, so they are not listed.
     pub external: Vec<Vec<(Vec3, Vec3)>>,
-    /// Rod edges whose centerline runs through an obstacle between their vertices.
+    /// Rod edges whose centerline, and strip faces whose mid-surface, runs through an
+    /// obstacle between their vertices.
     pub edges_through_obstacles: Vec<EdgeThroughObstacle>,
 }
 
@@ -99,7 +100,9 @@ fn edges_through(
                 let (rod, vertex) = rod_vertex(scene, k, edge.member, a);
                 out.push(EdgeThroughObstacle {
                     rod,
+                    shell: false,
                     edge: vertex,
+                    vertices: vec![vertex, vertex + 1],
                     obstacle: name.clone(),
                     position: (p + (q - p) * t).into(),
                     depth: -d,
@@ -220,7 +223,8 @@ pub(crate) fn contact_report(
 
 /// Adds the contacts of the scene's shell strips (`strips[i]` of `shells[i]`, `None` for a
 /// strip without contact) to `report`: each under its obstacle, named by the strip and its
-/// vertex, into the obstacle's resultant, and the strips' smallest gap into the scene's.
+/// vertex, into the obstacle's resultant, the strips' smallest gap into the scene's, and
+/// their faces through obstacles after the rods' edges.
 pub(crate) fn add_strip_contacts(
     scene: &CompiledScene,
     strips: &[Option<StripContacts>],
@@ -251,6 +255,17 @@ pub(crate) fn add_strip_contacts(
                 normal_force: f.force.into(),
                 friction_force: f.friction.into(),
                 sticking: f.sticking,
+            });
+        }
+        for f in &strip.through {
+            report.edges_through_obstacles.push(EdgeThroughObstacle {
+                rod: c.name.clone(),
+                shell: true,
+                edge: f.face,
+                vertices: f.vertices.to_vec(),
+                obstacle: report.obstacles[f.obstacle].name.clone(),
+                position: f.position.into(),
+                depth: f.depth,
             });
         }
     }

@@ -171,22 +171,29 @@ pub struct SceneStep {
     /// touch (absent without self-contact, or when no two segments are near each other).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_segment_gap: Option<f64>,
-    /// Rod edges whose centerline runs *through* an obstacle between their two vertices
-    /// (absent when there is none). Contact acts at the vertices, so an obstacle thinner than
-    /// an element can pass between two of them: such a shape is the discrete model's
-    /// equilibrium but not the cable's, and a finer mesh is needed there.
+    /// Rod edges whose centerline, and shell-strip faces whose mid-surface, runs *through* an
+    /// obstacle between their vertices (absent when there is none). Contact acts at the
+    /// vertices, so an obstacle thinner than an element can pass between them: such a shape
+    /// is the discrete model's equilibrium but not the cable's, and a finer mesh is needed
+    /// there.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub edges_through_obstacles: Vec<EdgeThroughObstacle>,
 }
 
-/// A rod edge whose centerline passes through an obstacle between its two vertices (see
-/// [`SceneStep::edges_through_obstacles`]).
+/// A rod edge whose centerline, or a shell strip's face whose mid-surface, passes through an
+/// obstacle between its vertices (see [`SceneStep::edges_through_obstacles`]).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EdgeThroughObstacle {
-    /// The rod (name).
+    /// The rod or the shell strip (name).
     pub rod: String,
-    /// The edge's first vertex (the edge joins it to the next one).
+    /// True for a shell strip's face, false for a rod's edge.
+    pub shell: bool,
+    /// A rod's edge: its first vertex (the edge joins it to the next one); a strip's face: its
+    /// index in the strip's `faces`.
     pub edge: usize,
+    /// The element's vertices: the edge's two, or the face's three (indices into the rod's or
+    /// the strip's positions).
+    pub vertices: Vec<usize>,
     /// The obstacle (name).
     pub obstacle: String,
     /// The deepest point of the centerline inside the obstacle (m).

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use crate::assembly::FIXED;
 use crate::bspline_shell::ClampMotion;
+use crate::contact::edge_penetration::deepest_point_inside_triangle;
 use crate::contact::{ContactForce, ContactParams, ContactProblem, Friction, Obstacle};
 use crate::geometry::Vec3;
 use crate::linalg::AdaptiveMatrix;
@@ -36,6 +37,23 @@ pub(crate) struct StripContacts {
     /// Smallest gap (m) of any vertex (clamped ones included) to any obstacle: distance
     /// minus h/2.
     pub min_gap: f64,
+    /// Faces whose mid-surface runs through an obstacle between their vertices.
+    pub through: Vec<FaceThrough>,
+}
+
+/// A face of a strip whose mid-surface passes through an obstacle (see
+/// [`deepest_point_inside_triangle`]).
+#[derive(Clone, Debug)]
+pub(crate) struct FaceThrough {
+    /// The face (index in the strip's mesh) and its three vertices.
+    pub face: usize,
+    pub vertices: [usize; 3],
+    /// The obstacle (index in the scene's obstacles).
+    pub obstacle: usize,
+    /// The deepest point of the mid-surface inside the obstacle (m).
+    pub position: Vec3,
+    /// How deep (m) that point is inside the obstacle's surface (> 0).
+    pub depth: f64,
 }
 
 /// A strip in contact: state, backup, solver, last report, friction state.
@@ -213,6 +231,30 @@ impl ContactStripRun {
         Some(StripContacts {
             contacts,
             min_gap: p.min_gap(&self.state),
+            through: self.faces_through(shell),
         })
+    }
+
+    /// Every face whose mid-surface runs through an obstacle at the current state.
+    fn faces_through(&self, shell: &Shell) -> Vec<FaceThrough> {
+        let x = &self.state.positions;
+        let mut through = Vec::new();
+        for (face, &[a, b, c]) in shell.mesh().faces.iter().enumerate() {
+            for (obstacle, o) in self.contact.obstacles.iter().enumerate() {
+                let surface = |p: &Vec3| o.surface(p).distance;
+                if let Some((position, d)) =
+                    deepest_point_inside_triangle(surface, [x[a], x[b], x[c]])
+                {
+                    through.push(FaceThrough {
+                        face,
+                        vertices: [a, b, c],
+                        obstacle,
+                        position,
+                        depth: -d,
+                    });
+                }
+            }
+        }
+        through
     }
 }

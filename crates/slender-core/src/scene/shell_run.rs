@@ -376,6 +376,7 @@ impl ShellRun {
                 Some(&r.contacts(m).unwrap_or(StripContacts {
                     contacts: Vec::new(),
                     min_gap: f64::NAN,
+                    through: Vec::new(),
                 })),
             ),
             (Runs::Bspline(r), StripModel::Bspline(m)) => {

@@ -26,7 +26,7 @@ pub fn run(a: &SolveArgs) -> Result<bool> {
         Outcome::Ok if through > 0 => {
             // Converged and stable, but the shape is the coarse mesh's, not the cable's.
             println!(
-                "verdict: every step converged to a stable equilibrium, but rod edges run through obstacles between their vertices (WARNING above): refine the mesh there"
+                "verdict: every step converged to a stable equilibrium, but rod edges or strip faces run through obstacles between their vertices (WARNING above): refine the mesh there"
             );
             Ok(true)
         }

@@ -135,8 +135,8 @@ struct StepRow {
     unstable_modes: usize,
     /// An unstable equilibrium was met and its unstable mode followed to a stable one.
     followed_unstable_mode: bool,
-    /// Rod edges whose centerline runs through an obstacle between their vertices (a mesh
-    /// coarser than the obstacle: see `SceneStep::edges_through_obstacles`).
+    /// Rod edges whose centerline, and strip faces whose mid-surface, runs through an obstacle
+    /// between their vertices (a mesh coarser than the obstacle: see `SceneStep::edges_through_obstacles`).
     edges_through_obstacles: usize,
 }
 
@@ -249,7 +249,8 @@ struct StepSummary<'a> {
     rods: Vec<RodSummary<'a>>,
     structures: &'a [slender_core::scene::StructureResult],
     shells: Vec<ShellSummary<'a>>,
-    /// Rod edges running through an obstacle between their vertices (absent when none).
+    /// Rod edges and strip faces running through an obstacle between their vertices (absent
+    /// when none).
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
     edges_through_obstacles: &'a [slender_core::scene::EdgeThroughObstacle],
 }
@@ -575,7 +576,7 @@ fn write_summaries_with(
 }
 
 /// One line per step for the terminal (per frame, at most about 20 lines, for a time-stepped
-/// scene). Returns the number of rod edges that run through an obstacle, over the steps.
+/// scene). Returns the number of rod edges and strip faces that run through an obstacle, over the steps.
 pub fn print_summary(out: &Path) -> Result<usize> {
     let frames = out.join("frames.csv");
     if frames.exists() {
@@ -623,9 +624,9 @@ pub fn print_summary(out: &Path) -> Result<usize> {
         total_through += through;
         if through > 0 {
             println!(
-                "      WARNING: {through} rod edge(s) run through an obstacle between their \
-                 vertices (contact acts at vertices): mesh finer than the obstacle; see \
-                 edges_through_obstacles in step_{:0>3}/result.json",
+                "      WARNING: {through} element(s) (rod edges, strip faces) run through an \
+                 obstacle between their vertices (contact acts at vertices): mesh finer than \
+                 the obstacle; see edges_through_obstacles in step_{:0>3}/result.json",
                 &row[0]
             );
         }

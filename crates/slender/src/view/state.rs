@@ -50,9 +50,10 @@ pub struct ViewState {
     /// core's results give it (`min_segment_gap`); absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_segment_gap: Option<Value>,
-    /// Rod edges whose centerline runs through an obstacle between their vertices (rod, edge,
-    /// obstacle, deepest point, depth), as the core's results list them: the page warns that
-    /// the mesh is coarser than the obstacle there. Empty otherwise.
+    /// Rod edges whose centerline, and strip faces whose mid-surface, runs through an obstacle
+    /// between their vertices (rod or strip, edge or face, obstacle, deepest point, depth), as
+    /// the core's results list them: the page warns that the mesh is coarser than the
+    /// obstacle there. Empty otherwise.
     pub edges_through_obstacles: Vec<slender_core::scene::EdgeThroughObstacle>,
 }
 

@@ -985,8 +985,10 @@ function updateContactPanel() {
   const through = view.edges_through_obstacles ?? [];
   document.body.dataset.edgesThrough = String(through.length);
   $("through-note").hidden = through.length === 0;
-  $("through-note").textContent = through.map((e) =>
-    `${e.rod}, edge ${e.edge}–${e.edge + 1}: its centerline runs ${fmtLength(e.depth)} deep through ${e.obstacle} between the vertices (contact acts at vertices): mesh finer than the obstacle`).join("; ");
+  $("through-note").textContent = through.map((e) => (e.shell
+    ? `${e.rod}, face ${e.edge} (vertices ${e.vertices.join(", ")}): its mid-surface runs`
+    : `${e.rod}, edge ${e.edge}–${e.edge + 1}: its centerline runs`)
+    + ` ${fmtLength(e.depth)} deep through ${e.obstacle} between the vertices (contact acts at vertices): mesh finer than the obstacle`).join("; ");
   const pairs = view.segment_contacts;
   $("pairs-row").hidden = !geometry?.self_contact;
   $("pairs").textContent = pairs === undefined
