@@ -516,3 +516,53 @@ def test_an_obstacle_moved_from_python_carries_the_cable() -> None:
     with pytest.raises(slender.SceneError, match=r"obstacles\[3\]"):
         s.obstacle_reference(3)
     assert np.array_equal(s.results().rods[0].positions, moved)
+
+
+def test_a_coarse_cable_through_a_thin_bar_is_reported() -> None:
+    """A 0.5 m cantilever of 4 elements sags onto a 1 cm bar off its vertices and runs through
+    it (edge 2, the same case as the Rust scene test); with 100 elements it rests on the bar
+    and nothing is reported."""
+
+    def scene(elements: int) -> dict:
+        return {
+            "gravity": [0.0, 0.0, -9.81],
+            "rods": [
+                {
+                    "name": "cable",
+                    "elements": elements,
+                    "centerline": {
+                        "kind": "straight",
+                        "start": [0.0, 0.0, 0.0],
+                        "direction": [1.0, 0.0, 0.0],
+                        "length": 0.5,
+                    },
+                    "section": {"shape": "circle", "diameter": 0.006},
+                    "material": {"young": 1.0e9, "poisson": 0.4, "density": 1500.0},
+                    "supports": [{"kind": "clamp", "vertex": "start"}],
+                }
+            ],
+            "obstacles": [
+                {
+                    "name": "bar",
+                    "shape": {
+                        "kind": "cylinder",
+                        "point": [0.3125, 0.0, -0.02],
+                        "axis": [0.0, 1.0, 0.0],
+                        "radius": 0.01,
+                    },
+                }
+            ],
+        }
+
+    coarse = slender.Session(scene(4)).results()
+    assert coarse.converged
+    through = coarse.edges_through_obstacles
+    assert len(through) == 1, through
+    e = through[0]
+    assert (e["rod"], e["shell"], e["edge"], e["vertices"], e["obstacle"]) == (
+        "cable", False, 2, [2, 3], "bar")
+    # The deepest point is inside the bar by the depth reported.
+    r = math.hypot(e["position"][0] - 0.3125, e["position"][2] + 0.02)
+    assert abs(0.01 - r - e["depth"]) < 1e-9 and 1e-3 < e["depth"] < 0.01
+    fine = slender.Session(scene(100)).results()
+    assert fine.converged and fine.edges_through_obstacles == []

@@ -251,6 +251,16 @@ class Results:
             raw=d,
         )
 
+    @property
+    def edges_through_obstacles(self) -> list:
+        """Rod edges whose centerline, and shell-strip faces whose mid-surface, run through an
+        obstacle between their vertices: contact acts at the vertices, so such a shape is the
+        discrete model's equilibrium but not the cable's, and the mesh must be finer than the
+        obstacle there. Dicts with ``rod`` (rod or strip name), ``shell`` (bool), ``edge`` (a
+        rod edge's first vertex, or a strip's face index), ``vertices``, ``obstacle``,
+        ``position`` (deepest point, m) and ``depth`` (m); empty when there is none."""
+        return list(self.raw.get("edges_through_obstacles", []))
+
     def reports(self) -> list:
         """Every solver report of the step (rods' parts, then shells)."""
         out = [r for rod in self.rods for r in rod.reports]
