@@ -499,3 +499,76 @@ shape = {{ kind = "cylinder", point = [0.3125, 0.0, -0.02], axis = [0.0, 1.0, 0.
         step.edges_through_obstacles
     );
 }
+
+#[test]
+fn an_edge_crossing_a_mesh_panel_is_reported() {
+    // The cantilever of the bar test over a horizontal panel (a mesh: a surface without an
+    // inside) 2 cm wide, 1 cm below the rest line at x = 0.15–0.17 m. With 4 elements edge 1
+    // (x = 0.125–0.25 m) sags from 0.6 to 2.0 cm and crosses the panel between its
+    // vertices; with 100 elements the cable rests on the panel.
+    let text = |elements: usize| {
+        format!(
+            r#"
+gravity = [0.0, 0.0, -9.81]
+[[rods]]
+name = "cable"
+elements = {elements}
+centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 0.5 }}
+section = {{ shape = "circle", diameter = 0.006 }}
+material = {{ young = 1.0e9, poisson = 0.4, density = 1500.0 }}
+supports = [{{ kind = "clamp", vertex = "start" }}]
+[[obstacles]]
+name = "panel"
+shape = {{ kind = "mesh", vertices = [[0.15, -0.1, -0.01], [0.17, -0.1, -0.01], [0.17, 0.1, -0.01], [0.15, 0.1, -0.01]], triangles = [[0, 1, 2], [0, 2, 3]] }}
+"#
+        )
+    };
+    let coarse = Session::new(scene(&text(4))).expect("compiles");
+    assert!(
+        coarse.report(0).converged(),
+        "{:?}",
+        coarse.report(0).status
+    );
+    let step = coarse.results(0, None, 1.0, 1);
+    assert!(
+        step.obstacles[0].contacts.is_empty(),
+        "no vertex is near the panel"
+    );
+    let through = &step.edges_through_obstacles;
+    println!("coarse cable over the panel: {through:?}");
+    assert_eq!(through.len(), 1, "{through:?}");
+    let e = &through[0];
+    assert_eq!(
+        (
+            e.rod.as_str(),
+            e.shell,
+            e.edge,
+            e.vertices.as_slice(),
+            e.obstacle.as_str()
+        ),
+        ("cable", false, 1, [1, 2].as_slice(), "panel")
+    );
+    // It crosses at the panel, on the edge's chord between its two vertices.
+    assert_eq!(e.depth, 0.0);
+    assert!((e.position[2] + 0.01).abs() < 1e-9, "{e:?}");
+    assert!((0.15..=0.17).contains(&e.position[0]), "{e:?}");
+    let x = &step.rods[0].positions;
+    let t = (e.position[0] - x[1][0]) / (x[2][0] - x[1][0]);
+    for i in 0..3 {
+        let chord = x[1][i] + t * (x[2][i] - x[1][i]);
+        assert!((chord - e.position[i]).abs() < 1e-9, "{e:?}");
+    }
+
+    let fine = Session::new(scene(&text(100))).expect("compiles");
+    assert!(fine.report(0).converged(), "{:?}", fine.report(0).status);
+    let step = fine.results(0, None, 1.0, 1);
+    assert!(
+        !step.obstacles[0].contacts.is_empty(),
+        "the fine cable rests on the panel"
+    );
+    assert!(
+        step.edges_through_obstacles.is_empty(),
+        "{:?}",
+        step.edges_through_obstacles
+    );
+}

@@ -12,6 +12,8 @@
 
 use nalgebra::Vector3;
 
+use super::Obstacle;
+
 /// Intervals of the edge shorter than this (relative to the edge) are not split further: a
 /// centerline that enters the obstacle over less than this is not reported.
 const RESOLUTION: f64 = 1e-6;
@@ -71,6 +73,20 @@ pub fn deepest_point_inside(
         pieces.push((m, b, dm, db));
     }
     (best.1 < 0.0).then_some(best)
+}
+
+/// Where the segment from `p` to `q` (m) first meets the surface of an obstacle without an
+/// inside ([`Obstacle::signed`] false: a mesh), as a fraction t ∈ [0, 1) of the segment, or
+/// `None` if it stays clear. Such a surface has no depth to search: an element whose vertices
+/// are held off it by contact crosses it between them or not at all (the obstacle's own
+/// time of impact, exact over a mesh's faces).
+pub fn segment_crossing(
+    obstacle: &dyn Obstacle,
+    p: &Vector3<f64>,
+    q: &Vector3<f64>,
+) -> Option<f64> {
+    let t = obstacle.time_of_impact(p, &(q - p), 0.0);
+    (t < 1.0).then_some(t)
 }
 
 /// Where the triangle `corners` (m) is deepest inside the obstacle whose signed distance is
@@ -202,6 +218,32 @@ mod tests {
         // Far away: two evaluations and done.
         assert_eq!(
             deepest_point_inside(bar(Vector3::new(0.1, 0.0, -1.0), 0.001), &p, &q),
+            None
+        );
+    }
+
+    #[test]
+    fn a_segment_across_a_mesh_panel_crosses_it_where_it_meets_it() {
+        // A horizontal panel 1 cm wide (two triangles) at z = -0.01 under a 25 cm edge that
+        // dips from z = 0 to z = -0.03: it meets the panel's plane at t = 1/3, x = 8.33 cm,
+        // inside the panel's strip x ∈ [0.08, 0.09]; the same edge ending at z = -0.005 does not.
+        let panel = crate::contact::TriangleMesh::new(
+            vec![
+                Vector3::new(0.08, -0.1, -0.01),
+                Vector3::new(0.09, -0.1, -0.01),
+                Vector3::new(0.09, 0.1, -0.01),
+                Vector3::new(0.08, 0.1, -0.01),
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+            0.0,
+        )
+        .unwrap();
+        assert!(!panel.signed());
+        let p = Vector3::new(0.0, 0.0, 0.0);
+        let t = segment_crossing(&panel, &p, &Vector3::new(0.25, 0.0, -0.03)).expect("crosses");
+        assert!((t - 1.0 / 3.0).abs() < 1e-9, "t = {t}");
+        assert_eq!(
+            segment_crossing(&panel, &p, &Vector3::new(0.25, 0.0, -0.005)),
             None
         );
     }

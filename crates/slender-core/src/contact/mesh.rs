@@ -243,6 +243,10 @@ impl Obstacle for TriangleMesh {
         }
     }
 
+    fn signed(&self) -> bool {
+        false
+    }
+
     fn time_of_impact(&self, p: &Vector3<f64>, dp: &Vector3<f64>, clearance: f64) -> f64 {
         let length = dp.norm();
         if length == 0.0 {

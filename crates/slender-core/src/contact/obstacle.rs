@@ -38,6 +38,12 @@ pub trait Obstacle: std::fmt::Debug + Send + Sync {
     /// keeps a contact barrier's gaps positive; no tunnelling through thin parts).
     fn time_of_impact(&self, p: &Vector3<f64>, dp: &Vector3<f64>, clearance: f64) -> f64;
 
+    /// True if [`Self::surface`]'s distance is signed (negative inside a solid); false for a
+    /// surface without an inside (a mesh: an open panel), which a segment can only cross.
+    fn signed(&self) -> bool {
+        true
+    }
+
     /// Coulomb friction coefficient μ ≥ 0 of this obstacle's surface (dimensionless; μ_s = μ_d).
     fn friction(&self) -> f64;
 

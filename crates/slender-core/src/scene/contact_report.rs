@@ -5,7 +5,7 @@
 //! [`TimeRun`](super::TimeRun), so both report contacts the same way.
 
 use crate::assembly::FIXED;
-use crate::contact::edge_penetration::deepest_point_inside;
+use crate::contact::edge_penetration::{deepest_point_inside, segment_crossing};
 use crate::contact::{ContactProblem, ContactSites, Friction, SegmentSide};
 use crate::geometry::Vec3;
 use crate::structure::{Structure, StructureState};
@@ -81,7 +81,8 @@ pub(crate) fn rod_vertex(
 }
 
 /// Appends every edge of structure `k` (in `state`) whose centerline runs through one of the
-/// scene's obstacles between its vertices (see [`deepest_point_inside`]).
+/// scene's obstacles between its vertices (see [`deepest_point_inside`]), or crosses a mesh
+/// (see [`segment_crossing`]).
 fn edges_through(
     scene: &CompiledScene,
     k: usize,
@@ -96,7 +97,13 @@ fn edges_through(
         let [a, b] = edge.vertices;
         let (p, q) = (positions[a], positions[b]);
         for (obstacle, name) in c.obstacles.iter().zip(&c.names) {
-            if let Some((t, d)) = deepest_point_inside(|x| obstacle.surface(x).distance, &p, &q) {
+            let through = if obstacle.signed() {
+                deepest_point_inside(|x| obstacle.surface(x).distance, &p, &q)
+            } else {
+                // A surface without an inside is crossed, at no depth.
+                segment_crossing(obstacle.as_ref(), &p, &q).map(|t| (t, 0.0))
+            };
+            if let Some((t, d)) = through {
                 let (rod, vertex) = rod_vertex(scene, k, edge.member, a);
                 out.push(EdgeThroughObstacle {
                     rod,
@@ -105,7 +112,7 @@ fn edges_through(
                     vertices: vec![vertex, vertex + 1],
                     obstacle: name.clone(),
                     position: (p + (q - p) * t).into(),
-                    depth: -d,
+                    depth: d.abs(),
                 });
             }
         }

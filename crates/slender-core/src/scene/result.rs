@@ -198,7 +198,8 @@ pub struct EdgeThroughObstacle {
     pub obstacle: String,
     /// The deepest point of the centerline inside the obstacle (m).
     pub position: [f64; 3],
-    /// How deep (m) that point is inside the obstacle's surface (> 0).
+    /// How deep (m) that point is inside the obstacle's surface (> 0); 0 for a mesh, a
+    /// surface without an inside, which the element crosses at `position`.
     pub depth: f64,
 }
 

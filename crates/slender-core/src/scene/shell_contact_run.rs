@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use crate::assembly::FIXED;
 use crate::bspline_shell::ClampMotion;
-use crate::contact::edge_penetration::deepest_point_inside_triangle;
+use crate::contact::edge_penetration::{deepest_point_inside_triangle, segment_crossing};
 use crate::contact::{ContactForce, ContactParams, ContactProblem, Friction, Obstacle};
 use crate::geometry::Vec3;
 use crate::linalg::AdaptiveMatrix;
@@ -52,7 +52,7 @@ pub(crate) struct FaceThrough {
     pub obstacle: usize,
     /// The deepest point of the mid-surface inside the obstacle (m).
     pub position: Vec3,
-    /// How deep (m) that point is inside the obstacle's surface (> 0).
+    /// How deep (m) that point is inside the obstacle's surface (> 0; 0 across a mesh).
     pub depth: f64,
 }
 
@@ -235,22 +235,30 @@ impl ContactStripRun {
         })
     }
 
-    /// Every face whose mid-surface runs through an obstacle at the current state.
+    /// Every face whose mid-surface runs through an obstacle at the current state: into a
+    /// solid, or across a mesh along one of the face's edges (a mesh whose border lies inside
+    /// a face, a panel's corner poking through it, is not seen).
     fn faces_through(&self, shell: &Shell) -> Vec<FaceThrough> {
         let x = &self.state.positions;
         let mut through = Vec::new();
         for (face, &[a, b, c]) in shell.mesh().faces.iter().enumerate() {
             for (obstacle, o) in self.contact.obstacles.iter().enumerate() {
-                let surface = |p: &Vec3| o.surface(p).distance;
-                if let Some((position, d)) =
+                let found = if o.signed() {
+                    let surface = |p: &Vec3| o.surface(p).distance;
                     deepest_point_inside_triangle(surface, [x[a], x[b], x[c]])
-                {
+                } else {
+                    [(a, b), (b, c), (c, a)].into_iter().find_map(|(i, j)| {
+                        segment_crossing(o.as_ref(), &x[i], &x[j])
+                            .map(|t| (x[i] + (x[j] - x[i]) * t, 0.0))
+                    })
+                };
+                if let Some((position, d)) = found {
                     through.push(FaceThrough {
                         face,
                         vertices: [a, b, c],
                         obstacle,
                         position,
-                        depth: -d,
+                        depth: d.abs(),
                     });
                 }
             }

@@ -988,7 +988,8 @@ function updateContactPanel() {
   $("through-note").textContent = through.map((e) => (e.shell
     ? `${e.rod}, face ${e.edge} (vertices ${e.vertices.join(", ")}): its mid-surface runs`
     : `${e.rod}, edge ${e.edge}–${e.edge + 1}: its centerline runs`)
-    + ` ${fmtLength(e.depth)} deep through ${e.obstacle} between the vertices (contact acts at vertices): mesh finer than the obstacle`).join("; ");
+    + (e.depth > 0 ? ` ${fmtLength(e.depth)} deep through ${e.obstacle}` : ` across ${e.obstacle}`)
+    + " between the vertices (contact acts at vertices): mesh finer than the obstacle").join("; ");
   const pairs = view.segment_contacts;
   $("pairs-row").hidden = !geometry?.self_contact;
   $("pairs").textContent = pairs === undefined
