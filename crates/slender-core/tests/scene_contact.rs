@@ -554,9 +554,8 @@ shape = {{ kind = "mesh", vertices = [[0.15, -0.1, -0.01], [0.17, -0.1, -0.01], 
     assert!((0.15..=0.17).contains(&e.position[0]), "{e:?}");
     let x = &step.rods[0].positions;
     let t = (e.position[0] - x[1][0]) / (x[2][0] - x[1][0]);
-    for i in 0..3 {
-        let chord = x[1][i] + t * (x[2][i] - x[1][i]);
-        assert!((chord - e.position[i]).abs() < 1e-9, "{e:?}");
+    for ((a, b), p) in x[1].iter().zip(&x[2]).zip(&e.position) {
+        assert!((a + t * (b - a) - p).abs() < 1e-9, "{e:?}");
     }
 
     let fine = Session::new(scene(&text(100))).expect("compiles");
