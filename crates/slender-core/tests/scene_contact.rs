@@ -433,17 +433,12 @@ fn cable_over_bracket_follows_one_centimetre_drags_of_its_clamp_in_every_directi
     }
 }
 
-/// A bar thinner than an element passes between two vertices of a coarse cable (contact acts at
-/// the vertices): the solve converges to a cable running through the bar, and the step says so
-/// — the edge, the obstacle, how deep. Meshed finer than the bar, the cable rests on it and
-/// nothing is reported.
-#[test]
-fn an_edge_running_through_a_thin_bar_is_reported() {
-    // A 0.5 m cantilever whose free sag at x = 0.3125 m (mid-edge of 4 elements) is about
-    // 2.6 cm; the bar (radius 1 cm) is centred 2 cm below the rest line there.
-    let text = |elements: usize| {
-        format!(
-            r#"
+/// A 0.5 m cantilever (d = 6 mm, E = 1 GPa, ρ = 1500 kg/m³) of `elements` elements along x,
+/// clamped at x = 0, sagging under gravity over the obstacle `shape` (a TOML inline table)
+/// named `name`.
+fn cantilever_over(elements: usize, name: &str, shape: &str) -> String {
+    format!(
+        r#"
 gravity = [0.0, 0.0, -9.81]
 [[rods]]
 name = "cable"
@@ -453,9 +448,25 @@ section = {{ shape = "circle", diameter = 0.006 }}
 material = {{ young = 1.0e9, poisson = 0.4, density = 1500.0 }}
 supports = [{{ kind = "clamp", vertex = "start" }}]
 [[obstacles]]
-name = "bar"
-shape = {{ kind = "cylinder", point = [0.3125, 0.0, -0.02], axis = [0.0, 1.0, 0.0], radius = 0.01 }}
+name = "{name}"
+shape = {shape}
 "#
+    )
+}
+
+/// A bar thinner than an element passes between two vertices of a coarse cable (contact acts at
+/// the vertices): the solve converges to a cable running through the bar, and the step says so
+/// — the edge, the obstacle, how deep. Meshed finer than the bar, the cable rests on it and
+/// nothing is reported.
+#[test]
+fn an_edge_running_through_a_thin_bar_is_reported() {
+    // A 0.5 m cantilever whose free sag at x = 0.3125 m (mid-edge of 4 elements) is about
+    // 2.6 cm; the bar (radius 1 cm) is centred 2 cm below the rest line there.
+    let text = |elements: usize| {
+        cantilever_over(
+            elements,
+            "bar",
+            "{ kind = \"cylinder\", point = [0.3125, 0.0, -0.02], axis = [0.0, 1.0, 0.0], radius = 0.01 }",
         )
     };
     let coarse = Session::new(scene(&text(4))).expect("compiles");
@@ -507,20 +518,11 @@ fn an_edge_crossing_a_mesh_panel_is_reported() {
     // (x = 0.125–0.25 m) sags from 0.6 to 2.0 cm and crosses the panel between its
     // vertices; with 100 elements the cable rests on the panel.
     let text = |elements: usize| {
-        format!(
-            r#"
-gravity = [0.0, 0.0, -9.81]
-[[rods]]
-name = "cable"
-elements = {elements}
-centerline = {{ kind = "straight", start = [0.0, 0.0, 0.0], direction = [1.0, 0.0, 0.0], length = 0.5 }}
-section = {{ shape = "circle", diameter = 0.006 }}
-material = {{ young = 1.0e9, poisson = 0.4, density = 1500.0 }}
-supports = [{{ kind = "clamp", vertex = "start" }}]
-[[obstacles]]
-name = "panel"
-shape = {{ kind = "mesh", vertices = [[0.15, -0.1, -0.01], [0.17, -0.1, -0.01], [0.17, 0.1, -0.01], [0.15, 0.1, -0.01]], triangles = [[0, 1, 2], [0, 2, 3]] }}
-"#
+        cantilever_over(
+            elements,
+            "panel",
+            "{ kind = \"mesh\", vertices = [[0.15, -0.1, -0.01], [0.17, -0.1, -0.01], \
+             [0.17, 0.1, -0.01], [0.15, 0.1, -0.01]], triangles = [[0, 1, 2], [0, 2, 3]] }",
         )
     };
     let coarse = Session::new(scene(&text(4))).expect("compiles");
