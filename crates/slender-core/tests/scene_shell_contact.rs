@@ -20,6 +20,11 @@ const H: f64 = 0.2e-3;
 /// ρ = 1000 kg/m³), clamped at x = 0 in y = 0, over `obstacles` (TOML tables), with `extra`
 /// keys in its `[[shells]]` table.
 fn strip_scene(extra: &str, obstacles: &str) -> String {
+    strip_scene_of(H, 30, extra, obstacles)
+}
+
+/// [`strip_scene`] with thickness `h` (m) and `elements` along the length.
+fn strip_scene_of(h: f64, elements: usize, extra: &str, obstacles: &str) -> String {
     format!(
         r#"
 gravity = [0.0, -9.81, 0.0]
@@ -28,9 +33,9 @@ gravity = [0.0, -9.81, 0.0]
 name = "strip"
 length = 0.3
 width = 0.03
-thickness = {H}
+thickness = {h}
 material = {{ young = 10530e6, poisson = 0.3, density = 1000.0 }}
-elements = 30
+elements = {elements}
 width_elements = 2
 grading = {{ kind = "uniform" }}
 {extra}
@@ -112,27 +117,19 @@ fn a_strip_running_through_a_thin_bar_between_its_vertices_is_reported() {
     let h = 1e-3;
     let (x_bar, y_bar, r_bar) = (0.1875, -0.009, 0.004);
     let text = |elements: usize| {
-        format!(
-            r#"
-gravity = [0.0, -9.81, 0.0]
-
-[[shells]]
-name = "strip"
-length = 0.3
-width = 0.03
-thickness = {h}
-material = {{ young = 10530e6, poisson = 0.3, density = 1000.0 }}
-elements = {elements}
-width_elements = 2
-grading = {{ kind = "uniform" }}
-
-[[obstacles]]
+        strip_scene_of(
+            h,
+            elements,
+            "",
+            &format!(
+                r#"[[obstacles]]
 name = "bar"
 shape = {{ kind = "cylinder", point = [{x_bar}, {y_bar}, 0.0], axis = [0.0, 0.0, 1.0], radius = {r_bar} }}
 
 [contact]
 activation = 1e-6
 "#
+            ),
         )
     };
     let coarse = Session::new(scene(&text(4))).expect("compiles");
