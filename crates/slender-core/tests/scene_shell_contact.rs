@@ -2,8 +2,10 @@
 //! and hanging over its edge (no gap closes, the box and the clamp carry the weight computed
 //! here from the scene's data, each contact listed under the box as the strip's), a coarse
 //! strip running through a thin bar between its vertices (reported) against a fine one resting
-//! on it, and bad input naming the field.
+//! on it, a mesh blade poking through a face's interior (reported), and bad input naming the
+//! field.
 
+use nalgebra::Vector3;
 use slender_core::scene::{Scene, Session};
 
 fn scene(text: &str) -> Scene {
@@ -175,6 +177,80 @@ activation = 1e-6
         !step.obstacles[0].contacts.is_empty(),
         "the fine strip rests on the bar"
     );
+    assert!(
+        step.edges_through_obstacles.is_empty(),
+        "{:?}",
+        step.edges_through_obstacles
+    );
+}
+
+#[test]
+fn a_mesh_blade_poking_through_a_face_between_its_edges_is_reported() {
+    // The coarse strip of the bar test (4 × 2 elements, sagging 5.7 mm at x = 0.1875 m) over
+    // a mesh blade: one triangle in the plane z = 2.5 mm, 1 mm wide at its base 5 cm down,
+    // its tip at x = 0.1875 m. That point lies inside one face (half way along the third
+    // element, a sixth of the way across the second row) and 2.5 mm or more from every face
+    // edge, so no face edge meets the blade: only the blade's own edges cross the face.
+    let (x_tip, z_blade) = (0.1875, 0.0025);
+    let text = |tip: f64| {
+        strip_scene_of(
+            1e-3,
+            4,
+            "",
+            &format!(
+                r#"[[obstacles]]
+name = "blade"
+shape = {{ kind = "mesh", vertices = [[{a}, -0.05, {z_blade}], [{b}, -0.05, {z_blade}], [{x_tip}, {tip}, {z_blade}]], triangles = [[0, 1, 2]] }}
+
+[contact]
+activation = 1e-6
+"#,
+                a = x_tip - 5e-4,
+                b = x_tip + 5e-4,
+            ),
+        )
+    };
+    // The tip 4 mm below the rest plane: the strip sags 1.7 mm past it.
+    let step = Session::new(scene(&text(-0.004)))
+        .expect("compiles")
+        .results(0, None, 1.0, 1);
+    assert!(step.converged, "{:?}", step.shells[0].report.status);
+    assert!(step.obstacles[0].contacts.is_empty());
+    let through = &step.edges_through_obstacles;
+    println!("strip over the blade: {through:?}");
+    assert_eq!(through.len(), 1, "{through:?}");
+    let e = &through[0];
+    assert!(
+        e.shell && e.rod == "strip" && e.obstacle == "blade",
+        "{e:?}"
+    );
+    assert_eq!(e.depth, 0.0);
+    assert_eq!(e.vertices, step.shells[0].faces[e.edge].to_vec(), "{e:?}");
+    // The crossing is on the blade (its plane, within its width at that height) and on the
+    // face's plane, inside the face.
+    let p = Vector3::from(e.position);
+    assert!((p.z - z_blade).abs() < 1e-12, "{e:?}");
+    assert!(
+        (p.x - x_tip).abs() < 5e-4 * (-0.004 - p.y) / 0.046 + 1e-12,
+        "{e:?}"
+    );
+    assert!(p.y < -0.004, "{e:?}");
+    let [a, b, c] = [0, 1, 2].map(|k| Vector3::from(step.shells[0].positions[e.vertices[k]]));
+    let normal = (b - a).cross(&(c - a)).normalize();
+    assert!(normal.dot(&(p - a)).abs() < 1e-12, "{e:?}");
+    for (u, v, w) in [(a, b, c), (b, c, a), (c, a, b)] {
+        // p on the same side of each edge as the opposite corner.
+        assert!(
+            (v - u).cross(&(p - u)).dot(&(v - u).cross(&(w - u))) > 0.0,
+            "{e:?}"
+        );
+    }
+
+    // The tip 7.5 mm down, 1.8 mm below the sagged strip: nothing crosses.
+    let step = Session::new(scene(&text(-0.0075)))
+        .expect("compiles")
+        .results(0, None, 1.0, 1);
+    assert!(step.converged, "{:?}", step.shells[0].report.status);
     assert!(
         step.edges_through_obstacles.is_empty(),
         "{:?}",

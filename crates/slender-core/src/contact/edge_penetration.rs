@@ -89,6 +89,38 @@ pub fn segment_crossing(
     (t < 1.0).then_some(t)
 }
 
+/// Where the segment from `p` to `q` (m) passes through the triangle `corners` (m), or `None`:
+/// the point of the segment on the triangle's plane, inside the triangle or on its border
+/// (Möller and Trumbore's test). A segment in the triangle's plane (or within round-off of
+/// parallel to it) is not a crossing: it touches the triangle, as a contact does.
+pub fn segment_through_triangle(
+    p: &Vector3<f64>,
+    q: &Vector3<f64>,
+    corners: &[Vector3<f64>; 3],
+) -> Option<Vector3<f64>> {
+    let [a, b, c] = corners;
+    let (e1, e2, d) = (b - a, c - a, q - p);
+    let h = d.cross(&e2);
+    let det = e1.dot(&h);
+    // |det| = |d · (e1 × e2)|: the segment's length times twice the area times the sine of
+    // its angle with the plane.
+    if det.abs() <= 1e3 * f64::EPSILON * d.norm() * e1.cross(&e2).norm() {
+        return None;
+    }
+    let s = p - a;
+    let u = s.dot(&h) / det;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let sq = s.cross(&e1);
+    let v = d.dot(&sq) / det;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(&sq) / det;
+    (0.0..=1.0).contains(&t).then(|| p + d * t)
+}
+
 /// Where the triangle `corners` (m) is deepest inside the obstacle whose signed distance is
 /// `distance` (negative inside, 1-Lipschitz): `Some((x, d))` with the point x at signed
 /// distance d < 0 (m), or `None` if no point inside was found.
@@ -246,6 +278,30 @@ mod tests {
             segment_crossing(&panel, &p, &Vector3::new(0.25, 0.0, -0.005)),
             None
         );
+    }
+
+    #[test]
+    fn a_segment_through_a_triangle_meets_it_on_its_plane_and_others_miss() {
+        let face = [
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(1.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+        ];
+        let hit = |p: [f64; 3], q: [f64; 3]| {
+            segment_through_triangle(&Vector3::from(p), &Vector3::from(q), &face)
+        };
+        // Slanted through the interior: z goes from -1 to 3, so the plane is a quarter of the
+        // way, at (0.2, 0.1) + (0.4, 0.4)/4.
+        let x = hit([0.2, 0.1, -1.0], [0.6, 0.5, 3.0]).expect("crosses");
+        assert!((x - Vector3::new(0.3, 0.2, 0.0)).norm() < 1e-15, "{x:?}");
+        // Either direction.
+        let y = hit([0.6, 0.5, 3.0], [0.2, 0.1, -1.0]).expect("crosses");
+        assert!((x - y).norm() < 1e-15);
+        // Ending short of the plane, beside the triangle, beyond its hypotenuse, in its plane.
+        assert_eq!(hit([0.2, 0.1, -1.0], [0.2, 0.1, -1e-9]), None);
+        assert_eq!(hit([-0.1, 0.5, -1.0], [-0.1, 0.5, 1.0]), None);
+        assert_eq!(hit([0.6, 0.6, -1.0], [0.6, 0.6, 1.0]), None);
+        assert_eq!(hit([-1.0, 0.2, 0.0], [2.0, 0.2, 0.0]), None);
     }
 
     #[test]

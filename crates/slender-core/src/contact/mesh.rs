@@ -6,6 +6,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::edge_penetration::segment_through_triangle;
 use super::obstacle::{Obstacle, SurfacePoint};
 use crate::ModelError;
 
@@ -292,6 +293,37 @@ impl Obstacle for TriangleMesh {
         alpha
     }
 
+    fn edge_through_triangle(&self, corners: &[Vector3<f64>; 3]) -> Option<Vector3<f64>> {
+        let [a, b, c] = corners;
+        let (lo, hi) = (a.inf(b).inf(c), a.sup(b).sup(c));
+        // Depth first over the nodes whose boxes overlap the triangle's, left child first: the
+        // same answer for the same input.
+        let mut stack = vec![0usize];
+        while let Some(k) = stack.pop() {
+            let node = &self.nodes[k];
+            if (0..3).any(|i| node.lo[i] > hi[i] || node.hi[i] < lo[i]) {
+                continue;
+            }
+            match node.children {
+                Some((l, r)) => {
+                    stack.push(r);
+                    stack.push(l);
+                }
+                None => {
+                    for &t in &self.order[node.start..node.end] {
+                        let [p, q, r] = self.corners(t);
+                        for (s, e) in [(p, q), (q, r), (r, p)] {
+                            if let Some(x) = segment_through_triangle(&s, &e, corners) {
+                                return Some(x);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        None
+    }
+
     fn friction(&self) -> f64 {
         self.friction
     }
@@ -398,6 +430,49 @@ mod tests {
         assert!(e.to_string().contains("triangles[0]") && e.to_string().contains("degenerate"));
         let e = TriangleMesh::new(v, vec![[0, 1, 7]], 0.1).unwrap_err();
         assert!(e.to_string().contains("triangles[0]"));
+    }
+
+    #[test]
+    fn a_panel_corner_poking_through_a_face_is_found_and_one_below_it_is_not() {
+        // A thin vertical blade (a mesh triangle in the plane y = 0.2) whose tip pokes 1 cm up
+        // through a face in z = 0; none of the face's edges meets the blade.
+        let face = [
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(1.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+        ];
+        let blade = |tip: f64| {
+            TriangleMesh::new(
+                vec![
+                    Vector3::new(0.19, 0.2, -0.1),
+                    Vector3::new(0.21, 0.2, -0.1),
+                    Vector3::new(0.2, 0.2, tip),
+                ],
+                vec![[0, 1, 2]],
+                0.0,
+            )
+            .unwrap()
+        };
+        let poking = blade(0.01);
+        for (p, q) in [(0, 1), (1, 2), (2, 0)] {
+            assert_eq!(
+                poking.time_of_impact(&face[p], &(face[q] - face[p]), 0.0),
+                1.0
+            );
+        }
+        let x = poking
+            .edge_through_triangle(&face)
+            .expect("the tip crosses");
+        assert!(x.z.abs() < 1e-15 && (x.y - 0.2).abs() < 1e-15, "{x:?}");
+        // On one of the blade's slanted edges: 1 cm below the tip, 0.91 mm beside its x.
+        assert!(
+            ((x.x - 0.2).abs() - 0.01 * 0.01 / 0.11).abs() < 1e-15,
+            "{x:?}"
+        );
+        assert_eq!(blade(-0.01).edge_through_triangle(&face), None);
+        // A face beside the blade.
+        let beside = face.map(|v| v + Vector3::new(0.5, 0.5, 0.0));
+        assert_eq!(poking.edge_through_triangle(&beside), None);
     }
 
     #[test]

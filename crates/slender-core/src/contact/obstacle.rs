@@ -44,6 +44,16 @@ pub trait Obstacle: std::fmt::Debug + Send + Sync {
         true
     }
 
+    /// For a surface without an inside ([`Self::signed`] false): a point (m) where one of the
+    /// surface's own edges passes through the triangle `corners` (m), or `None`. Two triangles
+    /// that cross have an edge of one through the other, so this and [`Self::time_of_impact`]
+    /// along the triangle's edges find every crossing of a shell face and the surface (a
+    /// panel's corner poking through a face's interior is seen only here). Solids answer `None`:
+    /// a face's depth inside them is searched instead.
+    fn edge_through_triangle(&self, _corners: &[Vector3<f64>; 3]) -> Option<Vector3<f64>> {
+        None
+    }
+
     /// Coulomb friction coefficient μ ≥ 0 of this obstacle's surface (dimensionless; μ_s = μ_d).
     fn friction(&self) -> f64;
 

@@ -236,8 +236,8 @@ impl ContactStripRun {
     }
 
     /// Every face whose mid-surface runs through an obstacle at the current state: into a
-    /// solid, or across a mesh along one of the face's edges (a mesh whose border lies inside
-    /// a face, a panel's corner poking through it, is not seen).
+    /// solid, or across a mesh (one of the face's edges through the mesh, or one of the mesh's
+    /// edges through the face: a panel's corner poking through its interior).
     fn faces_through(&self, shell: &Shell) -> Vec<FaceThrough> {
         let x = &self.state.positions;
         let mut through = Vec::new();
@@ -247,10 +247,16 @@ impl ContactStripRun {
                     let surface = |p: &Vec3| o.surface(p).distance;
                     deepest_point_inside_triangle(surface, [x[a], x[b], x[c]])
                 } else {
-                    [(a, b), (b, c), (c, a)].into_iter().find_map(|(i, j)| {
-                        segment_crossing(o.as_ref(), &x[i], &x[j])
-                            .map(|t| (x[i] + (x[j] - x[i]) * t, 0.0))
-                    })
+                    [(a, b), (b, c), (c, a)]
+                        .into_iter()
+                        .find_map(|(i, j)| {
+                            segment_crossing(o.as_ref(), &x[i], &x[j])
+                                .map(|t| (x[i] + (x[j] - x[i]) * t, 0.0))
+                        })
+                        .or_else(|| {
+                            o.edge_through_triangle(&[x[a], x[b], x[c]])
+                                .map(|p| (p, 0.0))
+                        })
                 };
                 if let Some((position, d)) = found {
                     through.push(FaceThrough {
