@@ -210,7 +210,8 @@ activation = 1e-6
             ),
         )
     };
-    // The tip 4 mm below the rest plane: the strip sags 1.7 mm past it.
+    // The tip 4 mm below the rest plane: the strip sags past it (the face crosses the blade
+    // 6.3 mm down).
     let step = Session::new(scene(&text(-0.004)))
         .expect("compiles")
         .results(0, None, 1.0, 1);
