@@ -3,7 +3,8 @@
 //! two turns, a U-turn, ends pushed together into a loop, clips dragged, a thin steel wire
 //! circled), flat cables dragged and twisted, and cables paid out and pulled in. Prints per
 //! case the moves that failed or ended unstable, the worst relative residual, the largest
-//! Newton iteration count and the wall time.
+//! Newton iteration count and the wall time (with `VERBOSE` set, each edit's iterations and load
+//! steps, and why a failed edit failed).
 //!
 //! `cargo run --release -p slender-core --example drag_sweep [FILTER]` (FILTER: a substring of
 //! the case names, e.g. `se3` or `shell`).
@@ -71,6 +72,12 @@ impl Tally {
         self.edits += 1;
         match r {
             Ok(r) if r.converged => {
+                if std::env::var("VERBOSE").is_ok() {
+                    println!(
+                        "  edit {:2}: {:4} iterations, {:3} load steps, residual {:.1e}",
+                        self.edits, r.iterations, r.load_steps, r.relative_residual
+                    );
+                }
                 self.unstable += usize::from(!r.stable);
                 self.worst_residual = self.worst_residual.max(r.relative_residual);
                 self.max_iterations = self.max_iterations.max(r.iterations);
