@@ -433,6 +433,54 @@ fn cable_over_bracket_follows_one_centimetre_drags_of_its_clamp_in_every_directi
     }
 }
 
+/// The clamp of examples/cable_over_bracket.toml (floor made frictionless) dragged 1 cm down
+/// and sideways, pressing the cable onto the bracket and the floor it rests on: the first
+/// guess holds the resting cable where it touches (the drag's motion faded out toward the
+/// contacts, as toward a support), so each drag converges in one load step (carried rigidly,
+/// the cable's vertices were stopped at the floor and the others not: 400 Newton iterations
+/// in 22 load steps for the downward drag). Frictionless, the equilibrium does not depend on
+/// the path: the scene solved cold with its cable starting at the dragged clamp (the gravity
+/// ramp dropping it onto the bracket and the floor) ends on the same one.
+#[test]
+fn dragging_a_resting_cable_onto_its_contacts_holds_them_in_the_first_guess() {
+    let mut base = scene(include_str!("../../../examples/cable_over_bracket.toml"));
+    base.motion.clear();
+    base.obstacles[1].friction = 0.0;
+    for d in [[0.0, 0.0, -0.01], [0.0, 0.01, -0.01]] {
+        let mut s = Session::new(base.clone()).expect("compiles");
+        assert!(s.report(0).converged(), "{:?}", s.report(0).status);
+        let e = s
+            .move_support_by(0, 0, nalgebra::Vector3::zeros(), nalgebra::Vector3::from(d))
+            .expect("edit");
+        println!(
+            "drag {d:?}: {} Newton iterations, {} load steps",
+            e.iterations, e.load_steps
+        );
+        assert!(e.converged, "{d:?}: {:?}", e.reason);
+        assert_eq!(e.load_steps, 1, "{d:?}");
+        let a = s.results(0, None, 1.0, 1);
+        assert!(
+            !a.obstacles[1].contacts.is_empty(),
+            "the cable rests on the floor"
+        );
+        let text = toml::to_string(&base).expect("toml");
+        let start = format!("[{:?}, {:?}, {:?}]", d[0], d[1], 0.3 + d[2]);
+        let moved = scene(&text.replacen("[0.0, 0.0, 0.3]", &start, 1));
+        assert_ne!(moved, base, "the cable's start moved");
+        let cold = Session::new(moved).expect("compiles");
+        assert!(cold.report(0).converged(), "{:?}", cold.report(0).status);
+        let b = cold.results(0, None, 1.0, 1);
+        let diff = a.rods[0]
+            .positions
+            .iter()
+            .zip(&b.rods[0].positions)
+            .map(|(p, q)| norm([p[0] - q[0], p[1] - q[1], p[2] - q[2]]))
+            .fold(0.0, f64::max);
+        println!("  cold solve from {start}: largest position difference {diff:.3e} m");
+        assert!(diff < 1e-6, "{d:?}: {diff}");
+    }
+}
+
 /// A 0.5 m cantilever (d = 6 mm, E = 1 GPa, ρ = 1500 kg/m³) of `elements` elements along x,
 /// clamped at x = 0, sagging under gravity over the obstacle `shape` (a TOML inline table)
 /// named `name`.

@@ -268,6 +268,78 @@ struct SelfScratch {
 }
 
 impl<'m, P: ContactSites> ContactProblem<'m, P> {
+    /// Per site, the fraction of its blended first-guess move (from `start` to `guessed`)
+    /// that it keeps: 0 at a site in contact at `start` (within the activation distance of
+    /// an obstacle) that the blend pushes into it (the cable rests there, held as at a
+    /// support; a blend that lifts it off is kept), 1 at the supports, linear in rest arc
+    /// length between them along each member and constant past the outermost. All 1 when
+    /// no contact is pushed, and for sites of a model without centerline edges (a shell
+    /// strip's grid).
+    fn guess_fractions(&self, start: &P::State, guessed: &P::State) -> Vec<f64> {
+        use crate::assembly::FIXED;
+        let held: Vec<bool> = (self.sites.iter().zip(&self.site_radius))
+            .map(|(site, &radius)| {
+                let p = self.model.site_position(start, site);
+                let dp = self.model.site_position(guessed, site) - p;
+                site.dofs.iter().any(|d| d.dof != FIXED)
+                    && self.obstacles.iter().any(|o| {
+                        let s = o.surface(&p);
+                        s.distance - radius <= self.params.activation && dp.dot(&s.normal) < 0.0
+                    })
+            })
+            .collect();
+        let mut fraction = vec![1.0; self.sites.len()];
+        if !held.contains(&true) {
+            return fraction;
+        }
+        // Each site's member and rest arc length along it, ordered along the members.
+        let index: std::collections::HashMap<(usize, usize), usize> = (self.sites.iter())
+            .enumerate()
+            .map(|(k, s)| ((s.member, s.vertex), k))
+            .collect();
+        let mut along: Vec<(usize, f64, usize)> = Vec::with_capacity(self.sites.len());
+        let mut placed = vec![false; self.sites.len()];
+        for e in self.model.contact_edges() {
+            for (v, s) in e.vertices.iter().zip(e.arc) {
+                if let Some(&k) = index.get(&(e.member, *v)) {
+                    if !std::mem::replace(&mut placed[k], true) {
+                        along.push((e.member, s, k));
+                    }
+                }
+            }
+        }
+        along.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        // Anchors: held sites (0) and supported ones (every coordinate held: 1).
+        let anchor = |k: usize| -> Option<f64> {
+            if held[k] {
+                Some(0.0)
+            } else if self.sites[k].dofs.iter().all(|d| d.dof == FIXED) {
+                Some(1.0)
+            } else {
+                None
+            }
+        };
+        for member in along.chunk_by(|a, b| a.0 == b.0) {
+            let anchors: Vec<(f64, f64)> = member
+                .iter()
+                .filter_map(|&(_, s, k)| anchor(k).map(|f| (s, f)))
+                .collect();
+            for &(_, s, k) in member {
+                if let Some(f) = anchor(k) {
+                    fraction[k] = f;
+                    continue;
+                }
+                let next = anchors.partition_point(|a| a.0 < s);
+                fraction[k] = match (next.checked_sub(1).map(|i| anchors[i]), anchors.get(next)) {
+                    (Some((s0, f0)), Some(&(s1, f1))) => f0 + (f1 - f0) * (s - s0) / (s1 - s0),
+                    (Some((_, f)), None) | (None, Some(&(_, f))) => f,
+                    (None, None) => 1.0,
+                };
+            }
+        }
+        fraction
+    }
+
     /// The largest fraction (≤ `alpha`, the model's own cap) of the step `dx` along which
     /// every site keeps its clearance from every obstacle and, with self-contact, every pair of
     /// segments theirs (a fraction [`KEEP_GAP`] of each gap stays open).
@@ -1144,17 +1216,21 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
             return self.model.impose_load(state, from, to, guess);
         }
         // The model's first guess moves the free vertices by a blend of the supports' motion,
-        // in one jump. Each vertex's jump is capped like a Newton step (its time of impact
-        // with every obstacle, keeping a fraction of its gap), so that the guess cannot carry
-        // a vertex through a thin obstacle (a ring's tube, a panel) to a feasible state on its
-        // far side; the vertices an obstacle stops stay short of it, the rest follow the blend.
+        // in one jump. A cable resting on an obstacle is held there as at a support, so the
+        // blend is faded out toward its contacts (see [`Self::guess_fractions`]): carried
+        // rigidly, a cable lying on a floor would be pushed into it by a downward drag of its
+        // clamp, its vertices stopped at the floor and the others not, and Newton would start
+        // from kinks of thousands of newtons. Each vertex's jump is then capped like a Newton
+        // step (its time of impact with every obstacle, keeping a fraction of its gap), so
+        // that the guess cannot carry a vertex through a thin obstacle (a ring's tube, a
+        // panel) to a feasible state on its far side.
         let before = state.clone();
         self.model.impose_load(state, from, to, true);
-        let mut fraction = vec![1.0_f64; self.sites.len()];
-        let mut capped = false;
+        let mut fraction = self.guess_fractions(&before, state);
+        let mut capped = fraction.iter().any(|&f| f < 1.0);
         for (k, (site, &radius)) in self.sites.iter().zip(&self.site_radius).enumerate() {
             let p0 = self.model.site_position(&before, site);
-            let dp = self.model.site_position(state, site) - p0;
+            let dp = (self.model.site_position(state, site) - p0) * fraction[k];
             if dp == Vector3::zeros() || site.dofs.iter().all(|d| d.dof == crate::assembly::FIXED) {
                 continue;
             }
@@ -1162,8 +1238,8 @@ impl<P: ContactSites> EquilibriumProblem for ContactProblem<'_, P> {
                 let gap = o.surface(&p0).distance - radius;
                 let clearance = radius + KEEP_GAP * gap.max(0.0);
                 let t = o.time_of_impact(&p0, &dp, clearance);
-                if t < fraction[k] {
-                    fraction[k] = t;
+                if t < 1.0 {
+                    fraction[k] *= t;
                     capped = true;
                 }
             }
