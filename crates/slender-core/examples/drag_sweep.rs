@@ -1,10 +1,10 @@
 //! A robustness sweep of interactive edits: every rod model dragged through the moves a
 //! harness engineer makes (a soft hose circled, a heavy cable given slack, an end twisted by
 //! two turns, a U-turn, ends pushed together into a loop, clips dragged, a thin steel wire
-//! circled), flat cables dragged and twisted, and cables paid out and pulled in. Prints per
-//! case the moves that failed or ended unstable, the worst relative residual, the largest
-//! Newton iteration count and the wall time (with `VERBOSE` set, each edit's iterations and load
-//! steps, and why a failed edit failed).
+//! circled, a cable resting on a bracket and a floor), flat cables dragged and twisted, and
+//! cables paid out and pulled in. Prints per case the moves that failed or ended unstable, the
+//! worst relative residual, the largest Newton iteration count and the wall time (with
+//! `VERBOSE` set, each edit's iterations and load steps, and why a failed edit failed).
 //!
 //! `cargo run --release -p slender-core --example drag_sweep [FILTER]` (FILTER: a substring of
 //! the case names, e.g. `se3` or `shell`).
@@ -34,6 +34,21 @@ supports = [ {{ kind = "clamp", vertex = "start" }}, {{ kind = "clamp", vertex =
 "#
     ))
     .expect("a valid scene")
+}
+
+/// examples/cable_over_bracket.toml (a cable clamped at one end, draped over a round bracket
+/// onto a floor) with the rod model `model` and floor friction `mu`, without its motion.
+fn cable_on_bracket(model: &str, mu: f64) -> Scene {
+    let mut scene: Scene = toml::from_str(
+        &include_str!("../../../examples/cable_over_bracket.toml").replace(
+            "name = \"cable\"",
+            &format!("name = \"cable\"\nmodel = \"{model}\""),
+        ),
+    )
+    .expect("a valid scene");
+    scene.motion.clear();
+    scene.obstacles[1].friction = mu;
+    scene
 }
 
 /// A flat cable 0.5 m long clamped at both edges: width (m), thickness (m), Young's modulus.
@@ -176,6 +191,24 @@ fn main() {
                 run(&name, scene, &moves, |s, r, t| {
                     s.move_support_by(0, 1, r, t)
                 });
+            }
+        }
+        // The clamp of a cable resting on a bracket and a floor walked round a 1 cm-sided
+        // 12-gon in the vertical plane along the cable, pressing it onto its contacts and
+        // lifting it off them.
+        let vertical_circle: Vec<(Vec3, Vec3)> = circle(12, 0.01, 0.0)
+            .into_iter()
+            .map(|(r, t)| (r, Vec3::new(t.y, 0.0, t.z)))
+            .collect();
+        for mu in [0.0, 0.3] {
+            let name = format!("{model}: on a bracket and a floor (mu {mu}), clamp circled");
+            if name.contains(&filter) {
+                run(
+                    &name,
+                    cable_on_bracket(model, mu),
+                    &vertical_circle,
+                    |s, r, t| s.move_support_by(0, 0, r, t),
+                );
             }
         }
         let name = format!("{model}: cable paid out, pulled in");
