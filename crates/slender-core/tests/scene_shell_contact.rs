@@ -2,8 +2,8 @@
 //! and hanging over its edge (no gap closes, the box and the clamp carry the weight computed
 //! here from the scene's data, each contact listed under the box as the strip's), a coarse
 //! strip running through a thin bar between its vertices (reported) against a fine one resting
-//! on it, a mesh blade poking through a face's interior (reported), and bad input naming the
-//! field.
+//! on it, a mesh blade poking through a face's interior (reported), a resting strip dragged
+//! onto its contacts, and bad input naming the field.
 
 use nalgebra::Vector3;
 use slender_core::scene::{Scene, Session};
@@ -257,6 +257,56 @@ activation = 1e-6
         "{:?}",
         step.edges_through_obstacles
     );
+}
+
+/// The clamp of examples/flat_cable_on_bracket.toml (floor made frictionless) dragged 1 cm
+/// down, pressing the strip onto the bracket and the floor it rests on: the first guess holds
+/// the strip's rows where they touch (the move faded out along the length toward them, as
+/// toward a support), so the drag converges in one load step (carried rigidly, the rows
+/// stopped at the surfaces and the others not: 107 Newton iterations in 4 load steps).
+/// Frictionless, the equilibrium does not depend on the path: the scene solved cold with both
+/// obstacles 1 cm higher instead ends on the same shape, 1 cm higher.
+#[test]
+fn dragging_a_resting_strip_onto_its_contacts_holds_them_in_the_first_guess() {
+    let mut base = scene(include_str!("../../../examples/flat_cable_on_bracket.toml"));
+    base.motion.clear();
+    base.obstacles[1].friction = 0.0;
+    let mut s = Session::new(base.clone()).expect("compiles");
+    let e = s
+        .move_shell_clamp_by(0, 0, Vector3::zeros(), Vector3::new(0.0, -0.01, 0.0))
+        .expect("edit");
+    println!(
+        "strip dragged down: {} Newton iterations, {} load steps",
+        e.iterations, e.load_steps
+    );
+    assert!(e.converged, "{:?}", e.reason);
+    assert_eq!(e.load_steps, 1);
+    let a = s.results(0, None, 1.0, 1);
+    assert!(
+        !a.obstacles[1].contacts.is_empty(),
+        "the strip rests on the floor"
+    );
+
+    let text = toml::to_string(&base).expect("toml");
+    let raised = text
+        .replacen("-0.045", "-0.035", 1)
+        .replacen("-0.08", "-0.07", 1);
+    let raised = scene(&raised);
+    assert_ne!(raised, base, "the obstacles moved");
+    let cold = Session::new(raised).expect("compiles");
+    let b = cold.results(0, None, 1.0, 1);
+    assert!(b.converged, "{:?}", b.shells[0].report.status);
+    let diff = a.shells[0]
+        .positions
+        .iter()
+        .zip(&b.shells[0].positions)
+        .map(|(p, q)| {
+            let d = Vector3::from(*p) - Vector3::from(*q) + Vector3::new(0.0, 0.01, 0.0);
+            d.norm()
+        })
+        .fold(0.0, f64::max);
+    println!("  cold solve with the obstacles raised: largest position difference {diff:.3e} m");
+    assert!(diff < 1e-6, "{diff}");
 }
 
 #[test]

@@ -271,10 +271,9 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
     /// Per site, the fraction of its blended first-guess move (from `start` to `guessed`)
     /// that it keeps: 0 at a site in contact at `start` (within the activation distance of
     /// an obstacle) that the blend pushes into it (the cable rests there, held as at a
-    /// support; a blend that lifts it off is kept), 1 at the supports, linear in rest arc
-    /// length between them along each member and constant past the outermost. All 1 when
-    /// no contact is pushed, and for sites of a model without centerline edges (a shell
-    /// strip's grid).
+    /// support; a blend that lifts it off is kept), 1 at the supports, linear in rest station
+    /// between them along each line ([`ContactSites::site_stations`]: a member, a strip's
+    /// length) and constant past the outermost. All 1 when no contact is pushed.
     fn guess_fractions(&self, start: &P::State, guessed: &P::State) -> Vec<f64> {
         use crate::assembly::FIXED;
         let held: Vec<bool> = (self.sites.iter().zip(&self.site_radius))
@@ -292,22 +291,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
         if !held.contains(&true) {
             return fraction;
         }
-        // Each site's member and rest arc length along it, ordered along the members.
-        let index: std::collections::HashMap<(usize, usize), usize> = (self.sites.iter())
+        // The sites ordered along their lines (members, or a strip's length).
+        let mut along: Vec<(usize, f64, usize)> = (self.model.site_stations(&self.sites))
+            .into_iter()
             .enumerate()
-            .map(|(k, s)| ((s.member, s.vertex), k))
+            .filter_map(|(k, at)| at.map(|(line, s)| (line, s, k)))
             .collect();
-        let mut along: Vec<(usize, f64, usize)> = Vec::with_capacity(self.sites.len());
-        let mut placed = vec![false; self.sites.len()];
-        for e in self.model.contact_edges() {
-            for (v, s) in e.vertices.iter().zip(e.arc) {
-                if let Some(&k) = index.get(&(e.member, *v)) {
-                    if !std::mem::replace(&mut placed[k], true) {
-                        along.push((e.member, s, k));
-                    }
-                }
-            }
-        }
         along.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
         // Anchors: held sites (0) and supported ones (every coordinate held: 1).
         let anchor = |k: usize| -> Option<f64> {
@@ -319,12 +308,12 @@ impl<'m, P: ContactSites> ContactProblem<'m, P> {
                 None
             }
         };
-        for member in along.chunk_by(|a, b| a.0 == b.0) {
-            let anchors: Vec<(f64, f64)> = member
+        for line in along.chunk_by(|a, b| a.0 == b.0) {
+            let anchors: Vec<(f64, f64)> = line
                 .iter()
                 .filter_map(|&(_, s, k)| anchor(k).map(|f| (s, f)))
                 .collect();
-            for &(_, s, k) in member {
+            for &(_, s, k) in line {
                 if let Some(f) = anchor(k) {
                     fraction[k] = f;
                     continue;

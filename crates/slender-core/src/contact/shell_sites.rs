@@ -74,6 +74,13 @@ impl ContactSites for Shell {
         Vec::new()
     }
 
+    /// The rest station x of each vertex along the strip (its rows run across the width).
+    fn site_stations(&self, sites: &[ContactSite]) -> Vec<Option<(usize, f64)>> {
+        (sites.iter())
+            .map(|s| Some((0, self.mesh.rest_positions[s.vertex].x)))
+            .collect()
+    }
+
     fn adaptive_hessian(&self) -> AdaptiveMatrix {
         // A site touches the three coordinates of one vertex, all in the pattern of its faces.
         AdaptiveMatrix::Sparse(self.sparse_hessian())

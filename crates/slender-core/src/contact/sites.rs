@@ -57,6 +57,25 @@ pub trait ContactSites: EquilibriumProblem {
     fn canonical_vertex(&self, member: usize, vertex: usize) -> (usize, usize) {
         (member, vertex)
     }
+    /// Where each of `sites` lies along the model: its line (a member) and rest station
+    /// (m) along it, or `None`. The first guess of a support move in contact fades the move
+    /// out along these lines toward the contacts it presses (`ContactProblem`'s
+    /// `impose_load`). By default the rest arc length along the member's centerline edges.
+    fn site_stations(&self, sites: &[ContactSite]) -> Vec<Option<(usize, f64)>> {
+        let index: std::collections::HashMap<(usize, usize), usize> = (sites.iter())
+            .enumerate()
+            .map(|(k, s)| ((s.member, s.vertex), k))
+            .collect();
+        let mut stations = vec![None; sites.len()];
+        for e in self.contact_edges() {
+            for (v, s) in e.vertices.iter().zip(e.arc) {
+                if let Some(&k) = index.get(&(e.member, *v)) {
+                    stations[k].get_or_insert((e.member, s));
+                }
+            }
+        }
+        stations
+    }
 }
 
 /// The edges of one polyline with rest edge lengths `lengths` (`closed`: the last joins the
