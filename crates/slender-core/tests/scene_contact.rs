@@ -36,6 +36,14 @@ fn norm(v: [f64; 3]) -> f64 {
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
+/// The largest distance (m) between corresponding points of `a` and `b`.
+fn largest_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| norm([p[0] - q[0], p[1] - q[1], p[2] - q[2]]))
+        .fold(0.0, f64::max)
+}
+
 /// Every contact's friction is within the cone: |f_t| ≤ μ |f_n| (up to round-off).
 fn assert_in_cone(step: &SceneStep) {
     for o in &step.obstacles {
@@ -313,12 +321,7 @@ activation = 1e-4
     }
     let a = s.results(0, None, 1.0, 1);
     let b = again.results(0, None, 1.0, 1);
-    let diff = a.rods[0]
-        .positions
-        .iter()
-        .zip(&b.rods[0].positions)
-        .map(|(p, q)| norm([p[0] - q[0], p[1] - q[1], p[2] - q[2]]))
-        .fold(0.0, f64::max);
+    let diff = largest_distance(&a.rods[0].positions, &b.rods[0].positions);
     println!(
         "saved scene: largest position difference {diff:.3e} m, bracket contacts {} / {}",
         a.obstacles[0].contacts.len(),
@@ -470,12 +473,7 @@ fn dragging_a_resting_cable_onto_its_contacts_holds_them_in_the_first_guess() {
         let cold = Session::new(moved).expect("compiles");
         assert!(cold.report(0).converged(), "{:?}", cold.report(0).status);
         let b = cold.results(0, None, 1.0, 1);
-        let diff = a.rods[0]
-            .positions
-            .iter()
-            .zip(&b.rods[0].positions)
-            .map(|(p, q)| norm([p[0] - q[0], p[1] - q[1], p[2] - q[2]]))
-            .fold(0.0, f64::max);
+        let diff = largest_distance(&a.rods[0].positions, &b.rods[0].positions);
         println!("  cold solve from {start}: largest position difference {diff:.3e} m");
         assert!(diff < 1e-6, "{d:?}: {diff}");
     }
