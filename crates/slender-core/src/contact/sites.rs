@@ -57,6 +57,7 @@ pub trait ContactSites: EquilibriumProblem {
     fn canonical_vertex(&self, member: usize, vertex: usize) -> (usize, usize) {
         (member, vertex)
     }
+
     /// Where each of `sites` lies along the model: its line (a member) and rest station
     /// (m) along it, or `None`. The first guess of a support move in contact fades the move
     /// out along these lines toward the contacts it presses (`ContactProblem`'s
